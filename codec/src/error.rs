@@ -1,0 +1,277 @@
+//! Errors, split by cause: I/O, malformed data, bad parameter, limit
+//! exceeded, topology the encoder cannot handle, unsupported version.
+//!
+//! Errors carry data, never formatted strings, so callers can match on
+//! them; `Display` gives the one-line message the CLI prints after the
+//! file name.
+
+use core::fmt;
+
+/// Everything that can go wrong in this crate.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// Reading or writing failed at the operating-system level.
+    #[cfg(feature = "std")]
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+    /// The data is malformed or corrupt.
+    #[error("{0}")]
+    Format(#[from] FormatError),
+    /// A caller-supplied option is out of range.
+    #[error("{0}")]
+    Parameter(#[from] ParameterError),
+    /// The input asks for more than the [`Limits`](crate::Limits) allow.
+    #[error("{0}")]
+    LimitExceeded(#[from] LimitError),
+    /// The input's topology cannot be handled (e.g. a non-orientable surface).
+    #[error("{0}")]
+    Topology(#[from] TopologyError),
+}
+
+/// Where in a file a problem was found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Location {
+    /// 1-based line of a text file.
+    Line(u64),
+    /// 0-based byte offset of a binary file.
+    Byte(u64),
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::Line(l) => write!(f, "line {l}"),
+            Location::Byte(b) => write!(f, "byte {b}"),
+        }
+    }
+}
+
+/// Malformed or corrupt data: what is wrong, in which format, and where.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FormatError {
+    /// Short name of the format ("PLY", "OBJ", "OFF", "STL", "SWM").
+    pub format: &'static str,
+    /// What is wrong.
+    pub what: Malformed,
+    /// Where, when known.
+    pub at: Option<Location>,
+}
+
+impl FormatError {
+    /// A new error without a location.
+    pub fn new(format: &'static str, what: Malformed) -> Self {
+        FormatError {
+            format,
+            what,
+            at: None,
+        }
+    }
+
+    /// The same error, located.
+    pub fn at(mut self, at: Location) -> Self {
+        self.at = Some(at);
+        self
+    }
+}
+
+impl fmt::Display for FormatError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "malformed {} file", self.format)?;
+        if let Some(at) = self.at {
+            write!(f, " at {at}")?;
+        }
+        write!(f, ": {}", self.what)
+    }
+}
+
+impl core::error::Error for FormatError {}
+
+/// What is malformed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Malformed {
+    /// The file holds no data at all.
+    Empty,
+    /// The data ends before what the header or syntax promised.
+    Truncated,
+    /// Bytes follow the end of the data where none may.
+    TrailingData,
+    /// The header is not valid; the text says which rule was broken.
+    BadHeader(&'static str),
+    /// A token that should be a number is not one.
+    BadNumber,
+    /// A line or record does not follow the syntax; the text says which rule.
+    BadSyntax(&'static str),
+    /// A declared count cannot fit in the bytes that follow it.
+    CountTooLarge {
+        /// What was counted ("vertex", "face", ...).
+        element: &'static str,
+        /// The count the file declares.
+        declared: u64,
+        /// The most the rest of the file could hold.
+        possible: u64,
+    },
+    /// A face refers to a vertex that does not exist.
+    IndexOutOfRange {
+        /// The index as written in the file (0-based after conversion).
+        index: i64,
+        /// Number of vertices available.
+        vertices: u64,
+    },
+    /// A coordinate is NaN or infinite.
+    NonFinite {
+        /// 0-based vertex index.
+        vertex: u64,
+    },
+    /// A face has fewer than three vertices.
+    FaceTooSmall {
+        /// Its vertex count.
+        count: u64,
+    },
+    /// The file names a feature this reader does not support.
+    Unsupported(&'static str),
+}
+
+impl fmt::Display for Malformed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Malformed::Empty => write!(f, "the file is empty"),
+            Malformed::Truncated => write!(f, "the file is truncated"),
+            Malformed::TrailingData => write!(f, "unexpected data after the end"),
+            Malformed::BadHeader(why) => write!(f, "bad header: {why}"),
+            Malformed::BadNumber => write!(f, "not a valid number"),
+            Malformed::BadSyntax(why) => write!(f, "{why}"),
+            Malformed::CountTooLarge { element, declared, possible } => write!(
+                f,
+                "declares {declared} {element} elements but the rest of the file can hold at most {possible}"
+            ),
+            Malformed::IndexOutOfRange { index, vertices } => {
+                write!(f, "vertex index {index} is out of range (the mesh has {vertices} vertices)")
+            }
+            Malformed::NonFinite { vertex } => write!(f, "vertex {vertex} has a NaN or infinite coordinate"),
+            Malformed::FaceTooSmall { count } => write!(f, "a face has {count} vertices; at least 3 are needed"),
+            Malformed::Unsupported(what) => write!(f, "unsupported: {what}"),
+        }
+    }
+}
+
+/// A caller-supplied option is out of range or meaningless.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ParameterError {
+    /// The file extension names no supported mesh format.
+    UnknownExtension,
+    /// A numeric option is outside its range.
+    OutOfRange {
+        /// The option's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// Smallest accepted value.
+        min: f64,
+        /// Largest accepted value.
+        max: f64,
+    },
+}
+
+impl fmt::Display for ParameterError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParameterError::UnknownExtension => {
+                write!(f, "unknown mesh format (expected .obj, .ply, .off or .stl)")
+            }
+            ParameterError::OutOfRange {
+                name,
+                value,
+                min,
+                max,
+            } => {
+                write!(f, "{name} = {value} is out of range [{min}, {max}]")
+            }
+        }
+    }
+}
+
+impl core::error::Error for ParameterError {}
+
+/// What a [`LimitError`] counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Limited {
+    /// Vertices.
+    Vertices,
+    /// Faces (triangles).
+    Faces,
+    /// Bytes of memory.
+    AllocBytes,
+}
+
+/// The input needs more than the [`Limits`](crate::Limits) allow.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LimitError {
+    /// What was counted.
+    pub what: Limited,
+    /// How many were requested.
+    pub requested: u64,
+    /// The limit in force.
+    pub limit: u64,
+}
+
+impl fmt::Display for LimitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let what = match self.what {
+            Limited::Vertices => "vertices",
+            Limited::Faces => "faces",
+            Limited::AllocBytes => "bytes of memory",
+        };
+        write!(
+            f,
+            "needs {} {what}, more than the limit of {}",
+            self.requested, self.limit
+        )
+    }
+}
+
+impl core::error::Error for LimitError {}
+
+/// Input whose topology the library cannot handle.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum TopologyError {
+    /// A connected component cannot be oriented consistently (Möbius-like).
+    NonOrientable {
+        /// Index of the component, in order of its first face.
+        component: u32,
+        /// A face where the orientation conflict was found.
+        face: u32,
+    },
+    /// The mesh has no triangles left (after cleaning, if any).
+    NoTriangles,
+    /// The corner table requires a manifold mesh and this one is not.
+    NonManifold {
+        /// Edges shared by more than two faces or by two faces of the same direction.
+        edges: u64,
+        /// Vertices whose faces form more than one fan.
+        vertices: u64,
+    },
+}
+
+impl fmt::Display for TopologyError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TopologyError::NonOrientable { component, face } => write!(
+                f,
+                "component {component} is not orientable (orientation conflict at face {face})"
+            ),
+            TopologyError::NoTriangles => write!(f, "the mesh has no triangles"),
+            TopologyError::NonManifold { edges, vertices } => write!(
+                f,
+                "the mesh is not manifold ({edges} non-manifold edges, {vertices} non-manifold vertices)"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for TopologyError {}

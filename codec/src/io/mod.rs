@@ -1,0 +1,1 @@
+//! Mesh file readers and writers.

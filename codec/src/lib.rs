@@ -1,0 +1,36 @@
+//! # swm — lossy mesh compression by SwingWrapper remeshing
+//!
+//! The library behind the `swm` tool: a triangle-mesh model with a corner
+//! table, mesh I/O and cleaning, and (in later modules) the Edgebreaker
+//! connectivity codec, the SwingWrapper retiler, the `.swm` container and
+//! the Sharpen&Bend post-processing of M. Attene's thesis *Surface
+//! Remeshing and Applications* (2004), chapters 7 and 8.
+//!
+//! Features: `std` (default), `io` (file readers and writers), `encoder`
+//! (cleaning of arbitrary input and the encoders). The decoder path is
+//! meant to build without `io` and `encoder`.
+//!
+//! `unsafe` is denied everywhere; the single exception is the memory map
+//! of input files in `io::source`, which `memmap2` can only offer through
+//! an `unsafe` constructor.
+#![deny(unsafe_code)]
+#![warn(missing_docs)]
+
+mod error;
+mod limits;
+pub mod mesh;
+
+#[cfg(feature = "io")]
+pub mod io;
+
+pub use error::{
+    Error, FormatError, LimitError, Limited, Location, Malformed, ParameterError, TopologyError,
+};
+pub use limits::Limits;
+pub use mesh::{CornerId, CornerTable, FaceId, MeshStats, TriMesh, VertexId};
+
+#[cfg(feature = "encoder")]
+pub use mesh::clean::{clean, CleanOptions, CleanReport, Cleaned};
+
+/// Result type of this crate.
+pub type Result<T, E = Error> = core::result::Result<T, E>;

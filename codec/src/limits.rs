@@ -1,0 +1,64 @@
+//! Resource limits for untrusted input.
+
+/// Caps on what a reader or decoder may allocate because a file said so.
+///
+/// Every count read from a file is checked against these limits, and
+/// against what the remaining bytes could possibly hold, *before* any
+/// allocation sized by that count. The defaults suit a viewer on a desktop
+/// machine; a server that decodes files from strangers may want less.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest vertex count accepted. Default: 2^28 (268 million).
+    pub max_vertices: u64,
+    /// Largest triangle count accepted. Default: 2^29 (537 million).
+    pub max_faces: u64,
+    /// Largest number of bytes a single reader or decoder may allocate for
+    /// its output and working buffers. Default: 16 GiB.
+    pub max_alloc_bytes: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_vertices: 1 << 28,
+            max_faces: 1 << 29,
+            max_alloc_bytes: 16 << 30,
+        }
+    }
+}
+
+impl Limits {
+    /// No limit beyond what the address space allows; for trusted input only.
+    pub const UNLIMITED: Limits = Limits {
+        max_vertices: u64::MAX,
+        max_faces: u64::MAX,
+        max_alloc_bytes: u64::MAX,
+    };
+
+    /// Checks a declared vertex count.
+    pub fn check_vertices(&self, n: u64) -> Result<(), crate::LimitError> {
+        check(crate::Limited::Vertices, n, self.max_vertices)
+    }
+
+    /// Checks a declared face count.
+    pub fn check_faces(&self, n: u64) -> Result<(), crate::LimitError> {
+        check(crate::Limited::Faces, n, self.max_faces)
+    }
+
+    /// Checks a planned allocation in bytes.
+    pub fn check_alloc(&self, bytes: u64) -> Result<(), crate::LimitError> {
+        check(crate::Limited::AllocBytes, bytes, self.max_alloc_bytes)
+    }
+}
+
+fn check(what: crate::Limited, requested: u64, limit: u64) -> Result<(), crate::LimitError> {
+    if requested > limit {
+        Err(crate::LimitError {
+            what,
+            requested,
+            limit,
+        })
+    } else {
+        Ok(())
+    }
+}

@@ -1,0 +1,5 @@
+//! placeholder
+pub struct CleanOptions;
+pub struct CleanReport;
+pub struct Cleaned;
+pub fn clean() {}

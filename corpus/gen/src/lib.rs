@@ -1,0 +1,1 @@
+//! Generated meshes (placeholder until the generator lands).
