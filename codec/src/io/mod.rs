@@ -1,1 +1,262 @@
-//! Mesh file readers and writers.
+//! Mesh file readers and writers: Wavefront OBJ, PLY, OFF and STL.
+//!
+//! Readers return the *raw* mesh of a file: positions as written
+//! (converted to `f32`), polygons fan-triangulated as (v0, vi, vi+1), no
+//! vertex merging and no dropping of degenerate faces; cleaning is the
+//! job of `clean` (feature `encoder`). What every reader guarantees on success:
+//! - every position is finite and every index is in range, so the result
+//!   passes [`TriMesh::validate`];
+//! - nothing was allocated because a file said so before that count was
+//!   checked against the [`Limits`] and against what the rest of the file
+//!   could hold;
+//! - a file without vertices and without faces is an error
+//!   ([`Malformed::Empty`]), not an empty mesh.
+//!
+//! No reader panics or loops forever on any input; errors say where
+//! (line of a text file, byte of a binary one) whenever that is known.
+//!
+//! Writers produce files these readers read back to the same mesh, bit for
+//! bit: OBJ and OFF with shortest round-trip decimals, PLY as binary
+//! little-endian, STL as binary (which cannot share vertices, so it keeps
+//! positions but not the indexing). [`write_mesh`] replaces its target only
+//! once the whole file is written.
+//!
+//! One file per format; `source` maps or reads input files, `text` holds
+//! the ASCII scanning the text formats share.
+
+mod obj;
+mod off;
+mod ply;
+mod source;
+mod stl;
+mod text;
+
+use crate::{Error, FormatError, LimitError, Limited, Limits, Malformed, ParameterError, TriMesh};
+use std::ffi::OsString;
+use std::fs::{self, File};
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// A mesh file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum MeshFormat {
+    /// Wavefront OBJ (text).
+    Obj,
+    /// Stanford PLY (ASCII or binary).
+    Ply,
+    /// Geomview OFF (text).
+    Off,
+    /// STL (ASCII or binary).
+    Stl,
+}
+
+impl MeshFormat {
+    /// The format a file name's extension names, ignoring case.
+    pub fn from_path(path: &Path) -> Result<MeshFormat, Error> {
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        [
+            ("obj", MeshFormat::Obj),
+            ("ply", MeshFormat::Ply),
+            ("off", MeshFormat::Off),
+            ("stl", MeshFormat::Stl),
+        ]
+        .into_iter()
+        .find(|(name, _)| ext.eq_ignore_ascii_case(name))
+        .map(|(_, format)| format)
+        .ok_or(Error::Parameter(ParameterError::UnknownExtension))
+    }
+
+    /// Short upper-case name: "OBJ", "PLY", "OFF" or "STL".
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFormat::Obj => "OBJ",
+            MeshFormat::Ply => "PLY",
+            MeshFormat::Off => "OFF",
+            MeshFormat::Stl => "STL",
+        }
+    }
+}
+
+/// Reads a mesh file, its format given by the extension, with the default
+/// [`Limits`].
+pub fn read_mesh(path: &Path) -> Result<TriMesh, Error> {
+    read_mesh_with(path, &Limits::default())
+}
+
+/// Reads a mesh file, its format given by the extension.
+///
+/// Files of 1 MiB or more are memory-mapped: if another process truncates
+/// the file while it is read, the operating system may kill this one
+/// (`SIGBUS`). Read the bytes yourself and call [`read_mesh_bytes`] when
+/// that matters.
+pub fn read_mesh_with(path: &Path, limits: &Limits) -> Result<TriMesh, Error> {
+    let format = MeshFormat::from_path(path)?;
+    let bytes = source::Source::open(path)?;
+    read_mesh_bytes(&bytes, format, limits)
+}
+
+/// Reads a mesh from the bytes of a file.
+pub fn read_mesh_bytes(
+    bytes: &[u8],
+    format: MeshFormat,
+    limits: &Limits,
+) -> Result<TriMesh, Error> {
+    let empty = || Error::Format(FormatError::new(format.name(), Malformed::Empty));
+    if text::is_blank(bytes) {
+        return Err(empty());
+    }
+    let mesh = match format {
+        MeshFormat::Obj => obj::read(bytes, limits)?,
+        MeshFormat::Ply => ply::read(bytes, limits)?,
+        MeshFormat::Off => off::read(bytes, limits)?,
+        MeshFormat::Stl => stl::read(bytes, limits)?,
+    };
+    if mesh.positions.is_empty() && mesh.triangles.is_empty() {
+        return Err(empty());
+    }
+    Ok(mesh)
+}
+
+/// Writes a mesh file, its format given by the extension.
+///
+/// The mesh is written to a temporary file next to `path` (named
+/// `.{name}.tmp-{pid}`), flushed to disk, and renamed over `path` only
+/// when complete, so `path` holds either its old content or the whole new
+/// file. An invalid mesh (see [`TriMesh::validate`]) is refused before
+/// anything is created.
+pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), Error> {
+    let format = MeshFormat::from_path(path)?;
+    mesh.validate()?;
+    let temp = temp_path(path);
+    let result = write_file(&temp, format, mesh).and_then(|()| Ok(fs::rename(&temp, path)?));
+    if result.is_err() {
+        let _ = fs::remove_file(&temp);
+    }
+    result
+}
+
+fn write_file(temp: &Path, format: MeshFormat, mesh: &TriMesh) -> Result<(), Error> {
+    let mut file = File::create(temp)?;
+    write_mesh_to(&mut file, format, mesh)?;
+    // On disk before the rename, so that a crash cannot leave `path`
+    // naming a file whose blocks were never written.
+    file.sync_all()?;
+    Ok(())
+}
+
+/// `.{name}.tmp-{pid}` in the directory of `path`.
+fn temp_path(path: &Path) -> PathBuf {
+    let mut name = OsString::from(".");
+    name.push(path.file_name().unwrap_or_default());
+    name.push(format!(".tmp-{}", std::process::id()));
+    path.with_file_name(name)
+}
+
+/// Writes a mesh in `format` to `w` (buffered here; no need to pass a
+/// `BufWriter`). OBJ, PLY and OFF keep the mesh exactly; STL is written
+/// as binary STL, three corners per triangle.
+pub fn write_mesh_to<W: Write>(w: W, format: MeshFormat, mesh: &TriMesh) -> Result<(), Error> {
+    mesh.validate()?;
+    let mut w = BufWriter::with_capacity(1 << 16, w);
+    match format {
+        MeshFormat::Obj => obj::write(&mut w, mesh)?,
+        MeshFormat::Ply => ply::write(&mut w, mesh)?,
+        MeshFormat::Off => off::write(&mut w, mesh)?,
+        MeshFormat::Stl => stl::write(&mut w, mesh)?,
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// The mesh a reader is building, and the [`Limits`] it must stay within.
+struct Builder<'l> {
+    mesh: TriMesh,
+    limits: &'l Limits,
+}
+
+impl<'l> Builder<'l> {
+    fn new(limits: &'l Limits) -> Self {
+        Builder {
+            mesh: TriMesh::default(),
+            limits,
+        }
+    }
+
+    /// Checks the limits for `n` more vertices, then makes room for them.
+    fn reserve_vertices(&mut self, n: u64) -> Result<(), Error> {
+        let total = (self.mesh.positions.len() as u64).saturating_add(n);
+        self.limits.check_vertices(total)?;
+        // Indices are u32: 2^32 vertices is the most a mesh can address.
+        if total > 1 << 32 {
+            return Err(limit(Limited::Vertices, total, 1 << 32));
+        }
+        self.check_alloc(total, self.mesh.triangles.capacity() as u64)?;
+        let n = usize::try_from(n).map_err(|_| out_of_memory())?;
+        self.mesh
+            .positions
+            .try_reserve_exact(n)
+            .map_err(|_| out_of_memory())
+    }
+
+    /// Checks the limits for `n` more triangles, then makes room for them.
+    fn reserve_triangles(&mut self, n: u64) -> Result<(), Error> {
+        let total = (self.mesh.triangles.len() as u64).saturating_add(n);
+        self.limits.check_faces(total)?;
+        self.check_alloc(self.mesh.positions.capacity() as u64, total)?;
+        let n = usize::try_from(n).map_err(|_| out_of_memory())?;
+        self.mesh
+            .triangles
+            .try_reserve_exact(n)
+            .map_err(|_| out_of_memory())
+    }
+
+    /// Checks the limits against what the mesh holds now, for growth no
+    /// declared count announced (polygons, strips, ASCII STL). Memory is
+    /// bounded by the input size anyway; this keeps the limits exact.
+    fn check_growth(&self) -> Result<(), Error> {
+        let mesh = &self.mesh;
+        self.limits.check_vertices(mesh.positions.len() as u64)?;
+        self.limits.check_faces(mesh.triangles.len() as u64)?;
+        if mesh.positions.len() as u64 > 1 << 32 {
+            return Err(limit(
+                Limited::Vertices,
+                mesh.positions.len() as u64,
+                1 << 32,
+            ));
+        }
+        self.check_alloc(
+            mesh.positions.capacity() as u64,
+            mesh.triangles.capacity() as u64,
+        )
+    }
+
+    /// Checks the memory for vertex and triangle slots (allocated ones,
+    /// not just used ones).
+    fn check_alloc(&self, vertices: u64, triangles: u64) -> Result<(), Error> {
+        // 12 bytes per position and per triangle.
+        let bytes = vertices.saturating_add(triangles).saturating_mul(12);
+        Ok(self.limits.check_alloc(bytes)?)
+    }
+
+    fn finish(self) -> TriMesh {
+        self.mesh
+    }
+}
+
+/// The allocator refused what the limits allowed.
+fn out_of_memory() -> Error {
+    Error::Io(io::Error::from(io::ErrorKind::OutOfMemory))
+}
+
+/// A limit error, for readers that count before they build.
+fn limit(what: Limited, requested: u64, limit: u64) -> Error {
+    Error::LimitExceeded(LimitError {
+        what,
+        requested,
+        limit,
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -58,6 +58,13 @@ pub(crate) struct Pairing {
 /// of buckets larger than 32 entries (so a hostile vertex of huge valence
 /// costs O(k log k), not O(k^2)).
 pub(crate) fn pair_half_edges(triangles: &[[u32; 3]], vertex_count: usize) -> Pairing {
+    pair_edges(triangles, vertex_count, false)
+}
+
+/// Like [`pair_half_edges`], but with `undirected` two half-edges of the
+/// same direction are paired too (used to orient a mesh before the real
+/// pairing). The caller tells the two apart by comparing directions.
+pub(crate) fn pair_edges(triangles: &[[u32; 3]], vertex_count: usize, undirected: bool) -> Pairing {
     let nc = triangles.len() * 3;
     // Counting sort of half-edges by their lower endpoint.
     let mut start = vec![0u32; vertex_count + 1];
@@ -110,7 +117,15 @@ pub(crate) fn pair_half_edges(triangles: &[[u32; 3]], vertex_count: usize) -> Pa
                     count += 1;
                     j += 1;
                 }
-                pair_group(&mut o, &mut cut_edges, bucket, first, second, count);
+                pair_group(
+                    &mut o,
+                    &mut cut_edges,
+                    bucket,
+                    first,
+                    second,
+                    count,
+                    undirected,
+                );
                 i = j;
                 continue;
             }
@@ -124,7 +139,15 @@ pub(crate) fn pair_half_edges(triangles: &[[u32; 3]], vertex_count: usize) -> Pa
                 }
             }
             first = i;
-            pair_group(&mut o, &mut cut_edges, bucket, first, second, count);
+            pair_group(
+                &mut o,
+                &mut cut_edges,
+                bucket,
+                first,
+                second,
+                count,
+                undirected,
+            );
             i += 1;
         }
     }
@@ -139,12 +162,13 @@ fn pair_group(
     a: usize,
     b: usize,
     count: u32,
+    undirected: bool,
 ) {
     if count == 1 {
         return; // a boundary edge
     }
     let (ca, cb) = (bucket[a].1, bucket[b].1);
-    if count == 2 && (ca ^ cb) >> 31 == 1 {
+    if count == 2 && (undirected || (ca ^ cb) >> 31 == 1) {
         let (ca, cb) = (ca & 0x7fff_ffff, cb & 0x7fff_ffff);
         o[ca as usize] = CornerId(cb);
         o[cb as usize] = CornerId(ca);

@@ -1,0 +1,350 @@
+//! OFF reader and writer, after the Object File Format of Geomview
+//! (Geometry Center, University of Minnesota; `OFF(5)` manual page).
+//!
+//! ```text
+//! [ST][C][N]OFF            keyword; may be followed by the counts
+//! NVertices NFaces NEdges  NEdges is optional and ignored
+//! x y z [normal] [colour] [texture]      one vertex per line
+//! n i0 i1 ... i(n-1) [colour]            one face per line, 0-based
+//! ```
+//!
+//! `#` starts a comment anywhere. Extra values after a vertex's x, y, z or
+//! after a face's indices (the colours, normals and texture coordinates
+//! the keyword prefixes announce) are skipped, so the reader does not need
+//! to trust the prefixes. `4OFF`, `nOFF` and binary OFF are refused.
+//!
+//! Invariants: the counts are checked against the bytes left and the
+//! [`Limits`] before any allocation; each vertex and face is one line, so
+//! errors carry the line number.
+
+use super::text::{self, Text};
+use super::Builder;
+use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
+use std::io::{self, Write};
+
+const FORMAT: &str = "OFF";
+
+fn error(what: Malformed, line: u64) -> Error {
+    FormatError::new(FORMAT, what)
+        .at(Location::Line(line))
+        .into()
+}
+
+/// The next line that holds something besides whitespace and comments,
+/// with its number.
+fn data_line<'a>(t: &mut Text<'a>) -> Option<(u64, &'a [u8])> {
+    while let Some((n, line)) = t.next_line() {
+        let line = match line.iter().position(|&b| b == b'#') {
+            Some(hash) => &line[..hash],
+            None => line,
+        };
+        if !text::is_blank(line) {
+            return Some((n, line));
+        }
+    }
+    None
+}
+
+/// Checks the header keyword: optional `ST`, `C`, `N` prefixes, in that
+/// order, then `OFF`.
+fn keyword(word: &[u8], line: u64) -> Result<bool, Error> {
+    let mut rest = word;
+    for prefix in [&b"ST"[..], b"C", b"N"] {
+        rest = rest.strip_prefix(prefix).unwrap_or(rest);
+    }
+    match rest {
+        b"OFF" => Ok(true),
+        b"4OFF" | b"nOFF" | b"4nOFF" => Err(error(
+            Malformed::Unsupported("OFF with other than 3 dimensions"),
+            line,
+        )),
+        _ => Ok(false),
+    }
+}
+
+/// Reads an OFF file.
+pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
+    let mut t = Text::new(bytes, 1);
+    let Some((n, line)) = data_line(&mut t) else {
+        return Err(FormatError::new(FORMAT, Malformed::Empty).into());
+    };
+    let mut words = text::tokens(line).peekable();
+    // Geomview lets the keyword be left out; the counts then come first.
+    let first = words.peek().copied().unwrap_or_default();
+    let mut counts_line = n;
+    if keyword(first, n)? {
+        words.next();
+        if words.peek() == Some(&&b"BINARY"[..]) {
+            return Err(error(Malformed::Unsupported("binary OFF"), n));
+        }
+    } else if text::parse_u64(first).is_none() {
+        return Err(error(
+            Malformed::BadHeader("the file does not start with OFF"),
+            n,
+        ));
+    }
+    let mut counts: Vec<&[u8]> = words.collect();
+    if counts.is_empty() {
+        let (n, line) = data_line(&mut t).ok_or_else(|| error(Malformed::Truncated, t.line()))?;
+        counts_line = n;
+        counts = text::tokens(line).collect();
+    }
+    let count = |k: usize| {
+        counts
+            .get(k)
+            .and_then(|c| text::parse_u64(c))
+            .ok_or_else(|| {
+                let why = "the counts line needs the vertex and face counts";
+                error(Malformed::BadHeader(why), counts_line)
+            })
+    };
+    let (vertices, faces) = (count(0)?, count(1)?);
+
+    // The shortest vertex line is "0 0 0\n", the shortest face "3 0 1 2\n";
+    // the last line may lack its newline. As in PLY, each count is checked
+    // against all that follows, so that a file cut short is reported as
+    // Truncated where it ends, and CountTooLarge means the header lies.
+    let left = t.remaining() as u64 + 1;
+    let too_large = |element, declared, possible| {
+        let what = Malformed::CountTooLarge {
+            element,
+            declared,
+            possible,
+        };
+        error(what, counts_line)
+    };
+    if vertices > left / 6 {
+        return Err(too_large("vertex", vertices, left / 6));
+    }
+    if faces > left / 8 {
+        return Err(too_large("face", faces, left / 8));
+    }
+    let mut out = Builder::new(limits);
+    out.reserve_vertices(vertices)?;
+    out.reserve_triangles(faces)?;
+
+    for i in 0..vertices {
+        let (n, line) = data_line(&mut t).ok_or_else(|| error(Malformed::Truncated, t.line()))?;
+        let mut p = [0f32; 3];
+        let mut words = text::tokens(line);
+        for c in &mut p {
+            let word = words.next().ok_or_else(|| {
+                error(Malformed::BadSyntax("a vertex needs three coordinates"), n)
+            })?;
+            *c = text::parse_f32(word).ok_or_else(|| error(Malformed::BadNumber, n))?;
+        }
+        if !p.iter().all(|c| c.is_finite()) {
+            return Err(error(Malformed::NonFinite { vertex: i }, n));
+        }
+        out.mesh.positions.push(p);
+    }
+    for _ in 0..faces {
+        let (n, line) = data_line(&mut t).ok_or_else(|| error(Malformed::Truncated, t.line()))?;
+        let mut words = text::tokens(line);
+        let size = words
+            .next()
+            .and_then(text::parse_u64)
+            .ok_or_else(|| error(Malformed::BadNumber, n))?;
+        if size < 3 {
+            return Err(error(Malformed::FaceTooSmall { count: size }, n));
+        }
+        let mut index = || {
+            let word = words.next().ok_or_else(|| {
+                error(
+                    Malformed::BadSyntax("a face has fewer indices than its count"),
+                    n,
+                )
+            })?;
+            let i = text::parse_i64(word).ok_or_else(|| error(Malformed::BadNumber, n))?;
+            match u32::try_from(i) {
+                Ok(v) if u64::from(v) < vertices => Ok(v),
+                _ => Err(error(Malformed::IndexOutOfRange { index: i, vertices }, n)),
+            }
+        };
+        let first = index()?;
+        let mut prev = index()?;
+        for _ in 2..size {
+            let next = index()?;
+            out.mesh.triangles.push([first, prev, next]);
+            prev = next;
+        }
+        if size > 3 {
+            out.check_growth()?;
+        }
+    }
+    // Whatever follows the faces is ignored: some writers append edges.
+    Ok(out.finish())
+}
+
+/// Writes OFF with shortest round-trip decimals.
+pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> io::Result<()> {
+    writeln!(
+        w,
+        "OFF\n{} {} 0",
+        mesh.positions.len(),
+        mesh.triangles.len()
+    )?;
+    for [x, y, z] in &mesh.positions {
+        writeln!(w, "{x} {y} {z}")?;
+    }
+    for [a, b, c] in &mesh.triangles {
+        writeln!(w, "3 {a} {b} {c}")?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::{malformed, read};
+    use super::super::MeshFormat;
+    use super::*;
+
+    fn off(text: &str) -> Result<TriMesh, Error> {
+        read(text.as_bytes(), MeshFormat::Off)
+    }
+
+    #[test]
+    fn variants_and_extras() {
+        let square = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let files = [
+            "OFF\n4 1 4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+            // Counts on the keyword line, comments, blank lines, CRLF.
+            "# a square\r\nOFF 4 1 0 # counts\r\n\r\n0 0 0\r\n1 0 0\r\n# between\r\n1 1 0\r\n0 1 0\r\n4 0 1 2 3\r\n",
+            // Colours per vertex and per face.
+            "COFF\n4 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n1 1 0 0 0 255 255\n0 1 0 9 9 9 9\n4 0 1 2 3 0.5 0.5 0.5\n",
+            // Normals, and normals plus colours.
+            "NOFF\n4 1\n0 0 0 0 0 1\n1 0 0 0 0 1\n1 1 0 0 0 1\n0 1 0 0 0 1\n4 0 1 2 3\n",
+            "CNOFF\n4 1 0\n0 0 0 0 0 1 1 1 1 1\n1 0 0 0 0 1 1 1 1 1\n1 1 0 0 0 1 1 1 1 1\n0 1 0 0 0 1 1 1 1 1\n4 0 1 2 3\n",
+            "STOFF\n4 1 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n",
+            // No keyword, no trailing newline.
+            "4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3",
+        ];
+        for text in files {
+            let mesh = off(text).unwrap_or_else(|e| panic!("{text:?}: {e}"));
+            assert_eq!(mesh.positions, square, "{text:?}");
+            assert_eq!(mesh.triangles, [[0, 1, 2], [0, 2, 3]], "{text:?}");
+        }
+    }
+
+    #[test]
+    fn malformed_files() {
+        // Each file ends in a comment so that the counts check (a face
+        // line takes at least 8 bytes) does not catch the bad face first.
+        let cases: [(&str, Malformed, u64); 12] = [
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+                Malformed::IndexOutOfRange {
+                    index: 3,
+                    vertices: 3,
+                },
+                6,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n",
+                Malformed::IndexOutOfRange {
+                    index: -1,
+                    vertices: 3,
+                },
+                6,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+                Malformed::FaceTooSmall { count: 2 },
+                6,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n",
+                Malformed::BadSyntax("a face has fewer indices than its count"),
+                6,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 NaN 0\n0 1 0\n3 0 1 2\n",
+                Malformed::NonFinite { vertex: 1 },
+                4,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -inf 0\n3 0 1 2\n",
+                Malformed::NonFinite { vertex: 2 },
+                5,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1\n3 0 1 2\n",
+                Malformed::BadSyntax("a vertex needs three coordinates"),
+                5,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n",
+                Malformed::BadNumber,
+                4,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2.5\n",
+                Malformed::BadNumber,
+                6,
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n",
+                Malformed::IndexOutOfRange {
+                    index: 0,
+                    vertices: 0,
+                },
+                0,
+            ),
+            (
+                "OFF\n3\n",
+                Malformed::BadHeader("the counts line needs the vertex and face counts"),
+                2,
+            ),
+            (
+                "OFX\n3 1 0\n",
+                Malformed::BadHeader("the file does not start with OFF"),
+                1,
+            ),
+        ];
+        for (text, what, line) in cases {
+            let text = &format!("{text}# padding\n");
+            if line == 0 {
+                // Extra faces after the declared ones are ignored.
+                assert!(off(text).is_ok());
+                continue;
+            }
+            assert_eq!(
+                malformed(off(text)),
+                (what, Some(Location::Line(line))),
+                "{text:?}"
+            );
+        }
+        assert_eq!(
+            malformed(off("4OFF\n")).0,
+            Malformed::Unsupported("OFF with other than 3 dimensions")
+        );
+        assert_eq!(
+            malformed(off("OFF BINARY\n")).0,
+            Malformed::Unsupported("binary OFF")
+        );
+        // Cut short: the lines run out.
+        let (what, _) = malformed(off("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+        assert_eq!(what, Malformed::Truncated);
+        // Counts the rest of the file cannot hold.
+        let (what, at) = malformed(off("OFF\n2000000000 2000000000 0\n0 0 0\n"));
+        let too_large = Malformed::CountTooLarge {
+            element: "vertex",
+            declared: 2_000_000_000,
+            possible: 1,
+        };
+        assert_eq!((what, at), (too_large, Some(Location::Line(2))));
+        let (what, _) = malformed(off("OFF\n3 99 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+        assert!(matches!(
+            what,
+            Malformed::CountTooLarge {
+                element: "face",
+                ..
+            }
+        ));
+    }
+}

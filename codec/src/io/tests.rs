@@ -1,0 +1,457 @@
+//! Tests across formats: round trips, malformed input every reader must
+//! refuse the same way, and the shared corpus.
+
+use super::*;
+use crate::Location;
+use std::path::PathBuf;
+use std::time::Instant;
+
+pub(super) fn read(bytes: &[u8], format: MeshFormat) -> Result<TriMesh, Error> {
+    read_mesh_bytes(bytes, format, &Limits::default())
+}
+
+/// The `Malformed` and location of a format error; panics on other errors.
+pub(super) fn malformed(result: Result<TriMesh, Error>) -> (Malformed, Option<Location>) {
+    match result {
+        Err(Error::Format(e)) => (e.what, e.at),
+        other => panic!("expected a format error, got {other:?}"),
+    }
+}
+
+fn bits(mesh: &TriMesh) -> Vec<[u32; 3]> {
+    mesh.positions.iter().map(|p| p.map(f32::to_bits)).collect()
+}
+
+/// A small mesh with awkward numbers: negative zero, subnormals, huge and
+/// tiny magnitudes, values with long shortest representations, an
+/// unreferenced vertex, a degenerate and a repeated triangle.
+fn awkward_mesh() -> TriMesh {
+    let positions = vec![
+        [0.0, -0.0, 1.0],
+        [0.1, 0.2, 0.3],
+        [1e-45, -1.1754942e-38, 3.4028235e38],
+        [-1.0e-7, 123456.79, 1.0 / 3.0],
+        [f32::MIN_POSITIVE, 16777217.0, -2.5],
+        [7.0, 8.0, 9.0], // unreferenced
+        [0.5, 0.25, 0.125],
+    ];
+    let triangles = vec![
+        [0, 1, 2],
+        [2, 1, 3],
+        [3, 4, 0],
+        [4, 4, 1],
+        [0, 1, 2],
+        [6, 0, 3],
+    ];
+    TriMesh::new(positions, triangles)
+}
+
+fn round_trip(mesh: &TriMesh, format: MeshFormat) -> TriMesh {
+    let mut bytes = Vec::new();
+    write_mesh_to(&mut bytes, format, mesh).unwrap();
+    read(&bytes, format).unwrap_or_else(|e| panic!("{}: {e}", format.name()))
+}
+
+#[test]
+fn indexed_formats_round_trip_bit_exactly() {
+    let mesh = awkward_mesh();
+    for format in [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Off] {
+        let back = round_trip(&mesh, format);
+        assert_eq!(bits(&back), bits(&mesh), "{}", format.name());
+        assert_eq!(back.triangles, mesh.triangles, "{}", format.name());
+    }
+}
+
+#[test]
+fn stl_round_trip_keeps_corners() {
+    let mesh = awkward_mesh();
+    let back = round_trip(&mesh, MeshFormat::Stl);
+    assert_eq!(back.triangles.len(), mesh.triangles.len());
+    assert_eq!(back.positions.len(), 3 * mesh.triangles.len());
+    for (t, u) in mesh.triangles.iter().zip(&back.triangles) {
+        for k in 0..3 {
+            let a = mesh.positions[t[k] as usize].map(f32::to_bits);
+            let b = back.positions[u[k] as usize].map(f32::to_bits);
+            assert_eq!(a, b);
+        }
+    }
+}
+
+#[test]
+fn formats_by_extension() {
+    let f = |p: &str| MeshFormat::from_path(Path::new(p));
+    assert_eq!(f("a/b.obj").unwrap(), MeshFormat::Obj);
+    assert_eq!(f("B.PLY").unwrap(), MeshFormat::Ply);
+    assert_eq!(f("x.Off").unwrap(), MeshFormat::Off);
+    assert_eq!(f("x.stl").unwrap(), MeshFormat::Stl);
+    for bad in ["x.xyz", "noext", "obj", ""] {
+        assert!(matches!(
+            f(bad),
+            Err(Error::Parameter(ParameterError::UnknownExtension))
+        ));
+    }
+    assert_eq!(MeshFormat::Stl.name(), "STL");
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("swm-io-{}-{name}", std::process::id()));
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn write_mesh_replaces_atomically() {
+    let dir = scratch("atomic");
+    let mesh = awkward_mesh();
+    for ext in ["obj", "ply", "off", "stl"] {
+        let path = dir.join(format!("m.{ext}"));
+        fs::write(&path, b"old").unwrap();
+        write_mesh(&path, &mesh).unwrap();
+        let back = read_mesh(&path).unwrap();
+        assert_eq!(back.triangles.len(), mesh.triangles.len(), "{ext}");
+        // An invalid mesh leaves the file alone.
+        let bad = TriMesh::new(vec![[0.0; 3]; 3], vec![[0, 1, 7]]);
+        assert!(write_mesh(&path, &bad).is_err());
+        let nan = TriMesh::new(vec![[f32::NAN; 3]; 3], vec![[0, 1, 2]]);
+        assert!(write_mesh(&path, &nan).is_err());
+        assert_eq!(read_mesh(&path).unwrap(), back, "{ext}");
+    }
+    // A directory that does not exist: an error, and nothing left behind.
+    assert!(matches!(
+        write_mesh(&dir.join("missing/m.obj"), &mesh),
+        Err(Error::Io(_))
+    ));
+    let names: Vec<_> = fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names.len(), 4, "leftovers: {names:?}");
+    assert!(matches!(
+        write_mesh(&dir.join("m.txt"), &mesh),
+        Err(Error::Parameter(_))
+    ));
+    let _ = fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn empty_and_blank_input_is_empty_everywhere() {
+    for format in [
+        MeshFormat::Obj,
+        MeshFormat::Ply,
+        MeshFormat::Off,
+        MeshFormat::Stl,
+    ] {
+        for bytes in [&b""[..], b"\n \r\n\t\n"] {
+            assert_eq!(
+                malformed(read(bytes, format)).0,
+                Malformed::Empty,
+                "{format:?}"
+            );
+        }
+    }
+    let only_comments = b"# nothing\n# here\n";
+    assert_eq!(
+        malformed(read(only_comments, MeshFormat::Obj)).0,
+        Malformed::Empty
+    );
+    assert_eq!(
+        malformed(read(only_comments, MeshFormat::Off)).0,
+        Malformed::Empty
+    );
+    let no_elements = b"ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n\
+property float y\nproperty float z\nend_header\n";
+    assert_eq!(
+        malformed(read(no_elements, MeshFormat::Ply)).0,
+        Malformed::Empty
+    );
+    assert_eq!(
+        malformed(read(b"OFF\n0 0 0\n", MeshFormat::Off)).0,
+        Malformed::Empty
+    );
+    assert_eq!(
+        malformed(read(b"solid x\nendsolid x\n", MeshFormat::Stl)).0,
+        Malformed::Empty
+    );
+    let mut stl = vec![0u8; 84];
+    assert_eq!(malformed(read(&stl, MeshFormat::Stl)).0, Malformed::Empty);
+    stl.truncate(83);
+    assert_eq!(
+        malformed(read(&stl, MeshFormat::Stl)).0,
+        Malformed::Truncated
+    );
+}
+
+/// Pseudo-random bytes (xorshift), the same on every run.
+pub(super) fn garbage(n: usize, seed: u64) -> Vec<u8> {
+    let mut x = seed | 1;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 24) as u8
+        })
+        .collect()
+}
+
+#[test]
+fn garbage_is_an_error_not_a_panic() {
+    for seed in 1..40u64 {
+        for len in [1, 7, 83, 84, 100, 134, 4096] {
+            let bytes = garbage(len, seed);
+            for format in [
+                MeshFormat::Obj,
+                MeshFormat::Ply,
+                MeshFormat::Off,
+                MeshFormat::Stl,
+            ] {
+                // Any outcome but a panic; short garbage is never a mesh.
+                let result = read(&bytes, format);
+                if format != MeshFormat::Stl || len < 134 {
+                    assert!(result.is_err(), "{format:?} {seed} {len}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn every_prefix_of_every_format_is_handled() {
+    let mesh = awkward_mesh();
+    for format in [
+        MeshFormat::Obj,
+        MeshFormat::Ply,
+        MeshFormat::Off,
+        MeshFormat::Stl,
+    ] {
+        let mut bytes = Vec::new();
+        write_mesh_to(&mut bytes, format, &mesh).unwrap();
+        for cut in 0..bytes.len() {
+            // Text formats may legitimately read a shorter mesh when the
+            // cut falls between statements; binary ones must refuse.
+            let result = read(&bytes[..cut], format);
+            if matches!(format, MeshFormat::Ply | MeshFormat::Stl) {
+                assert!(result.is_err(), "{format:?} cut at {cut}");
+            }
+        }
+    }
+}
+
+#[test]
+fn limits_are_enforced() {
+    let mesh = awkward_mesh();
+    let tight = Limits {
+        max_vertices: 3,
+        ..Limits::default()
+    };
+    let few_faces = Limits {
+        max_faces: 2,
+        ..Limits::default()
+    };
+    let little_memory = Limits {
+        max_alloc_bytes: 100,
+        ..Limits::default()
+    };
+    for format in [
+        MeshFormat::Obj,
+        MeshFormat::Ply,
+        MeshFormat::Off,
+        MeshFormat::Stl,
+    ] {
+        let mut bytes = Vec::new();
+        write_mesh_to(&mut bytes, format, &mesh).unwrap();
+        for limits in [&tight, &few_faces, &little_memory] {
+            let result = read_mesh_bytes(&bytes, format, limits);
+            assert!(
+                matches!(result, Err(Error::LimitExceeded(_))),
+                "{format:?} {limits:?}: {result:?}"
+            );
+        }
+        assert!(read_mesh_bytes(&bytes, format, &Limits::UNLIMITED).is_ok());
+    }
+}
+
+/// `../shared/corpus`, or `None` after saying the test was skipped.
+fn corpus() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/corpus");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        println!("skipped: ../shared/corpus not found");
+        None
+    }
+}
+
+#[test]
+fn reads_the_shared_corpus() {
+    let Some(dir) = corpus() else { return };
+    // Faces after merging coincident vertices, from the corpus README; the
+    // raw files may hold a few more (degenerate or duplicate) faces.
+    let known = [
+        ("fandisk.obj", 12946),
+        ("stanford-bunny.obj", 69451),
+        ("horse.ply", 96966),
+        ("spot.obj", 5856),
+        ("homer.obj", 12000),
+        ("cheburashka.obj", 13334),
+        ("alligator.obj", 5981),
+        ("woody.obj", 1267),
+        ("cow.obj", 5804),
+        ("teapot.obj", 6320),
+        ("suzanne.obj", 968),
+        ("beetle.obj", 2053),
+        ("bunny-1m.ply", 1111216),
+    ];
+    let mut files: Vec<_> = fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| MeshFormat::from_path(p).is_ok())
+        .collect();
+    files.sort();
+    assert!(!files.is_empty());
+    for path in files {
+        let name = path.file_name().unwrap().to_str().unwrap().to_owned();
+        let mesh = read_mesh(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        mesh.validate().unwrap();
+        println!(
+            "{name}: {} vertices, {} faces",
+            mesh.vertex_count(),
+            mesh.face_count()
+        );
+        assert!(mesh.vertex_count() >= 3 && mesh.face_count() >= 1, "{name}");
+        if let Some(&(_, faces)) = known.iter().find(|(n, _)| *n == name) {
+            let n = mesh.face_count();
+            assert!(
+                n >= faces && n <= faces + faces / 50 + 10,
+                "{name}: {n} faces, expected about {faces}"
+            );
+        }
+    }
+}
+
+/// Read speeds, for the record: `cargo test --release -p swm --lib
+/// io::tests::read_speed -- --ignored --nocapture`.
+#[test]
+#[ignore = "timing; run in release"]
+fn read_speed() {
+    let Some(dir) = corpus() else { return };
+    let ply = dir.join("bunny-1m.ply");
+    let bytes = fs::read(&ply).unwrap();
+    let mut mesh = TriMesh::default();
+    let mut best = f64::MAX;
+    for _ in 0..10 {
+        let t = Instant::now();
+        mesh = read_mesh(&ply).unwrap();
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    let faces = mesh.face_count() as f64;
+    println!(
+        "bunny-1m.ply: read_mesh {:.1} ms ({:.1} M faces/s)",
+        best * 1e3,
+        faces / best / 1e6
+    );
+    let mut best = f64::MAX;
+    for _ in 0..10 {
+        let t = Instant::now();
+        read(&bytes, MeshFormat::Ply).unwrap();
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    println!("bunny-1m.ply: from memory {:.1} ms", best * 1e3);
+
+    for format in [MeshFormat::Obj, MeshFormat::Off] {
+        let path = std::env::temp_dir().join(format!(
+            "swm-bunny-1m-{}.{}",
+            std::process::id(),
+            format.name().to_lowercase()
+        ));
+        write_mesh(&path, &mesh).unwrap();
+        let bytes = fs::read(&path).unwrap();
+        let mut best = f64::MAX;
+        for _ in 0..3 {
+            let t = Instant::now();
+            let back = read(&bytes, format).unwrap();
+            best = best.min(t.elapsed().as_secs_f64());
+            assert_eq!(back.triangles, mesh.triangles);
+        }
+        println!(
+            "bunny-1m as {} ({} MB): {:.0} ms ({:.2} M faces/s)",
+            format.name(),
+            bytes.len() >> 20,
+            best * 1e3,
+            faces / best / 1e6
+        );
+        let _ = fs::remove_file(path);
+    }
+}
+
+/// Random edits of valid files (byte changes, digit and sign swaps, cuts,
+/// duplicated lines): every reader must return, never panic or hang.
+#[test]
+fn mutated_files_never_panic() {
+    let mesh = awkward_mesh();
+    let ascii_ply =
+        b"ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty uchar y\n\
+property double z\nelement face 2\nproperty list uchar int vertex_indices\nelement tristrips 1\n\
+property list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 1 2 3\n\
+7 0 1 2 3 -1 1 2\n"
+            .to_vec();
+    let ascii_stl = b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n\
+vertex 0 1 0\nendloop\nendfacet\nendsolid t\n"
+        .to_vec();
+    let mut inputs = vec![(ascii_ply, MeshFormat::Ply), (ascii_stl, MeshFormat::Stl)];
+    for format in [
+        MeshFormat::Obj,
+        MeshFormat::Ply,
+        MeshFormat::Off,
+        MeshFormat::Stl,
+    ] {
+        let mut bytes = Vec::new();
+        write_mesh_to(&mut bytes, format, &mesh).unwrap();
+        inputs.push((bytes, format));
+    }
+    let noise = garbage(1 << 16, 99);
+    let mut k = 0;
+    let mut next = || {
+        k = (k + 1) % noise.len();
+        noise[k] as usize
+    };
+    let started = Instant::now();
+    for (original, format) in &inputs {
+        for _ in 0..1500 {
+            let mut bytes = original.clone();
+            for _ in 0..1 + next() % 4 {
+                let at = (next() << 8 | next()) % bytes.len().max(1);
+                match next() % 6 {
+                    0 => bytes.truncate(at),
+                    1 => {
+                        if let Some(b) = bytes.get_mut(at) {
+                            *b = next() as u8;
+                        }
+                    }
+                    2 => bytes.insert(at.min(bytes.len()), b"-0123456789 \n/#e."[next() % 17]),
+                    3 => {
+                        let piece = bytes[at..]
+                            .iter()
+                            .take(1 + next() % 40)
+                            .copied()
+                            .collect::<Vec<_>>();
+                        bytes.splice(at..at, piece);
+                    }
+                    4 => {
+                        if let Some(b) = bytes.get_mut(at) {
+                            *b ^= 1 << (next() % 8);
+                        }
+                    }
+                    _ => {
+                        if at < bytes.len() {
+                            bytes.remove(at);
+                        }
+                    }
+                }
+            }
+            let _ = read(&bytes, *format);
+        }
+    }
+    assert!(started.elapsed().as_secs() < 60);
+}

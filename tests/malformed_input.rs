@@ -1,0 +1,205 @@
+//! Malformed mesh files: each gives one line on stderr starting
+//! `swm: error:` that names the file, exit status 1, no panic, and no
+//! allocation sized by a lying header (the run is address-space capped).
+
+mod common;
+use common::*;
+use std::path::Path;
+
+/// 1 GiB of address space: plenty for these tiny inputs, far too little for
+/// the billions of elements their headers claim.
+const CAP_KIB: u64 = 1 << 20;
+
+fn assert_clean_error(path: &Path, what: &str) {
+    let p = path.to_str().unwrap();
+    let out = swm_capped(&["info", p], CAP_KIB);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{what}: exit status {:?}, stderr: {stderr}",
+        out.status
+    );
+    assert!(stderr.starts_with("swm: error:"), "{what}: {stderr}");
+    assert_eq!(
+        stderr.trim_end().lines().count(),
+        1,
+        "{what}: not one line: {stderr}"
+    );
+    assert!(
+        stderr.contains(p),
+        "{what}: the message does not name the file: {stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{what}: {stderr}");
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> std::path::PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+/// A valid binary PLY of a small generated mesh.
+fn good_ply(dir: &Path) -> Vec<u8> {
+    let path = dir.join("good.ply");
+    swm::io::write_mesh(&path, &swm_corpus::icosphere(1.0, 1)).unwrap();
+    std::fs::read(path).unwrap()
+}
+
+#[test]
+fn empty_files() {
+    let dir = scratch("empty");
+    for ext in ["obj", "ply", "off", "stl"] {
+        assert_clean_error(&write(&dir, &format!("empty.{ext}"), b""), ext);
+        assert_clean_error(&write(&dir, &format!("blank.{ext}"), b"\n\n  \n"), ext);
+    }
+}
+
+#[test]
+fn truncated_files() {
+    let dir = scratch("truncated");
+    let ply = good_ply(&dir);
+    let header_end = ply.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    for cut in [
+        5,
+        header_end - 3,
+        header_end + 7,
+        (header_end + ply.len()) / 2,
+        ply.len() - 1,
+    ] {
+        assert_clean_error(
+            &write(&dir, &format!("cut{cut}.ply"), &ply[..cut]),
+            &format!("PLY cut at {cut}"),
+        );
+    }
+    // Binary STL: header says 10 triangles, only 3 follow.
+    let mut stl = vec![0u8; 80];
+    stl.extend_from_slice(&10u32.to_le_bytes());
+    stl.extend(std::iter::repeat_n(0u8, 3 * 50));
+    assert_clean_error(&write(&dir, "cut.stl", &stl), "STL");
+    assert_clean_error(
+        &write(&dir, "cut.off", b"OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n"),
+        "OFF",
+    );
+}
+
+#[test]
+fn garbage_bytes() {
+    let dir = scratch("garbage");
+    // A fixed pseudo-random byte string (xorshift), so the test is repeatable.
+    let mut x = 0x2545_f491_4f6c_dd1du64;
+    let bytes: Vec<u8> = (0..4096)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x as u8
+        })
+        .collect();
+    for ext in ["obj", "ply", "off", "stl"] {
+        assert_clean_error(&write(&dir, &format!("garbage.{ext}"), &bytes), ext);
+    }
+    let mut ply = b"ply\nformat binary_little_endian 1.0\n".to_vec();
+    ply.extend_from_slice(&bytes);
+    assert_clean_error(
+        &write(&dir, "garbage-header.ply", &ply),
+        "PLY with a garbage header",
+    );
+}
+
+#[test]
+fn header_counts_larger_than_the_file() {
+    let dir = scratch("counts");
+    let ply = b"ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n\
+property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n\
+\0\0\0\0\0\0\0\0\0\0\0\0";
+    assert_clean_error(&write(&dir, "huge.ply", ply), "PLY with 2 billion vertices");
+    let ascii = b"ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\n\
+property float z\nelement face 2000000000\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n";
+    assert_clean_error(
+        &write(&dir, "huge-ascii.ply", ascii),
+        "ASCII PLY with 2 billion vertices",
+    );
+    assert_clean_error(
+        &write(&dir, "huge.off", b"OFF\n2000000000 2000000000 0\n0 0 0\n"),
+        "OFF",
+    );
+    let mut stl = vec![0u8; 80];
+    stl.extend_from_slice(&u32::MAX.to_le_bytes());
+    stl.extend(std::iter::repeat_n(0u8, 50));
+    assert_clean_error(
+        &write(&dir, "huge.stl", &stl),
+        "STL with 4 billion triangles",
+    );
+}
+
+#[test]
+fn face_indices_out_of_range() {
+    let dir = scratch("indices");
+    assert_clean_error(
+        &write(&dir, "a.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n"),
+        "OBJ",
+    );
+    assert_clean_error(
+        &write(&dir, "b.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n"),
+        "OBJ negative",
+    );
+    assert_clean_error(
+        &write(&dir, "a.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+        "OFF",
+    );
+    let ply = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n";
+    assert_clean_error(&write(&dir, "a.ply", ply), "PLY");
+    let mut bin = good_ply(&dir);
+    let n = bin.len();
+    bin[n - 4..].copy_from_slice(&1_000_000i32.to_le_bytes()); // last index of the last face
+    assert_clean_error(&write(&dir, "b.ply", &bin), "binary PLY");
+}
+
+#[test]
+fn non_finite_coordinates() {
+    let dir = scratch("nan");
+    assert_clean_error(
+        &write(&dir, "nan.obj", b"v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+        "OBJ NaN",
+    );
+    assert_clean_error(
+        &write(&dir, "inf.obj", b"v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n"),
+        "OBJ inf",
+    );
+    assert_clean_error(
+        &write(&dir, "big.obj", b"v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n"),
+        "OBJ f32 overflow",
+    );
+    assert_clean_error(
+        &write(
+            &dir,
+            "nan.off",
+            b"OFF\n3 1 0\n0 0 0\n1 NaN 0\n0 1 0\n3 0 1 2\n",
+        ),
+        "OFF NaN",
+    );
+    let mut bin = good_ply(&dir);
+    let header_end = bin.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    bin[header_end..header_end + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+    assert_clean_error(&write(&dir, "nan.ply", &bin), "binary PLY NaN");
+}
+
+#[test]
+fn missing_files_and_unknown_formats() {
+    let dir = scratch("missing");
+    assert_clean_error(&dir.join("does-not-exist.obj"), "missing file");
+    assert_clean_error(&write(&dir, "mesh.xyz", b"v 0 0 0\n"), "unknown extension");
+    let sub = dir.join("a-directory.obj");
+    std::fs::create_dir_all(&sub).unwrap();
+    assert_clean_error(&sub, "a directory");
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let out = swm(&["info"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = swm(&["frobnicate"]);
+    assert_eq!(out.status.code(), Some(2));
+}
