@@ -135,14 +135,19 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
     if triangles.is_empty() {
         return Err(TopologyError::NoTriangles.into());
     }
-    report.input_components = edge_components(&triangles);
-    orient(&mut triangles, positions.len(), &mut report)?;
+    let manifold_components = orient(&mut triangles, positions.len(), &mut report)?;
+    // Without non-manifold edges the orientation pass already saw every
+    // edge; otherwise count again through the edges it had to leave out.
+    report.input_components = if report.non_manifold_edges == 0 {
+        manifold_components
+    } else {
+        edge_components(&triangles)
+    };
     let mut mesh = TriMesh {
         positions,
         triangles,
     };
-    split_non_manifold(&mut mesh, &mut report);
-    let table = CornerTable::new(&mesh.triangles, mesh.positions.len())?;
+    let table = split_non_manifold(&mut mesh, &mut report)?;
     Ok(Cleaned {
         mesh,
         table,
@@ -154,26 +159,28 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
 /// Maps each vertex to the lowest-numbered vertex at the same position.
 fn merge_coincident(positions: &[[f32; 3]]) -> Vec<u32> {
     // Adding 0.0 turns -0.0 into +0.0, so the two zeros compare equal.
-    let key = |p: &[f32; 3]| {
-        [
-            (p[0] + 0.0).to_bits(),
-            (p[1] + 0.0).to_bits(),
-            (p[2] + 0.0).to_bits(),
-        ]
-    };
-    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
-    order.sort_unstable_by_key(|&i| (key(&positions[i as usize]), i));
+    let mut keyed: Vec<([u32; 3], u32)> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            (
+                [
+                    (p[0] + 0.0).to_bits(),
+                    (p[1] + 0.0).to_bits(),
+                    (p[2] + 0.0).to_bits(),
+                ],
+                i as u32,
+            )
+        })
+        .collect();
+    keyed.sort_unstable();
     let mut remap = vec![0u32; positions.len()];
-    let mut i = 0;
-    while i < order.len() {
-        let rep = order[i];
-        let k = key(&positions[rep as usize]);
-        let mut j = i;
-        while j < order.len() && key(&positions[order[j] as usize]) == k {
-            remap[order[j] as usize] = rep;
-            j += 1;
+    let mut rep = 0;
+    for (i, &(key, v)) in keyed.iter().enumerate() {
+        if i == 0 || keyed[i - 1].0 != key {
+            rep = v; // the lowest index of its run, as ties sort by index
         }
-        i = j;
+        remap[v as usize] = rep;
     }
     remap
 }
@@ -198,18 +205,21 @@ fn drop_degenerate(mesh: &TriMesh, remap: &[u32], report: &mut CleanReport) -> V
         }
         kept.push(t);
     }
-    // Duplicates: sort face ids by their sorted vertex triple, keep the first of each run.
-    let sorted_key = |t: &[u32; 3]| {
-        let mut k = *t;
-        k.sort_unstable();
-        k
-    };
-    let mut order: Vec<u32> = (0..kept.len() as u32).collect();
-    order.sort_unstable_by_key(|&f| (sorted_key(&kept[f as usize]), f));
+    // Duplicates: sort faces by their sorted vertex triple, keep the first of each run.
+    let mut keyed: Vec<([u32; 3], u32)> = kept
+        .iter()
+        .enumerate()
+        .map(|(f, t)| {
+            let mut k = *t;
+            k.sort_unstable();
+            (k, f as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
     let mut drop = vec![false; kept.len()];
-    for w in order.windows(2) {
-        if sorted_key(&kept[w[0] as usize]) == sorted_key(&kept[w[1] as usize]) {
-            drop[w[1] as usize] = true;
+    for w in keyed.windows(2) {
+        if w[0].0 == w[1].0 {
+            drop[w[1].1 as usize] = true;
         }
     }
     let before = kept.len();
@@ -282,12 +292,13 @@ fn edge_components(triangles: &[[u32; 3]]) -> u64 {
     components
 }
 
-/// Step 4: orients every component consistently across its two-face edges.
+/// Step 4: orients every component consistently across its two-face
+/// edges; returns the number of components joined by those edges.
 fn orient(
     triangles: &mut [[u32; 3]],
     vertex_count: usize,
     report: &mut CleanReport,
-) -> Result<(), Error> {
+) -> Result<u64, Error> {
     let pairing = pair_edges(triangles, vertex_count, true);
     report.non_manifold_edges = pairing.cut_edges;
     let o = pairing.o;
@@ -348,12 +359,13 @@ fn orient(
             report.flipped_faces += 1;
         }
     }
-    Ok(())
+    Ok(ncomp as u64)
 }
 
 /// Steps 5 and 6: pairs half-edges (cutting non-manifold edges) and gives
-/// every extra fan of a vertex its own copy of the vertex.
-fn split_non_manifold(mesh: &mut TriMesh, report: &mut CleanReport) {
+/// every extra fan of a vertex its own copy of the vertex; returns the
+/// corner table of the result, built by the last round.
+fn split_non_manifold(mesh: &mut TriMesh, report: &mut CleanReport) -> Result<CornerTable, Error> {
     let mut split = vec![false; mesh.positions.len()];
     // Each round adds at least one vertex, so this bound is never reached;
     // it only guards against a logic error turning into a hang.
@@ -364,9 +376,15 @@ fn split_non_manifold(mesh: &mut TriMesh, report: &mut CleanReport) {
             .iter()
             .flat_map(|t| t.iter().map(|&i| VertexId(i)))
             .collect();
-        let (_, extra) = vertex_fans(&v, &pairing.o, mesh.positions.len());
+        let (first, extra) = vertex_fans(&v, &pairing.o, mesh.positions.len());
         if extra.is_empty() {
-            return;
+            if pairing.cut_edges > 0 {
+                // Impossible by the argument in the module docs; refuse
+                // rather than hand out a table with a cut edge.
+                let (edges, vertices) = (pairing.cut_edges, 0);
+                return Err(TopologyError::NonManifold { edges, vertices }.into());
+            }
+            return Ok(CornerTable::from_raw(v, pairing.o, first));
         }
         for (vertex, start) in extra {
             if !split[vertex.idx()] {
@@ -389,6 +407,13 @@ fn split_non_manifold(mesh: &mut TriMesh, report: &mut CleanReport) {
             }
         }
     }
+    // Every round splits a vertex and there are at most 3F corners, so this
+    // is never reached; an error is still better than a panic.
+    Err(TopologyError::NonManifold {
+        edges: 0,
+        vertices: report.non_manifold_vertices,
+    }
+    .into())
 }
 
 #[cfg(test)]

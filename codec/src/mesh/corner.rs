@@ -273,6 +273,19 @@ impl CornerTable {
         })
     }
 
+    /// Assembles a table whose parts were computed by this module's functions.
+    pub(crate) fn from_raw(
+        v: Vec<VertexId>,
+        o: Vec<CornerId>,
+        vertex_corner: Vec<CornerId>,
+    ) -> Self {
+        CornerTable {
+            v,
+            o,
+            vertex_corner,
+        }
+    }
+
     /// Builds from raw arrays, for decoders that produce V and O directly.
     /// The caller guarantees the invariants; [`CornerTable::check`] verifies them.
     pub fn from_parts(v: Vec<VertexId>, o: Vec<CornerId>, vertex_count: usize) -> Self {
