@@ -54,9 +54,8 @@ pub(crate) struct Pairing {
 ///
 /// An undirected edge used by exactly two half-edges of opposite direction
 /// is paired; any other multiplicity leaves all its half-edges unpaired
-/// and counts as one cut edge. Runs in O(corners + vertices) plus a sort
-/// of buckets larger than 32 entries (so a hostile vertex of huge valence
-/// costs O(k log k), not O(k^2)).
+/// and counts as one cut edge. Runs in O(corners + vertices) for bounded
+/// valence, O(k log k) for a vertex of valence k.
 pub(crate) fn pair_half_edges(triangles: &[[u32; 3]], vertex_count: usize) -> Pairing {
     pair_edges(triangles, vertex_count, false)
 }
@@ -92,89 +91,24 @@ pub(crate) fn pair_edges(triangles: &[[u32; 3]], vertex_count: usize, undirected
     let mut o = vec![CornerId::NONE; nc];
     let mut cut_edges = 0u64;
     for v in 0..vertex_count {
+        // Buckets average six entries; sorting them (insertion sort at that
+        // size, O(k log k) for a hostile vertex of huge valence) puts the
+        // half-edges of each undirected edge next to each other.
         let bucket = &mut entries[start[v] as usize..start[v + 1] as usize];
-        if bucket.len() > 32 {
-            bucket.sort_unstable();
-        }
-        let sorted = bucket.len() > 32;
-        let k = bucket.len();
-        let mut i = 0;
-        while i < k {
-            let key = bucket[i].0;
-            if key == u32::MAX {
-                i += 1;
-                continue;
-            }
-            // Gather the run of entries with this key (all of them for a
-            // sorted bucket; a scan for a small unsorted one).
-            let (mut count, mut first, mut second) = (1, i, usize::MAX);
-            if sorted {
-                let mut j = i + 1;
-                while j < k && bucket[j].0 == key {
-                    if second == usize::MAX {
-                        second = j;
-                    }
-                    count += 1;
-                    j += 1;
+        bucket.sort_unstable();
+        for group in bucket.chunk_by(|a, b| a.0 == b.0) {
+            match group {
+                [_] => {} // a boundary edge
+                [(_, a), (_, b)] if undirected || (a ^ b) >> 31 == 1 => {
+                    let (a, b) = (a & 0x7fff_ffff, b & 0x7fff_ffff);
+                    o[a as usize] = CornerId(b);
+                    o[b as usize] = CornerId(a);
                 }
-                pair_group(
-                    &mut o,
-                    &mut cut_edges,
-                    bucket,
-                    first,
-                    second,
-                    count,
-                    undirected,
-                );
-                i = j;
-                continue;
+                _ => cut_edges += 1,
             }
-            for j in i + 1..k {
-                if bucket[j].0 == key {
-                    if second == usize::MAX {
-                        second = j;
-                    }
-                    count += 1;
-                    bucket[j].0 = u32::MAX; // consumed
-                }
-            }
-            first = i;
-            pair_group(
-                &mut o,
-                &mut cut_edges,
-                bucket,
-                first,
-                second,
-                count,
-                undirected,
-            );
-            i += 1;
         }
     }
     Pairing { o, cut_edges }
-}
-
-#[inline]
-fn pair_group(
-    o: &mut [CornerId],
-    cut: &mut u64,
-    bucket: &[(u32, u32)],
-    a: usize,
-    b: usize,
-    count: u32,
-    undirected: bool,
-) {
-    if count == 1 {
-        return; // a boundary edge
-    }
-    let (ca, cb) = (bucket[a].1, bucket[b].1);
-    if count == 2 && (undirected || (ca ^ cb) >> 31 == 1) {
-        let (ca, cb) = (ca & 0x7fff_ffff, cb & 0x7fff_ffff);
-        o[ca as usize] = CornerId(cb);
-        o[cb as usize] = CornerId(ca);
-    } else {
-        *cut += 1;
-    }
 }
 
 /// For every vertex, the most clockwise corner of each of its fans.
