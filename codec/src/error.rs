@@ -27,6 +27,10 @@ pub enum Error {
     /// The input's topology cannot be handled (e.g. a non-orientable surface).
     #[error("{0}")]
     Topology(#[from] TopologyError),
+    /// The file needs a newer decoder: a newer major version, or a mode,
+    /// critical section or required flag this version does not know.
+    #[error("{0}")]
+    Unsupported(#[from] UnsupportedError),
 }
 
 /// Where in a file a problem was found.
@@ -132,6 +136,41 @@ pub enum Malformed {
     },
     /// The file names a feature this reader does not support.
     Unsupported(&'static str),
+    /// The file does not start with the format's magic bytes: it is not a
+    /// file of this format at all.
+    BadMagic,
+    /// The checksum stored in the file differs from the one its bytes give:
+    /// the file is damaged or truncated.
+    ChecksumMismatch {
+        /// The checksum the file stores.
+        stored: u32,
+        /// The checksum computed over the file's bytes.
+        computed: u32,
+    },
+    /// A section tag is not four ASCII letters.
+    BadSectionTag {
+        /// The tag's bytes as written.
+        tag: [u8; 4],
+    },
+    /// A critical section appears more than once.
+    DuplicateSection {
+        /// The repeated tag.
+        tag: [u8; 4],
+    },
+    /// A section's declared length runs past the end of the section data.
+    SectionOutOfBounds {
+        /// The section's tag.
+        tag: [u8; 4],
+        /// The byte offset where the section would end (exclusive).
+        end: u64,
+        /// The byte offset where section data must end (where the checksum starts).
+        limit: u64,
+    },
+    /// A section the file's mode needs is absent.
+    MissingSection {
+        /// The missing tag.
+        tag: [u8; 4],
+    },
 }
 
 impl fmt::Display for Malformed {
@@ -153,6 +192,25 @@ impl fmt::Display for Malformed {
             Malformed::NonFinite { vertex } => write!(f, "vertex {vertex} has a NaN or infinite coordinate"),
             Malformed::FaceTooSmall { count } => write!(f, "a face has {count} vertices; at least 3 are needed"),
             Malformed::Unsupported(what) => write!(f, "unsupported: {what}"),
+            Malformed::BadMagic => write!(f, "it does not start with the magic bytes, so it is not a file of this format"),
+            Malformed::ChecksumMismatch { stored, computed } => write!(
+                f,
+                "checksum mismatch (stored {stored:#010x}, computed {computed:#010x}): the file is damaged or truncated"
+            ),
+            Malformed::BadSectionTag { tag } => {
+                write!(f, "section tag \"{}\" is not four ASCII letters", tag.escape_ascii())
+            }
+            Malformed::DuplicateSection { tag } => {
+                write!(f, "critical section \"{}\" appears more than once", tag.escape_ascii())
+            }
+            Malformed::SectionOutOfBounds { tag, end, limit } => write!(
+                f,
+                "section \"{}\" would end at byte {end}, past the end of the section data at byte {limit}",
+                tag.escape_ascii()
+            ),
+            Malformed::MissingSection { tag } => {
+                write!(f, "the required section \"{}\" is missing", tag.escape_ascii())
+            }
         }
     }
 }
@@ -275,3 +333,68 @@ impl fmt::Display for TopologyError {
 }
 
 impl core::error::Error for TopologyError {}
+
+/// The file needs a decoder newer than this one.
+///
+/// Names both versions: the file's, and the newest this decoder was
+/// written for. A decoder reads every file of its own major version that
+/// uses only features it knows, so `feature` says what it tripped on.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnsupportedError {
+    /// What the file uses that this decoder does not know.
+    pub feature: UnsupportedFeature,
+    /// The file's major version.
+    pub major: u8,
+    /// The file's minor version.
+    pub minor: u8,
+    /// The major version this decoder implements.
+    pub supported_major: u8,
+    /// The minor version this decoder implements.
+    pub supported_minor: u8,
+}
+
+/// What an [`UnsupportedError`] tripped on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum UnsupportedFeature {
+    /// A different major version (newer, or 0, which was never released).
+    Version,
+    /// An unknown coding mode.
+    Mode(u8),
+    /// An unknown critical section.
+    CriticalSection([u8; 4]),
+    /// Required flag bits this decoder does not know.
+    RequiredFlags(u16),
+}
+
+impl fmt::Display for UnsupportedError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (ma, mi, sa, si) = (
+            self.major,
+            self.minor,
+            self.supported_major,
+            self.supported_minor,
+        );
+        match self.feature {
+            UnsupportedFeature::Version => write!(
+                f,
+                "the file is .swm version {ma}.{mi}, which this decoder (version {sa}.{si}) cannot read"
+            ),
+            UnsupportedFeature::Mode(m) => write!(
+                f,
+                "the file (.swm version {ma}.{mi}) uses coding mode {m}, unknown to this decoder (version {sa}.{si})"
+            ),
+            UnsupportedFeature::CriticalSection(tag) => write!(
+                f,
+                "the file (.swm version {ma}.{mi}) has a critical section \"{}\" unknown to this decoder (version {sa}.{si})",
+                tag.escape_ascii()
+            ),
+            UnsupportedFeature::RequiredFlags(bits) => write!(
+                f,
+                "the file (.swm version {ma}.{mi}) sets required flags {bits:#06x} unknown to this decoder (version {sa}.{si})"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for UnsupportedError {}

@@ -16,7 +16,11 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod container;
+pub mod edgebreaker;
+pub mod entropy;
 mod error;
+pub mod geometry;
 mod limits;
 pub mod mesh;
 

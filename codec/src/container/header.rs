@@ -1,0 +1,228 @@
+//! The fixed part of a `.swm` file: magic, version, flags, coding mode and
+//! the counts of the decoded mesh (`format-spec/01-container.md`,
+//! "Preamble" and "Fixed header").
+//!
+//! Everything a decoder needs to refuse a file before allocating lives
+//! here and is checked here: the version, the required flags, the mode,
+//! and the counts against [`Limits`] and against each other. Mode-specific
+//! parameters do not: they travel in the `HEAD` section, so this layout
+//! stays the same for every mode.
+
+use super::{UnsupportedError, UnsupportedFeature};
+use super::{FORMAT_MAJOR, FORMAT_MINOR, FORMAT_NAME, MAGIC};
+use crate::{Error, FormatError, Limits, Location, Malformed};
+use byteorder::{ByteOrder, LittleEndian as LE};
+
+/// Byte offsets of the fixed fields. They never move within a major
+/// version: later minor versions add sections, not header fields.
+pub(crate) mod at {
+    pub const MAJOR: usize = 4;
+    pub const MINOR: usize = 5;
+    pub const FLAGS: usize = 6;
+    pub const MODE: usize = 8;
+    pub const VERTEX_COUNT: usize = 9;
+    pub const TRIANGLE_COUNT: usize = 13;
+    pub const COMPONENT_COUNT: usize = 17;
+    pub const SECTION_COUNT: usize = 21;
+    /// First section table entry.
+    pub const TABLE: usize = 23;
+}
+
+/// Bytes per section table entry: tag and length.
+pub(crate) const TABLE_ENTRY_LEN: usize = 8;
+/// Bytes of the trailing CRC-32.
+pub(crate) const CRC_LEN: usize = 4;
+/// Smallest file of *any* version: magic, major, minor, CRC. Every version
+/// keeps these four in place so that the checksum can be verified before
+/// the version is looked at.
+pub(crate) const MIN_FRAME_LEN: usize = at::MINOR + 1 + CRC_LEN;
+/// Smallest 1.x file: the fixed header, no sections, the CRC.
+pub(crate) const MIN_LEN: usize = at::TABLE + CRC_LEN;
+
+/// Flag bits a decoder must understand: one it does not know makes the
+/// file [unsupported](UnsupportedFeature::RequiredFlags).
+pub const FLAGS_REQUIRED: u16 = 0x00FF;
+/// Flag bits a decoder may ignore when it does not know them.
+pub const FLAGS_OPTIONAL: u16 = 0xFF00;
+/// Flag bits defined by this format version: none in 1.0.
+pub const KNOWN_FLAGS: u16 = 0;
+
+/// How the sections encode the mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Mode {
+    /// Code 0: the input's own connectivity (Edgebreaker) and quantized,
+    /// parallelogram-predicted coordinates.
+    Lossless,
+    /// Code 1: SwingWrapper retiling, connectivity of the new mesh and one
+    /// quantized dihedral angle per vertex.
+    Swing,
+}
+
+impl Mode {
+    /// The byte stored in the file.
+    pub const fn code(self) -> u8 {
+        match self {
+            Mode::Lossless => 0,
+            Mode::Swing => 1,
+        }
+    }
+
+    /// The mode a stored byte names, if this version knows it.
+    pub const fn from_code(code: u8) -> Option<Mode> {
+        match code {
+            0 => Some(Mode::Lossless),
+            1 => Some(Mode::Swing),
+            _ => None,
+        }
+    }
+}
+
+/// The fixed header of a `.swm` file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Header {
+    /// Major format version. A decoder reads only its own.
+    pub major: u8,
+    /// Minor format version. A decoder reads newer ones (skipping what it
+    /// does not know, when it may).
+    pub minor: u8,
+    /// Flag bits; see [`FLAGS_REQUIRED`] and [`FLAGS_OPTIONAL`]. Zero in 1.0.
+    pub flags: u16,
+    /// How the sections encode the mesh.
+    pub mode: Mode,
+    /// Vertices of the decoded mesh.
+    pub vertex_count: u32,
+    /// Triangles of the decoded mesh.
+    pub triangle_count: u32,
+    /// Connected components of the decoded mesh.
+    pub component_count: u32,
+}
+
+impl Header {
+    /// A header of the current version ([`FORMAT_MAJOR`].[`FORMAT_MINOR`])
+    /// with no flags.
+    pub fn new(mode: Mode, vertex_count: u32, triangle_count: u32, component_count: u32) -> Self {
+        Header {
+            major: FORMAT_MAJOR,
+            minor: FORMAT_MINOR,
+            flags: 0,
+            mode,
+            vertex_count,
+            triangle_count,
+            component_count,
+        }
+    }
+
+    /// Appends magic, version, flags, mode and counts (up to, not
+    /// including, the section count).
+    pub(crate) fn write(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&MAGIC);
+        out.push(self.major);
+        out.push(self.minor);
+        put_u16(out, self.flags);
+        out.push(self.mode.code());
+        put_u32(out, self.vertex_count);
+        put_u32(out, self.triangle_count);
+        put_u32(out, self.component_count);
+    }
+
+    /// Reads and checks the fixed header of a file whose magic and CRC
+    /// have been verified. `bytes` holds at least [`MIN_FRAME_LEN`] bytes.
+    ///
+    /// Order matters: the version first (a newer major version may lay out
+    /// everything after it differently), then the length of the 1.x
+    /// header, then flags, mode, limits and consistency.
+    pub(crate) fn read(bytes: &[u8], limits: &Limits) -> Result<Header, Error> {
+        let (major, minor) = (bytes[at::MAJOR], bytes[at::MINOR]);
+        let unsupported = |feature| UnsupportedError {
+            feature,
+            major,
+            minor,
+            supported_major: FORMAT_MAJOR,
+            supported_minor: FORMAT_MINOR,
+        };
+        if major != FORMAT_MAJOR {
+            return Err(unsupported(UnsupportedFeature::Version).into());
+        }
+        if bytes.len() < MIN_LEN {
+            return Err(malformed(Malformed::Truncated, bytes.len()));
+        }
+        let flags = LE::read_u16(&bytes[at::FLAGS..]);
+        let unknown_required = flags & FLAGS_REQUIRED & !KNOWN_FLAGS;
+        if unknown_required != 0 {
+            return Err(unsupported(UnsupportedFeature::RequiredFlags(unknown_required)).into());
+        }
+        let code = bytes[at::MODE];
+        let mode = Mode::from_code(code).ok_or(unsupported(UnsupportedFeature::Mode(code)))?;
+        let vertex_count = LE::read_u32(&bytes[at::VERTEX_COUNT..]);
+        let triangle_count = LE::read_u32(&bytes[at::TRIANGLE_COUNT..]);
+        let component_count = LE::read_u32(&bytes[at::COMPONENT_COUNT..]);
+        limits.check_vertices(vertex_count.into())?;
+        limits.check_faces(triangle_count.into())?;
+        check_counts(vertex_count, triangle_count, component_count)?;
+        Ok(Header {
+            major,
+            minor,
+            flags,
+            mode,
+            vertex_count,
+            triangle_count,
+            component_count,
+        })
+    }
+}
+
+/// What any triangle mesh without unreferenced vertices satisfies. These
+/// bound every count by the triangle count, so the limit on triangles
+/// bounds all allocations sized by the header.
+fn check_counts(vertices: u32, triangles: u32, components: u32) -> Result<(), Error> {
+    let (v, t, c) = (
+        u64::from(vertices),
+        u64::from(triangles),
+        u64::from(components),
+    );
+    if c > t {
+        return Err(malformed(
+            Malformed::BadHeader("more components than triangles"),
+            at::COMPONENT_COUNT,
+        ));
+    }
+    if t > 0 && c == 0 {
+        return Err(malformed(
+            Malformed::BadHeader("triangles but no component"),
+            at::COMPONENT_COUNT,
+        ));
+    }
+    if v > 3 * t {
+        return Err(malformed(
+            Malformed::BadHeader("more than three vertices per triangle"),
+            at::VERTEX_COUNT,
+        ));
+    }
+    if t > 0 && v < 3 {
+        return Err(malformed(
+            Malformed::BadHeader("triangles but fewer than three vertices"),
+            at::VERTEX_COUNT,
+        ));
+    }
+    Ok(())
+}
+
+/// A located container format error.
+pub(crate) fn malformed(what: Malformed, at: usize) -> Error {
+    FormatError::new(FORMAT_NAME, what)
+        .at(Location::Byte(at as u64))
+        .into()
+}
+
+pub(crate) fn put_u16(out: &mut Vec<u8>, v: u16) {
+    let mut b = [0; 2];
+    LE::write_u16(&mut b, v);
+    out.extend_from_slice(&b);
+}
+
+pub(crate) fn put_u32(out: &mut Vec<u8>, v: u32) {
+    let mut b = [0; 4];
+    LE::write_u32(&mut b, v);
+    out.extend_from_slice(&b);
+}

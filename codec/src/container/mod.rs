@@ -1,0 +1,62 @@
+//! The `.swm` container, format version 1.0: the framing every coding mode
+//! writes into (normative text: `format-spec/01-container.md`).
+//!
+//! ```text
+//! "SWM\0" major minor flags | mode vertices triangles components | n | n × (tag, length) | payloads | CRC-32
+//! ```
+//!
+//! The container knows nothing about how a section is coded. It frames
+//! sections, checks the frame, and refuses a file before anything sized by
+//! the file is allocated: parsing allocates nothing at all and hands out
+//! borrowed slices of the input.
+//!
+//! Sources:
+//! - Critical versus ancillary sections follow PNG's chunk naming
+//!   convention (PNG specification, 3rd ed., §5.4 "Chunk naming
+//!   conventions"): an upper-case first letter marks a section a decoder
+//!   must understand, a lower-case one a section it may skip.
+//! - The checksum is the CRC-32 of zlib and PNG (ISO 3309 / ITU-T V.42,
+//!   reflected polynomial `0xEDB88320`), as in RFC 1952 §8 and the PNG
+//!   specification's sample CRC code (Annex D).
+//! - Versioning follows meshoptimizer's rule (decode every version up to
+//!   one's own) and image-png's `Limits` for untrusted input.
+//!
+//! One concern per file: `crc` (checksum), `tag` (section names and the
+//! 1.0 registry), `header` (fixed fields, version and limit checks),
+//! `write` and `read` (the frame), `count` (the "count cannot fit" rule),
+//! `meta` (the `meta` key/value section).
+
+mod count;
+mod crc;
+mod header;
+mod meta;
+mod read;
+mod tag;
+mod write;
+
+#[cfg(test)]
+mod tests;
+
+pub use crate::error::{UnsupportedError, UnsupportedFeature};
+pub use count::check_count_fits;
+pub use crc::{crc32, Crc32};
+pub use header::{Header, Mode, FLAGS_OPTIONAL, FLAGS_REQUIRED, KNOWN_FLAGS};
+pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
+pub use read::{parse_container, Container, Section, Sections};
+pub use tag::Tag;
+pub use write::{container_len, write_container, write_container_into};
+
+/// Major format version this crate writes and reads. A decoder rejects any
+/// other major version.
+pub const FORMAT_MAJOR: u8 = 1;
+
+/// Minor format version this crate writes. A decoder reads newer minor
+/// versions of its major version as long as they use no feature it does
+/// not know (see `format-spec/versions.md`).
+pub const FORMAT_MINOR: u8 = 0;
+
+/// The four bytes every `.swm` file starts with.
+pub const MAGIC: [u8; 4] = *b"SWM\0";
+
+/// Format name in [`FormatError`](crate::FormatError)s.
+const FORMAT_NAME: &str = "SWM";

@@ -1,0 +1,110 @@
+//! Section tags and the registry of tags defined by format 1.0.
+//!
+//! A tag is four ASCII letters. As in PNG's chunk names (PNG specification
+//! §5.4), the case of the first letter says whether a decoder may skip the
+//! section: upper case (bit 5 clear) is *critical*, lower case (bit 5 set)
+//! is *ancillary*. The case of the other three letters carries no meaning.
+
+use core::fmt;
+
+/// A four-letter section tag.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Tag(pub [u8; 4]);
+
+impl Tag {
+    /// Critical. The mode's parameters (quantization, bounding box, angle
+    /// bits, edge length, first triangle...); contents defined by the
+    /// mode's page.
+    pub const HEAD: Tag = Tag(*b"HEAD");
+    /// Critical. Entropy-coded connectivity (CLERS symbols).
+    pub const CLRS: Tag = Tag(*b"CLRS");
+    /// Critical. Topology events: handles, holes, component starts.
+    pub const TOPO: Tag = Tag(*b"TOPO");
+    /// Critical. Entropy-coded geometry (angle symbols or coordinate
+    /// residuals).
+    pub const GEOM: Tag = Tag(*b"GEOM");
+    /// Ancillary. Hole mask; contents defined with the connectivity
+    /// page. A decoder that does not use it skips it.
+    pub const HOLE: Tag = Tag(*b"hole");
+    /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
+    pub const META: Tag = Tag(*b"meta");
+
+    /// Four ASCII letters (`A-Z`, `a-z`)?
+    pub const fn is_valid(self) -> bool {
+        let b = self.0;
+        b[0].is_ascii_alphabetic()
+            && b[1].is_ascii_alphabetic()
+            && b[2].is_ascii_alphabetic()
+            && b[3].is_ascii_alphabetic()
+    }
+
+    /// Must a decoder understand this section to decode the file? True when
+    /// bit 5 of the first byte is clear (an upper-case first letter).
+    pub const fn is_critical(self) -> bool {
+        self.0[0] & 0x20 == 0
+    }
+
+    /// May a decoder that does not know this section skip it?
+    pub const fn is_ancillary(self) -> bool {
+        !self.is_critical()
+    }
+
+    /// Is this tag defined by the format version this crate implements
+    /// ([`FORMAT_MAJOR`](super::FORMAT_MAJOR).[`FORMAT_MINOR`](super::FORMAT_MINOR))?
+    pub fn is_known(self) -> bool {
+        KNOWN_CRITICAL.contains(&self) || KNOWN_ANCILLARY.contains(&self)
+    }
+
+    /// The four bytes.
+    pub const fn as_bytes(&self) -> &[u8; 4] {
+        &self.0
+    }
+}
+
+/// Critical tags of format 1.0. A decoder rejects any other critical tag.
+/// The position in this list is the bit a parser uses to spot duplicates.
+pub(crate) const KNOWN_CRITICAL: [Tag; 4] = [Tag::HEAD, Tag::CLRS, Tag::TOPO, Tag::GEOM];
+
+/// Ancillary tags of format 1.0. Other ancillary tags are skipped.
+pub(crate) const KNOWN_ANCILLARY: [Tag; 2] = [Tag::HOLE, Tag::META];
+
+impl fmt::Display for Tag {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.0.escape_ascii())
+    }
+}
+
+impl fmt::Debug for Tag {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Tag(\"{}\")", self.0.escape_ascii())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn criticality_follows_first_letter() {
+        for t in KNOWN_CRITICAL {
+            assert!(t.is_valid() && t.is_critical() && t.is_known(), "{t}");
+        }
+        for t in KNOWN_ANCILLARY {
+            assert!(t.is_valid() && t.is_ancillary() && t.is_known(), "{t}");
+        }
+        assert!(Tag(*b"xTRA").is_ancillary());
+        assert!(Tag(*b"Xtra").is_critical());
+        assert!(!Tag(*b"xtra").is_known());
+    }
+
+    #[test]
+    fn validity() {
+        assert!(!Tag(*b"HEA1").is_valid());
+        assert!(!Tag(*b"HE D").is_valid());
+        assert!(!Tag([0, b'A', b'B', b'C']).is_valid());
+        assert_eq!(
+            format!("{:?}", Tag([b'A', 0, b'B', b'C'])),
+            "Tag(\"A\\x00BC\")"
+        );
+    }
+}

@@ -1,0 +1,90 @@
+//! Writing the frame: fixed header, section table, payloads, CRC-32.
+//!
+//! The writer frames whatever sections it is given, in the order given,
+//! and writes the header's fields as they are (so an encoder can pin an
+//! older minor version, and tests can forge newer ones). It checks only
+//! what would make the frame unreadable.
+
+use super::crc::crc32;
+use super::header::{at, put_u16, put_u32, Header, MIN_LEN, TABLE_ENTRY_LEN};
+use super::Tag;
+use crate::{Error, ParameterError};
+
+/// The exact size in bytes of the container [`write_container`] makes of
+/// these sections (saturating at `usize::MAX`).
+pub fn container_len(sections: &[(Tag, &[u8])]) -> usize {
+    sections.iter().fold(MIN_LEN, |n, (_, s)| {
+        n.saturating_add(TABLE_ENTRY_LEN).saturating_add(s.len())
+    })
+}
+
+/// Frames `sections` under `header` into a new buffer.
+///
+/// Fails with [`Error::Parameter`] when there are more than 65,535
+/// sections or one is longer than `u32::MAX` bytes.
+///
+/// # Panics
+/// If a tag is not four ASCII letters, or a critical tag appears twice:
+/// both are mistakes in the calling code, never in the data.
+pub fn write_container(header: &Header, sections: &[(Tag, &[u8])]) -> Result<Vec<u8>, Error> {
+    let mut out = Vec::new();
+    write_container_into(header, sections, &mut out)?;
+    Ok(out)
+}
+
+/// Appends the container to `out` (caller-owned output) and returns the
+/// number of bytes appended, [`container_len`]`(sections)`. On error `out`
+/// is left unchanged. Errors and panics as [`write_container`].
+pub fn write_container_into(
+    header: &Header,
+    sections: &[(Tag, &[u8])],
+    out: &mut Vec<u8>,
+) -> Result<usize, Error> {
+    check_sections(sections)?;
+    let start = out.len();
+    out.reserve(container_len(sections));
+    header.write(out);
+    debug_assert_eq!(out.len() - start, at::SECTION_COUNT);
+    // Lengths and count were checked above; the casts cannot truncate.
+    put_u16(out, sections.len() as u16);
+    for (tag, bytes) in sections {
+        out.extend_from_slice(&tag.0);
+        put_u32(out, bytes.len() as u32);
+    }
+    for (_, bytes) in sections {
+        out.extend_from_slice(bytes);
+    }
+    let crc = crc32(&out[start..]);
+    put_u32(out, crc);
+    debug_assert_eq!(out.len() - start, container_len(sections));
+    Ok(out.len() - start)
+}
+
+fn check_sections(sections: &[(Tag, &[u8])]) -> Result<(), Error> {
+    if sections.len() > usize::from(u16::MAX) {
+        return Err(out_of_range("section count", sections.len(), u16::MAX.into()).into());
+    }
+    for (i, (tag, bytes)) in sections.iter().enumerate() {
+        assert!(
+            tag.is_valid(),
+            "section tag {tag:?} is not four ASCII letters"
+        );
+        assert!(
+            !tag.is_critical() || sections[..i].iter().all(|(t, _)| t != tag),
+            "critical section {tag} given twice"
+        );
+        if bytes.len() as u64 > u64::from(u32::MAX) {
+            return Err(out_of_range("section length", bytes.len(), u32::MAX.into()).into());
+        }
+    }
+    Ok(())
+}
+
+fn out_of_range(name: &'static str, value: usize, max: u64) -> ParameterError {
+    ParameterError::OutOfRange {
+        name,
+        value: value as f64,
+        min: 0.0,
+        max: max as f64,
+    }
+}
