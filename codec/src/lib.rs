@@ -16,17 +16,24 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+mod api;
 pub mod container;
 pub mod edgebreaker;
 pub mod entropy;
 mod error;
 pub mod geometry;
 mod limits;
+mod lossless;
 pub mod mesh;
+mod varint;
 
 #[cfg(feature = "io")]
 pub mod io;
 
+pub use api::{decode, inspect, DecodeOptions, FileInfo, LosslessStats};
+#[cfg(feature = "encoder")]
+pub use api::{encode, EncodeMode, EncodeOptions, EncodeStats, Encoded};
+pub use container::Mode;
 pub use error::{
     Error, FormatError, LimitError, Limited, Location, Malformed, ParameterError, TopologyError,
 };

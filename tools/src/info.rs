@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// A mesh file (.obj, .ply, .off, .stl).
+    /// A mesh file (.obj, .ply, .off, .stl) or a .swm file.
     file: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -20,6 +20,13 @@ pub struct Args {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     let err = |e: swm::Error| CliError::new(&args.file, e);
+    let is_swm = args
+        .file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("swm"));
+    if is_swm {
+        return run_swm(args);
+    }
     let mesh = swm::io::read_mesh(&args.file).map_err(err)?;
     let cleaned = swm::clean(&mesh, &swm::CleanOptions::default()).map_err(err)?;
     let stats = cleaned.table.stats(&cleaned.mesh);
@@ -37,24 +44,24 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "bbox_diagonal": stats.bbox_diagonal,
             "area": stats.area,
         });
-        println!(
+        say!(
             "{}",
             serde_json::to_string_pretty(&v).expect("JSON of numbers")
         );
         return Ok(());
     }
-    println!("{}", args.file.display());
-    println!("  vertices              {}", cleaned.distinct_vertices);
-    println!("  faces                 {}", r.input_faces);
-    println!("  components            {}", r.input_components);
-    println!("  boundary loops        {}", stats.boundary_loops);
-    println!("  genus                 {}", stats.genus);
-    println!("  bbox diagonal         {}", stats.bbox_diagonal);
-    println!("  area                  {}", stats.area);
+    say!("{}", args.file.display());
+    say!("  vertices              {}", cleaned.distinct_vertices);
+    say!("  faces                 {}", r.input_faces);
+    say!("  components            {}", r.input_components);
+    say!("  boundary loops        {}", stats.boundary_loops);
+    say!("  genus                 {}", stats.genus);
+    say!("  bbox diagonal         {}", stats.bbox_diagonal);
+    say!("  area                  {}", stats.area);
     if r.is_clean() {
-        println!("  cleaning              nothing to repair");
+        say!("  cleaning              nothing to repair");
     } else {
-        println!("  cleaning:");
+        say!("  cleaning:");
         let rows = [
             ("coincident vertices merged", r.merged_vertices),
             ("unreferenced vertices removed", r.unreferenced_vertices),
@@ -70,14 +77,66 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             ("vertices added by splitting", r.split_vertices_added),
         ];
         for (what, n) in rows.iter().filter(|r| r.1 > 0) {
-            println!("    {what:<40} {n}");
+            say!("    {what:<40} {n}");
         }
-        println!(
+        say!(
             "  after cleaning        {} vertices, {} faces, {} components",
             cleaned.mesh.vertex_count(),
             cleaned.mesh.face_count(),
             stats.components
         );
     }
+    Ok(())
+}
+
+/// `swm info FILE.swm`: the file's header, sections and CLERS histogram.
+fn run_swm(args: &Args) -> Result<(), CliError> {
+    let err = |e: swm::Error| CliError::new(&args.file, e);
+    let bytes = std::fs::read(&args.file).map_err(|e| err(e.into()))?;
+    let info = swm::inspect(&bytes, &swm::Limits::default()).map_err(err)?;
+    let mut v = crate::report::lossless_json(&info.stats, info.qp);
+    v["version"] = format!("{}.{}", info.version.0, info.version.1).into();
+    if args.json {
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&v).expect("JSON of numbers")
+        );
+        return Ok(());
+    }
+    let s = &info.stats;
+    say!("{}", args.file.display());
+    say!(
+        "  format version        {}.{}",
+        info.version.0,
+        info.version.1
+    );
+    say!(
+        "  mode                  lossless, {} bits per coordinate",
+        info.qp
+    );
+    say!("  vertices              {}", s.vertices);
+    say!("  triangles             {}", s.triangles);
+    say!("  components            {}", s.components);
+    say!("  holes                 {}", s.holes);
+    say!("  handle events         {}", s.handle_events);
+    say!(
+        "  bytes                 {} ({:.3} bits/triangle)",
+        s.file_bytes,
+        v["bits_per_triangle"].as_f64().unwrap_or(0.0)
+    );
+    for (tag, n) in &s.sections {
+        let bpt = 8.0 * *n as f64 / s.triangles.max(1) as f64;
+        say!(
+            "    section {:<4}        {n} bytes, {bpt:.3} bits/triangle",
+            String::from_utf8_lossy(tag)
+        );
+    }
+    let total: u64 = s.clers.iter().sum::<u64>().max(1);
+    let hist: Vec<String> = ["C", "L", "E", "R", "S"]
+        .iter()
+        .zip(s.clers)
+        .map(|(l, n)| format!("{l} {n} ({:.1}%)", 100.0 * n as f64 / total as f64))
+        .collect();
+    say!("  CLERS                 {}", hist.join(", "));
     Ok(())
 }

@@ -4,7 +4,19 @@
 //! fails, 2 on bad usage (clap's convention). Every failure prints one line
 //! on stderr, `swm: error: FILE: what is wrong`.
 
+/// `println!` that ignores a closed stdout (`swm info x | head`): the
+/// reader has what it wanted, which is no reason to panic.
+macro_rules! say {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
+mod decode;
+mod encode;
 mod info;
+mod report;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -23,8 +35,13 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Print the topology and size of a mesh: vertices, faces, components,
-    /// boundary loops, genus, defects found by cleaning, bounding box, area.
+    /// Compress a mesh into a .swm file.
+    Encode(encode::Args),
+    /// Decompress a .swm file into a mesh file.
+    Decode(decode::Args),
+    /// Describe a mesh (topology, defects, size) or a .swm file (version,
+    /// mode, counts, bytes and bits per triangle of each section, CLERS
+    /// histogram).
     Info(info::Args),
 }
 
@@ -47,6 +64,8 @@ impl CliError {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Encode(args) => encode::run(&args),
+        Command::Decode(args) => decode::run(&args),
         Command::Info(args) => info::run(&args),
     };
     match result {

@@ -29,6 +29,8 @@ mod shared;
 mod reference;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+pub(crate) use tests::swm_corpus_like as tests_support;
 
 pub use decode::decode;
 pub use encode::{encode, Encoded};

@@ -121,7 +121,7 @@ fn corrupt_streams_are_errors() {
 }
 
 /// Small meshes built here, so the codec's unit tests need no other crate.
-mod swm_corpus_like {
+pub(crate) mod swm_corpus_like {
     use crate::TriMesh;
 
     pub fn tetra() -> TriMesh {

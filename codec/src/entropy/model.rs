@@ -329,7 +329,7 @@ impl ContextModel {
         self.models.len()
     }
 
-    /// The model of context `context`.
+    /// The model of context `context`, to code with.
     ///
     /// # Panics
     ///
@@ -337,6 +337,16 @@ impl ContextModel {
     #[inline(always)]
     pub fn get(&mut self, context: usize) -> &mut AdaptiveModel {
         &mut self.models[context]
+    }
+
+    /// The model of context `context`, to inspect (e.g. to estimate costs).
+    ///
+    /// # Panics
+    ///
+    /// If `context >= self.contexts()`.
+    #[inline]
+    pub fn get_ref(&self, context: usize) -> &AdaptiveModel {
+        &self.models[context]
     }
 }
 

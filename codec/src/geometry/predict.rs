@@ -1,10 +1,9 @@
 //! Predictions of a vertex's quantized position from vertices decoded
 //! before it: the parallelogram rule of Touma & Gotsman, "Triangle mesh
-//! compression" (Graphics Interface 1998), and its multi-parallelogram
-//! average (Cohen-Or, Cohen & Irony, "Multi-way geometry encoding", 2002;
-//! Isenburg & Alliez, "Compressing polygon mesh geometry with parallelogram
-//! prediction", IEEE Visualization 2002; Draco's
-//! `MeshPredictionSchemeMultiParallelogram`).
+//! compression" (Graphics Interface 1998), and averages of several
+//! parallelograms (Cohen-Or, Cohen & Irony, "Multi-way geometry encoding",
+//! 2002; Isenburg & Alliez, "Compressing polygon mesh geometry with
+//! parallelogram prediction", IEEE Visualization 2002).
 //!
 //! ```text
 //!          opposite                 The new vertex closes the triangle
@@ -19,18 +18,25 @@
 //! ```
 //!
 //! Vertices are numbered in decoding order; the prediction of vertex `k`
-//! may only name vertices `< k`. The connectivity decoder produces the
-//! predictions, so for the decoder they are hostile data: [`check`] rejects
-//! a reference to a vertex not yet decoded with [`Error::Format`], and
-//! nothing here can panic on any input that passed it.
+//! may only name vertices `< k`. For a decoder the predictions are hostile
+//! data (they come from decoded connectivity): [`Prediction::check`]
+//! rejects a reference to a vertex not yet decoded, or a parallelogram
+//! range outside the list, with [`Error::Format`]; nothing here can panic
+//! on predictions that passed it.
 //!
-//! All arithmetic is on grid integers (`i64`, no overflow for 24-bit
-//! coordinates and up to 2^32 parallelograms), with the result clamped
-//! into the grid, so every platform predicts the same point. Must match
-//! the encoder exactly: both sides call [`Prediction::predict`] /
-//! [`predict_multi`].
+//! All arithmetic is on grid integers in `i64` (no overflow: at most
+//! [`MAX_SELECTABLE`] parallelograms of 24-bit coordinates are summed),
+//! with the result clamped into the grid, so every platform predicts the
+//! same point. Must match the encoder exactly: both sides call
+//! [`Prediction::predict`] and [`average`].
 
+use super::quantize::max_value;
 use crate::{Error, FormatError, Malformed};
+
+/// A [`Prediction::Multi`] averages a subset of at most this many of its
+/// parallelograms (the first ones of its list); the encoder picks the
+/// subset and codes it. Part of the bitstream definition.
+pub const MAX_SELECTABLE: usize = 4;
 
 /// How vertex `k` is predicted (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,8 +44,8 @@ pub enum Prediction {
     /// No neighbour is known (the first vertex of a component): predict
     /// the centre of the grid, `2^(bits−1)` on every axis.
     None,
-    /// Predict the position of an earlier vertex (e.g. the other end of
-    /// the edge that reached this one).
+    /// Predict the position of an earlier vertex (e.g. a neighbour when no
+    /// parallelogram is available).
     Delta {
         /// The earlier vertex.
         from: u32,
@@ -53,9 +59,10 @@ pub enum Prediction {
         /// The vertex across the shared edge from the new one.
         opposite: u32,
     },
-    /// The average of several parallelograms: entries
-    /// `first .. first + count` of the parallelogram list passed beside
-    /// the predictions (each entry is `[a, b, opposite]`).
+    /// Several parallelograms: entries `first .. first + count` of
+    /// [`Predictions::parallelograms`]. The prediction is the average of a
+    /// non-empty subset of the first [`MAX_SELECTABLE`] of them, which the
+    /// encoder chooses and codes (see [`super::lossless`]).
     Multi {
         /// First entry in the parallelogram list.
         first: u32,
@@ -64,8 +71,33 @@ pub enum Prediction {
     },
 }
 
+/// The predictions of every vertex, in decoding order, and the shared list
+/// of parallelograms `[a, b, opposite]` that [`Prediction::Multi`] entries
+/// point into.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Predictions {
+    /// Prediction of vertex `k`, for every `k`.
+    pub vertices: Vec<Prediction>,
+    /// Parallelograms of the `Multi` predictions, each `[a, b, opposite]`.
+    pub parallelograms: Vec<[u32; 3]>,
+}
+
+impl Predictions {
+    /// Number of vertices.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// True if there are no vertices.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty()
+    }
+}
+
 /// The error for a prediction that refers to something not available.
-fn bad_reference(index: u32, available: usize) -> Error {
+fn bad_reference(index: u64, available: usize) -> Error {
     Error::Format(FormatError::new(
         "SWM",
         Malformed::IndexOutOfRange {
@@ -78,13 +110,14 @@ fn bad_reference(index: u32, available: usize) -> Error {
 impl Prediction {
     /// Checks that the prediction of vertex `k` refers only to vertices
     /// `< k` and, for [`Prediction::Multi`], to a non-empty range of
-    /// `parallelograms` whose entries do too.
+    /// `parallelograms` whose selectable entries (the first
+    /// [`MAX_SELECTABLE`]) do too.
     pub fn check(&self, k: usize, parallelograms: &[[u32; 3]]) -> Result<(), Error> {
         let vertex = |v: u32| {
             if (v as usize) < k {
                 Ok(())
             } else {
-                Err(bad_reference(v, k))
+                Err(bad_reference(v as u64, k))
             }
         };
         match *self {
@@ -98,61 +131,73 @@ impl Prediction {
             Prediction::Multi { first, count } => {
                 let end = first as u64 + count as u64;
                 if count == 0 || end > parallelograms.len() as u64 {
-                    return Err(bad_reference(first, parallelograms.len()));
+                    return Err(bad_reference(end, parallelograms.len()));
                 }
-                for p in &parallelograms[first as usize..end as usize] {
-                    for &v in p {
-                        vertex(v)?;
-                    }
-                }
-                Ok(())
+                // Only the selectable entries are ever used, so only they
+                // are checked: constant work per vertex, whatever `count`.
+                self.selectable(parallelograms)
+                    .iter()
+                    .flatten()
+                    .try_for_each(|&v| vertex(v))
             }
         }
     }
 
-    /// The predicted grid point, given the vertices decoded so far.
+    /// The parallelograms a [`Prediction::Multi`] may choose from (at most
+    /// [`MAX_SELECTABLE`]); empty for the other kinds. The prediction must
+    /// have passed [`Prediction::check`].
+    #[inline]
+    pub fn selectable<'p>(&self, parallelograms: &'p [[u32; 3]]) -> &'p [[u32; 3]] {
+        match *self {
+            Prediction::Multi { first, count } => {
+                let n = (count as usize).min(MAX_SELECTABLE);
+                &parallelograms[first as usize..first as usize + n]
+            }
+            _ => &[],
+        }
+    }
+
+    /// The predicted grid point, given the vertices decoded so far; a
+    /// [`Prediction::Multi`] averages all its selectable parallelograms
+    /// (the lossless coder uses [`average`] with the coded subset instead).
     ///
     /// The prediction must have passed [`Prediction::check`] for
-    /// `decoded.len()` (so every index is in bounds). Must match the
-    /// encoder exactly: both sides call this.
+    /// `decoded.len()`, and `1 ≤ bits ≤ 32`. Must match the encoder
+    /// exactly: both sides call this.
     #[inline]
     pub fn predict(&self, decoded: &[[u32; 3]], parallelograms: &[[u32; 3]], bits: u8) -> [u32; 3] {
         match *self {
             Prediction::None => [1 << (bits - 1); 3],
             Prediction::Delta { from } => decoded[from as usize],
             Prediction::Parallelogram { a, b, opposite } => {
-                parallelogram(decoded, [a, b, opposite], bits)
+                average(decoded, &[[a, b, opposite]], 1, bits)
             }
-            Prediction::Multi { first, count } => {
-                let list = &parallelograms[first as usize..first as usize + count as usize];
-                predict_multi(decoded, list, bits)
+            Prediction::Multi { .. } => {
+                let list = self.selectable(parallelograms);
+                average(decoded, list, (1 << list.len()) - 1, bits)
             }
         }
     }
 }
 
-/// `a + b − opposite`, clamped into the grid `[0, 2^bits − 1]`.
-#[inline]
-fn parallelogram(decoded: &[[u32; 3]], [a, b, o]: [u32; 3], bits: u8) -> [u32; 3] {
-    let max = super::quantize::max_value(bits) as i64;
-    let (a, b, o) = (
-        decoded[a as usize],
-        decoded[b as usize],
-        decoded[o as usize],
-    );
-    core::array::from_fn(|k| (a[k] as i64 + b[k] as i64 - o[k] as i64).clamp(0, max) as u32)
-}
-
-/// The average of the parallelogram predictions `a + b − opposite` of
-/// `list` (not empty), each taken unclamped, rounded to the nearest grid
-/// point with ties rounded up (towards +∞), then clamped into the grid.
+/// The average of the parallelogram predictions `a + b − opposite` of the
+/// entries of `list` whose bit is set in `subset` (bit `i` ↔ `list[i]`;
+/// `list` has at most 32 entries, `subset` selects at least one), each
+/// taken unclamped, rounded to the nearest grid point with ties rounded up
+/// (towards +∞), then clamped into the grid `[0, 2^bits − 1]`.
 ///
-/// The sum is exact in `i64`; rounding is `⌊(2·sum + n) / (2n)⌋`, i.e.
-/// `⌊sum/n + 1/2⌋`. Must match the encoder exactly: both sides call this.
-pub fn predict_multi(decoded: &[[u32; 3]], list: &[[u32; 3]], bits: u8) -> [u32; 3] {
-    let max = super::quantize::max_value(bits) as i64;
+/// The sum is exact in `i64`; the rounding is `⌊(2·sum + n) / (2n)⌋`,
+/// i.e. `⌊sum/n + 1/2⌋`, with a floor division. Must match the encoder
+/// exactly: both sides call this.
+pub fn average(decoded: &[[u32; 3]], list: &[[u32; 3]], subset: u32, bits: u8) -> [u32; 3] {
+    let max = max_value(bits) as i64;
     let mut sum = [0i64; 3];
-    for &[a, b, o] in list {
+    let mut n = 0i64;
+    for (i, &[a, b, o]) in list.iter().enumerate() {
+        if (subset >> i) & 1 == 0 {
+            continue;
+        }
+        n += 1;
         let (a, b, o) = (
             decoded[a as usize],
             decoded[b as usize],
@@ -162,7 +207,7 @@ pub fn predict_multi(decoded: &[[u32; 3]], list: &[[u32; 3]], bits: u8) -> [u32;
             sum[k] += a[k] as i64 + b[k] as i64 - o[k] as i64;
         }
     }
-    let n = list.len().max(1) as i64;
+    let n = n.max(1);
     core::array::from_fn(|k| (2 * sum[k] + n).div_euclid(2 * n).clamp(0, max) as u32)
 }
 
@@ -184,7 +229,7 @@ mod tests {
             opposite: 2,
         };
         assert_eq!(p.predict(&d, &[], 8), [15, 0, 10]);
-        // Clamped into the grid: 0 + 0 − 15 < 0, 255 limit.
+        // Clamped into the grid: 0 + 0 − 15 < 0.
         let p = Prediction::Parallelogram {
             a: 3,
             b: 3,
@@ -195,18 +240,24 @@ mod tests {
         let list = [[0, 1, 2], [0, 3, 1]];
         let m = Prediction::Multi { first: 0, count: 2 };
         assert_eq!(m.predict(&d, &list, 8), [3, 0, 5]);
+        assert_eq!(average(&d, &list, 0b01, 8), [15, 0, 10]);
+        assert_eq!(average(&d, &list, 0b10, 8), [0, 0, 0]);
     }
 
     #[test]
-    fn multi_rounds_ties_up() {
+    fn averages_round_ties_up() {
         let d = [[0, 0, 0], [1, 2, 3], [0, 0, 0]];
         // Parallelograms (1,2,3) and (0,0,0): means 0.5, 1, 1.5.
         let list = [[1, 0, 2], [0, 0, 2]];
-        assert_eq!(predict_multi(&d, &list, 8), [1, 1, 2]);
-        // Negative sums round towards +∞ too before clamping: −0.5 → 0.
-        let d = [[1, 1, 1], [0, 0, 0], [0, 0, 0]];
+        assert_eq!(average(&d, &list, 0b11, 8), [1, 1, 2]);
+        // Negative sums round towards +∞ too before clamping: −0.5 → 0,
+        // and −1.5 → −1 → clamped to 0.
+        let d = [[1, 1, 3], [0, 0, 0], [0, 0, 0]];
         let list = [[1, 2, 0], [1, 2, 2]];
-        assert_eq!(predict_multi(&d, &list, 8), [0, 0, 0]);
+        assert_eq!(average(&d, &list, 0b11, 8), [0, 0, 0]);
+        // At the top of the grid the clamp applies after rounding.
+        let d = [[255, 255, 255], [255, 255, 255], [0, 0, 0]];
+        assert_eq!(average(&d, &[[0, 1, 2]], 1, 8), [255; 3]);
     }
 
     #[test]
@@ -222,20 +273,16 @@ mod tests {
         };
         assert!(p.check(7, &list).is_err());
         assert!(p.check(8, &list).is_ok());
-        assert!(Prediction::Multi { first: 0, count: 1 }
-            .check(3, &list)
-            .is_ok());
-        assert!(Prediction::Multi { first: 0, count: 2 }
-            .check(3, &list)
-            .is_err());
-        assert!(Prediction::Multi { first: 0, count: 0 }
-            .check(9, &list)
-            .is_err());
-        assert!(Prediction::Multi {
-            first: u32::MAX,
-            count: u32::MAX
-        }
-        .check(9, &list)
-        .is_err());
+        let m = |first, count| Prediction::Multi { first, count };
+        assert!(m(0, 1).check(3, &list).is_ok());
+        assert!(m(0, 2).check(3, &list).is_err());
+        assert!(m(0, 2).check(6, &list).is_ok());
+        // Entries past the selectable ones are never used, nor checked.
+        let long = [[0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [9, 9, 9]];
+        assert!(m(0, 5).check(1, &long).is_ok());
+        assert!(m(1, 4).check(1, &long).is_err());
+        assert!(m(0, 0).check(9, &list).is_err());
+        assert!(m(1, 2).check(9, &list).is_err());
+        assert!(m(u32::MAX, u32::MAX).check(9, &list).is_err());
     }
 }

@@ -1,39 +1,322 @@
-//! Round trips of position coding, hostile predictions and bytes, and the
-//! bits-per-vertex figures on the shared corpus.
+//! Round trips of position coding, hostile predictions, tables and bytes,
+//! and the bits-per-vertex figures on the shared corpus.
 
 use super::lossless::*;
 use super::*;
 use crate::entropy::{Decoder, Encoder};
 use crate::mesh::{CornerId, CornerTable, VertexId};
+use crate::{Error, FormatError, Malformed};
 
-/// Predictions for a mesh, in a breadth-first order over its triangles:
-/// what a connectivity decoder would hand the geometry coder.
-pub(crate) struct Traversal {
-    /// Original vertex of each decoded vertex.
-    pub order: Vec<u32>,
-    /// Prediction of each decoded vertex.
-    pub predictions: Vec<Prediction>,
-    /// Parallelogram list of the `Multi` predictions.
-    pub parallelograms: Vec<[u32; 3]>,
+/// SplitMix64, so tests need no crate.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    fn below(&mut self, n: u64) -> u32 {
+        (self.next() % n) as u32
+    }
 }
 
-/// Breadth-first traversal over triangles from face 0 (then from the
-/// first unvisited face of each further component). A vertex is emitted
-/// the first time a triangle containing it is reached: as `None` /
-/// `Delta` in a component's first triangle, otherwise as the parallelogram
-/// over the edge the traversal came through or, with `multi`, as every
-/// parallelogram around it whose three vertices are already emitted.
-pub(crate) fn traverse(table: &CornerTable, vertices: usize, multi: bool) -> Traversal {
+fn encode(q: &[[u32; 3]], p: &Predictions, bits: u8) -> Vec<u8> {
+    let mut enc = Encoder::new();
+    encode_positions(q, p, bits, &mut enc);
+    enc.finish()
+}
+
+fn decode(bytes: &[u8], p: &Predictions, bits: u8) -> Result<Vec<[u32; 3]>, Error> {
+    let mut dec = Decoder::new(bytes)?;
+    let mut out = vec![[7, 7, 7]; 3]; // stale content must not leak
+    decode_positions(p, bits, &mut dec, &mut out)?;
+    dec.finish()?;
+    Ok(out)
+}
+
+/// Random valid predictions for `n` vertices (every kind, any reference
+/// below the vertex, Multi lists of 1 to 6 entries).
+fn random_predictions(rng: &mut Rng, n: usize) -> Predictions {
+    let mut p = Predictions::default();
+    for k in 0..n {
+        let any = |rng: &mut Rng| rng.below(k as u64);
+        let pred = match (k, rng.below(4)) {
+            (0, _) | (_, 0) => Prediction::None,
+            (_, 1) => Prediction::Delta { from: any(rng) },
+            (_, 2) => Prediction::Parallelogram {
+                a: any(rng),
+                b: any(rng),
+                opposite: any(rng),
+            },
+            _ => {
+                let first = p.parallelograms.len() as u32;
+                let count = 1 + rng.below(6);
+                for _ in 0..count {
+                    p.parallelograms.push([any(rng), any(rng), any(rng)]);
+                }
+                Prediction::Multi { first, count }
+            }
+        };
+        p.vertices.push(pred);
+    }
+    p
+}
+
+/// Points near a smooth curve (so predictions are meaningful) plus
+/// outliers at the grid's corners.
+fn random_points(rng: &mut Rng, n: usize, bits: u8) -> Vec<[u32; 3]> {
+    let max = ((1u64 << bits) - 1) as u32;
+    (0..n)
+        .map(|i| match rng.below(10) {
+            0 => [0, max, rng.below(max as u64 + 1)],
+            1 => [max; 3],
+            _ => core::array::from_fn(|k| {
+                let t = (i as f64 * 0.01 + k as f64).sin() * 0.5 + 0.5;
+                ((t * max as f64) as u32).min(max)
+            }),
+        })
+        .collect()
+}
+
+#[test]
+fn random_round_trips() {
+    let mut rng = Rng(1);
+    for bits in [1u8, 2, 6, 11, 16, 24] {
+        for n in [0, 1, 2, 3, 50, 2_000] {
+            let p = random_predictions(&mut rng, n);
+            let q = random_points(&mut rng, n, bits);
+            let bytes = encode(&q, &p, bits);
+            assert_eq!(decode(&bytes, &p, bits).unwrap(), q, "bits {bits} n {n}");
+            // Deterministic.
+            assert_eq!(encode(&q, &p, bits), bytes);
+        }
+    }
+}
+
+#[test]
+fn invalid_references_are_rejected() {
+    let q = [[1, 2, 3], [4, 5, 6], [7, 8, 9]];
+    let ok = Predictions {
+        vertices: vec![
+            Prediction::None,
+            Prediction::Delta { from: 0 },
+            Prediction::Multi { first: 0, count: 2 },
+        ],
+        parallelograms: vec![[0, 1, 0], [1, 1, 0]],
+    };
+    let bytes = encode(&q, &ok, 8);
+    assert_eq!(decode(&bytes, &ok, 8).unwrap(), q);
+
+    let mut bad = Vec::new();
+    let mut p = ok.clone();
+    p.vertices[1] = Prediction::Delta { from: 1 };
+    bad.push(p);
+    let mut p = ok.clone();
+    p.vertices[2] = Prediction::Parallelogram {
+        a: 0,
+        b: 1,
+        opposite: 2,
+    };
+    bad.push(p);
+    let mut p = ok.clone();
+    p.parallelograms[1] = [0, 2, 1];
+    bad.push(p);
+    let mut p = ok.clone();
+    p.vertices[2] = Prediction::Multi { first: 1, count: 2 };
+    bad.push(p);
+    let mut p = ok.clone();
+    p.vertices[2] = Prediction::Multi { first: 0, count: 0 };
+    bad.push(p);
+    let mut p = ok.clone();
+    p.vertices[0] = Prediction::Delta { from: u32::MAX };
+    bad.push(p);
+    for p in bad {
+        match decode(&bytes, &p, 8) {
+            Err(Error::Format(FormatError {
+                what: Malformed::IndexOutOfRange { .. },
+                ..
+            })) => {}
+            other => panic!("{p:?}: {other:?}"),
+        }
+    }
+    for bits in [0, 25, 255] {
+        assert!(matches!(
+            decode(&bytes, &ok, bits),
+            Err(Error::Format(FormatError {
+                what: Malformed::BadHeader(_),
+                ..
+            }))
+        ));
+    }
+}
+
+#[test]
+fn garbage_never_panics() {
+    let mut rng = Rng(2);
+    for round in 0..500 {
+        let n = rng.below(300) as usize;
+        let mut p = random_predictions(&mut rng, n);
+        if round % 3 == 0 && n > 0 {
+            // Hostile predictions too: any index at all.
+            let k = rng.below(n as u64) as usize;
+            p.vertices[k] = Prediction::Delta {
+                from: rng.next() as u32,
+            };
+        }
+        let len = 4 * rng.below(100) as usize;
+        let bytes: Vec<u8> = match round % 4 {
+            0 => vec![0xFF; len],
+            _ => (0..len).map(|_| rng.next() as u8).collect(),
+        };
+        let bits = 1 + rng.below(24) as u8;
+        let mut out = Vec::new();
+        if let Ok(mut dec) = Decoder::new(&bytes) {
+            if decode_positions(&p, bits, &mut dec, &mut out).is_ok() {
+                let max = ((1u64 << bits) - 1) as u32;
+                assert_eq!(out.len(), n);
+                assert!(out.iter().flatten().all(|&c| c <= max));
+            }
+        }
+    }
+}
+
+/// A closed torus of `n × m` quads split into triangles, with positions
+/// on a slightly noisy torus.
+fn torus(n: u32, m: u32, rng: &mut Rng) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let mut pos = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (u, v) = (
+                i as f64 / n as f64 * std::f64::consts::TAU,
+                j as f64 / m as f64 * std::f64::consts::TAU,
+            );
+            let r = 1.0 + 0.35 * v.cos() + (rng.below(1000) as f64 - 500.0) * 1e-6;
+            pos.push([
+                (r * u.cos()) as f32,
+                (r * u.sin()) as f32,
+                (0.35 * v.sin()) as f32,
+            ]);
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * m + (j % m);
+    let mut tris = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    (pos, tris)
+}
+
+fn check_traversal(t: &Traversal, vertices: usize, excluded: &[bool]) {
+    let mut seen = vec![false; vertices];
+    for v in &t.order {
+        assert!(!seen[v.idx()], "vertex {v} twice");
+        assert!(!excluded.get(v.idx()).copied().unwrap_or(false));
+        seen[v.idx()] = true;
+    }
+    let expected = (0..vertices)
+        .filter(|&v| !excluded.get(v).copied().unwrap_or(false))
+        .count();
+    assert_eq!(t.order.len(), expected);
+    assert_eq!(t.predictions.len(), expected);
+    for (k, p) in t.predictions.vertices.iter().enumerate() {
+        p.check(k, &t.predictions.parallelograms).unwrap();
+    }
+}
+
+#[test]
+fn mesh_round_trip_and_traversal() {
+    let mut rng = Rng(3);
+    let (mut pos, mut tris) = torus(40, 24, &mut rng);
+    // A second component and an unreferenced vertex.
+    let base = pos.len() as u32;
+    let (p2, t2) = torus(6, 5, &mut rng);
+    pos.extend(p2.iter().map(|p| [p[0] + 5.0, p[1], p[2]]));
+    tris.extend(t2.iter().map(|t| t.map(|v| v + base)));
+    pos.push([9.0, 9.0, 9.0]);
+    let table = CornerTable::new(&tris, pos.len()).unwrap();
+    let quant = Quantizer::from_positions(&pos, 12).unwrap();
+    let q: Vec<[u32; 3]> = pos.iter().map(|&p| quant.quantize(p)).collect();
+
+    let t = traverse(&table).unwrap();
+    check_traversal(&t, pos.len(), &[]);
+    // Nearly every vertex of a regular mesh gets two parallelograms.
+    let multi = t
+        .predictions
+        .vertices
+        .iter()
+        .filter(|p| matches!(p, Prediction::Multi { .. }))
+        .count();
+    assert!(multi * 10 > pos.len() * 8, "{multi} of {}", pos.len());
+
+    let mut enc = Encoder::new();
+    encode_mesh_positions(&table, &[], &q, 12, &mut enc).unwrap();
+    let bytes = enc.finish();
+    let mut dec = Decoder::new(&bytes).unwrap();
+    let mut out = Vec::new();
+    decode_mesh_positions(&table, &[], 12, &mut dec, &mut out).unwrap();
+    dec.finish().unwrap();
+    assert_eq!(out, q);
+
+    // Excluding vertices (as hole-filling dummies would be).
+    let excluded: Vec<bool> = (0..pos.len()).map(|v| v % 7 == 3).collect();
+    let t = traverse_except(&table, &excluded).unwrap();
+    check_traversal(&t, pos.len(), &excluded);
+    let mut enc = Encoder::new();
+    encode_mesh_positions(&table, &excluded, &q, 12, &mut enc).unwrap();
+    let bytes = enc.finish();
+    let mut dec = Decoder::new(&bytes).unwrap();
+    decode_mesh_positions(&table, &excluded, 12, &mut dec, &mut out).unwrap();
+    for (v, p) in out.iter().enumerate() {
+        assert_eq!(*p, if excluded[v] { [0; 3] } else { q[v] });
+    }
+}
+
+#[test]
+fn traversal_survives_corrupt_tables() {
+    let mut rng = Rng(4);
+    for _ in 0..200 {
+        let faces = 1 + rng.below(40) as usize;
+        let vertices = 1 + rng.below(30) as usize;
+        let v: Vec<VertexId> = (0..3 * faces)
+            .map(|_| VertexId(rng.below(vertices as u64)))
+            .collect();
+        let o: Vec<CornerId> = (0..3 * faces)
+            .map(|_| match rng.below(4) {
+                0 => CornerId::NONE,
+                _ => CornerId(rng.below(3 * faces as u64)),
+            })
+            .collect();
+        let table = CornerTable::from_parts(v, o, vertices);
+        let t = traverse(&table).unwrap();
+        check_traversal(&t, vertices, &[]);
+    }
+}
+
+/// Breadth-first predictions over triangles from face 0 (then the first
+/// unvisited face of each further component): a vertex is emitted the
+/// first time a triangle containing it is reached, predicted by the
+/// parallelogram across the edge the traversal came through (or, with
+/// `multi`, by every parallelogram around it over emitted vertices);
+/// `None` / `Delta` in a component's first triangle. The brief's baseline.
+fn traverse_bfs(table: &CornerTable, vertices: usize, multi: bool) -> Traversal {
     let faces = table.face_count();
     let mut id = vec![u32::MAX; vertices];
     let mut visited = vec![false; faces];
-    let mut t = Traversal {
-        order: Vec::with_capacity(vertices),
-        predictions: Vec::with_capacity(vertices),
-        parallelograms: Vec::new(),
-    };
+    let mut t = Traversal::default();
     let mut queue = std::collections::VecDeque::new();
-    let vtx = |c: CornerId| table.vertex(c).0 as usize;
+    let vtx = |c: CornerId| table.vertex(c).idx();
+    let emit = |v: usize, p: Prediction, id: &mut [u32], t: &mut Traversal| {
+        id[v] = t.order.len() as u32;
+        t.order.push(VertexId(v as u32));
+        t.predictions.vertices.push(p);
+    };
     for seed in 0..faces {
         if visited[seed] {
             continue;
@@ -43,13 +326,8 @@ pub(crate) fn traverse(table: &CornerTable, vertices: usize, multi: bool) -> Tra
         for k in 0..3 {
             let v = vtx(CornerId(3 * seed as u32 + k));
             if id[v] == u32::MAX {
-                let p = match last {
-                    None => Prediction::None,
-                    Some(from) => Prediction::Delta { from },
-                };
-                id[v] = t.order.len() as u32;
-                t.order.push(v as u32);
-                t.predictions.push(p);
+                let p = last.map_or(Prediction::None, |from| Prediction::Delta { from });
+                emit(v, p, &mut id, &mut t);
             }
             last = Some(id[v]);
         }
@@ -67,7 +345,8 @@ pub(crate) fn traverse(table: &CornerTable, vertices: usize, multi: bool) -> Tra
             let v = vtx(c);
             if id[v] == u32::MAX {
                 let p = if multi {
-                    let first = t.parallelograms.len() as u32;
+                    let paras = &mut t.predictions.parallelograms;
+                    let first = paras.len() as u32;
                     for cv in table.ring(VertexId(v as u32)) {
                         let o = table.opposite(cv);
                         if o.is_none() {
@@ -75,10 +354,10 @@ pub(crate) fn traverse(table: &CornerTable, vertices: usize, multi: bool) -> Tra
                         }
                         let tri = [vtx(cv.next()), vtx(cv.prev()), vtx(o)];
                         if tri.iter().all(|&w| id[w] != u32::MAX) {
-                            t.parallelograms.push(tri.map(|w| id[w]));
+                            paras.push(tri.map(|w| id[w]));
                         }
                     }
-                    let count = t.parallelograms.len() as u32 - first;
+                    let count = paras.len() as u32 - first;
                     Prediction::Multi { first, count }
                 } else {
                     Prediction::Parallelogram {
@@ -87,33 +366,13 @@ pub(crate) fn traverse(table: &CornerTable, vertices: usize, multi: bool) -> Tra
                         opposite: id[vtx(table.opposite(c))],
                     }
                 };
-                id[v] = t.order.len() as u32;
-                t.order.push(v as u32);
-                t.predictions.push(p);
+                emit(v, p, &mut id, &mut t);
             }
             push(c.next(), &mut queue);
             push(c.prev(), &mut queue);
         }
     }
     t
-}
-
-fn round_trip(
-    q: &[[u32; 3]],
-    predictions: &[Prediction],
-    parallelograms: &[[u32; 3]],
-    bits: u8,
-    cfg: Config,
-) -> usize {
-    let mut enc = Encoder::new();
-    encode_positions_cfg(q, predictions, parallelograms, bits, &mut enc, cfg);
-    let bytes = enc.finish();
-    let mut dec = Decoder::new(&bytes).unwrap();
-    let mut out = Vec::new();
-    decode_positions_cfg(predictions, parallelograms, bits, &mut dec, &mut out, cfg).unwrap();
-    dec.finish().unwrap();
-    assert_eq!(out, q);
-    bytes.len()
 }
 
 fn corpus(name: &str) -> Option<crate::TriMesh> {
@@ -127,430 +386,39 @@ fn corpus(name: &str) -> Option<crate::TriMesh> {
     Some(crate::io::read_mesh(&path).unwrap())
 }
 
+/// Bits per vertex of each traversal on a corpus mesh, after checking
+/// the round trip.
+fn corpus_figures(name: &str, bits: u8) -> Option<[f64; 3]> {
+    let mesh = corpus(name)?;
+    let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
+    let (m, table) = (&cleaned.mesh, &cleaned.table);
+    let quant = Quantizer::from_positions(&m.positions, bits).unwrap();
+    let q: Vec<[u32; 3]> = m.positions.iter().map(|&p| quant.quantize(p)).collect();
+    let traversals = [
+        traverse_bfs(table, q.len(), false),
+        traverse_bfs(table, q.len(), true),
+        traverse(table).unwrap(),
+    ];
+    Some(traversals.map(|t| {
+        let ordered: Vec<[u32; 3]> = t.order.iter().map(|v| q[v.idx()]).collect();
+        let bytes = encode(&ordered, &t.predictions, bits);
+        assert_eq!(decode(&bytes, &t.predictions, bits).unwrap(), ordered);
+        bytes.len() as f64 * 8.0 / q.len() as f64
+    }))
+}
+
+/// Ratchet: the corpus figures may only go down. Prints them.
 #[test]
-#[ignore]
-fn measure() {
-    for (name, bits) in [("stanford-bunny.obj", 11u8), ("horse.ply", 12)] {
-        let Some(mesh) = corpus(name) else { return };
-        let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
-        let m = &cleaned.mesh;
-        let quant = Quantizer::from_positions(&m.positions, bits).unwrap();
-        for multi in [false, true] {
-            let t = traverse(&cleaned.table, m.positions.len(), multi);
-            let q: Vec<[u32; 3]> = t
-                .order
-                .iter()
-                .map(|&v| quant.quantize(m.positions[v as usize]))
-                .collect();
-            for ctx_mode in [2, 4, 5, 6, 7] {
-                for adaptive_top in [1, 2] {
-                    let cfg = Config {
-                        ctx_mode,
-                        adaptive_top,
-                        select: 0,
-                    };
-                    let bytes = round_trip(&q, &t.predictions, &t.parallelograms, bits, cfg);
-                    eprintln!(
-                        "{name} {bits} bits multi={multi} ctx={ctx_mode} top={adaptive_top}: {} B, {:.3} bits/vertex",
-                        bytes,
-                        bytes as f64 * 8.0 / q.len() as f64
-                    );
-                }
-            }
-        }
-    }
-}
-
-#[test]
-#[ignore]
-fn stats() {
-    for (name, bits) in [("stanford-bunny.obj", 11u8), ("horse.ply", 12)] {
-        let Some(mesh) = corpus(name) else { return };
-        let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
-        let m = &cleaned.mesh;
-        eprintln!(
-            "{name}: {} vertices {} faces, components {:?}",
-            m.positions.len(),
-            m.triangles.len(),
-            cleaned.table.stats(m).components
-        );
-        let quant = Quantizer::from_positions(&m.positions, bits).unwrap();
-        for multi in [false, true] {
-            let t = traverse(&cleaned.table, m.positions.len(), multi);
-            let q: Vec<[u32; 3]> = t
-                .order
-                .iter()
-                .map(|&v| quant.quantize(m.positions[v as usize]))
-                .collect();
-            let mut hist = std::collections::HashMap::<i64, u64>::new();
-            let mut counts = [0u64; 8];
-            let mut abs_sum = 0f64;
-            for (k, p) in t.predictions.iter().enumerate() {
-                if let Prediction::Multi { count, .. } = p {
-                    counts[(*count as usize).min(7)] += 1;
-                }
-                let pred = p.predict(&q[..k], &t.parallelograms, bits);
-                for a in 0..3 {
-                    let r = q[k][a] as i64 - pred[a] as i64;
-                    abs_sum += r.abs() as f64;
-                    *hist.entry(r).or_default() += 1;
-                }
-            }
-            let n: u64 = hist.values().sum();
-            let h: f64 = hist
-                .values()
-                .map(|&c| -(c as f64) * (c as f64 / n as f64).log2())
-                .sum::<f64>()
-                / q.len() as f64;
-            eprintln!("  multi={multi}: order-0 entropy of residuals {h:.3} bits/vertex, mean |r| {:.3}, counts {:?}", abs_sum / n as f64, counts);
-        }
-    }
-}
-
-fn entropy_of(res: &[[i64; 3]]) -> f64 {
-    let mut hist = std::collections::HashMap::<i64, u64>::new();
-    for r in res {
-        for a in 0..3 {
-            *hist.entry(r[a]).or_default() += 1;
-        }
-    }
-    let n: u64 = hist.values().sum();
-    hist.values()
-        .map(|&c| -(c as f64) * (c as f64 / n as f64).log2())
-        .sum::<f64>()
-        / res.len() as f64
-}
-
-#[test]
-#[ignore]
-fn correction() {
-    for (name, bits) in [("stanford-bunny.obj", 11u8), ("horse.ply", 12)] {
-        let Some(mesh) = corpus(name) else { return };
-        let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
-        let m = &cleaned.mesh;
-        let quant = Quantizer::from_positions(&m.positions, bits).unwrap();
-        let t = traverse(&cleaned.table, m.positions.len(), true);
-        let q: Vec<[u32; 3]> = t
-            .order
-            .iter()
-            .map(|&v| quant.quantize(m.positions[v as usize]))
-            .collect();
-        for lambda in [0.0, 0.25, 0.5, 0.75, 1.0] {
-            for use_o in [false, true] {
-                let mut res: Vec<[i64; 3]> = Vec::new();
-                let mut out = Vec::new();
-                for (k, p) in t.predictions.iter().enumerate() {
-                    let pred = p.predict(&q[..k], &t.parallelograms, bits);
-                    let mut corr = [0f64; 3];
-                    if let Prediction::Multi { first, count } = *p {
-                        let mut n = 0.0;
-                        for tri in &t.parallelograms[first as usize..(first + count) as usize] {
-                            for (i, &w) in tri.iter().enumerate() {
-                                if i == 2 && !use_o {
-                                    continue;
-                                }
-                                let sign = if i == 2 { -1.0 } else { 1.0 };
-                                let _ = sign;
-                                for a in 0..3 {
-                                    corr[a] += res[w as usize][a] as f64;
-                                }
-                                n += 1.0;
-                            }
-                        }
-                        for a in 0..3 {
-                            corr[a] = (corr[a] / n * lambda).round();
-                        }
-                    }
-                    let r: [i64; 3] = core::array::from_fn(|a| q[k][a] as i64 - pred[a] as i64);
-                    res.push(r);
-                    out.push(core::array::from_fn(|a| r[a] - corr[a] as i64));
-                }
-                eprintln!(
-                    "{name} lambda={lambda} use_o={use_o}: entropy {:.3}",
-                    entropy_of(&out)
-                );
-            }
-        }
-    }
-}
-
-/// Max-prediction-degree order (experiment).
-pub(crate) fn traverse_degree(table: &CornerTable, vertices: usize, lifo: bool) -> Traversal {
-    const MAXD: usize = 8;
-    let faces = table.face_count();
-    let mut id = vec![u32::MAX; vertices];
-    let mut degree = vec![u8::MAX; vertices]; // MAX: not queued
-    let mut buckets: Vec<std::collections::VecDeque<u32>> = vec![Default::default(); MAXD + 1];
-    let mut t = Traversal {
-        order: Vec::new(),
-        predictions: Vec::new(),
-        parallelograms: Vec::new(),
-    };
-    let vtx = |c: CornerId| table.vertex(c).0 as usize;
-    let paras = |v: usize, id: &[u32]| -> Vec<[u32; 3]> {
-        let mut out = Vec::new();
-        for cv in table.ring(VertexId(v as u32)) {
-            let o = table.opposite(cv);
-            if o.is_none() {
-                continue;
-            }
-            let tri = [vtx(cv.next()), vtx(cv.prev()), vtx(o)];
-            if tri.iter().all(|&w| id[w] != u32::MAX) {
-                out.push(tri.map(|w| id[w]));
-            }
-        }
-        out
-    };
-    let mut face_done = vec![false; faces];
-    let _ = &mut face_done;
-    let mut emit = |v: usize, p: Prediction, id: &mut [u32], t: &mut Traversal| {
-        id[v] = t.order.len() as u32;
-        t.order.push(v as u32);
-        t.predictions.push(p);
-    };
-    for seed in 0..faces {
-        let c0 = CornerId(3 * seed as u32);
-        if id[vtx(c0)] != u32::MAX {
-            continue;
-        }
-        // seed triangle
-        let mut last = None;
-        for k in 0..3 {
-            let v = vtx(CornerId(c0.0 + k));
-            if id[v] == u32::MAX {
-                let p = match last {
-                    None => Prediction::None,
-                    Some(from) => Prediction::Delta { from },
-                };
-                emit(v, p, &mut id, &mut t);
-            }
-            last = Some(id[v]);
-        }
-        let mut touched: Vec<usize> = Vec::new();
-        let mut refresh = |w: usize,
-                           id: &[u32],
-                           degree: &mut [u8],
-                           buckets: &mut Vec<std::collections::VecDeque<u32>>,
-                           touched: &mut Vec<usize>| {
-            // neighbours and flap vertices of w
-            touched.clear();
-            for cw in table.ring(VertexId(w as u32)) {
-                touched.push(vtx(cw.next()));
-                touched.push(vtx(cw.prev()));
-                let o = table.opposite(cw);
-                if o.is_some() {
-                    touched.push(vtx(o));
-                }
-            }
-            for &v in touched.iter() {
-                if id[v] != u32::MAX {
-                    continue;
-                }
-                // only vertices adjacent to a decoded vertex are candidates
-                let d = paras(v, id).len().min(MAXD) as u8;
-                let adjacent = table
-                    .ring(VertexId(v as u32))
-                    .any(|c| id[vtx(c.next())] != u32::MAX || id[vtx(c.prev())] != u32::MAX);
-                if !adjacent {
-                    continue;
-                }
-                if degree[v] != d {
-                    degree[v] = d;
-                    if lifo {
-                        buckets[d as usize].push_front(v as u32)
-                    } else {
-                        buckets[d as usize].push_back(v as u32)
-                    }
-                }
-            }
+fn corpus_bits_per_vertex() {
+    for (name, bits, ceiling) in [("stanford-bunny.obj", 11u8, 7.85), ("horse.ply", 12, 8.8)] {
+        let Some([bfs, bfs_multi, degree]) = corpus_figures(name, bits) else {
+            return;
         };
-        for k in 0..3 {
-            let v = vtx(CornerId(c0.0 + k));
-            refresh(v, &id, &mut degree, &mut buckets, &mut touched);
-        }
-        loop {
-            let mut found = None;
-            for d in (0..=MAXD).rev() {
-                while let Some(v) = buckets[d].pop_front() {
-                    let v = v as usize;
-                    if id[v] == u32::MAX && degree[v] as usize == d {
-                        found = Some(v);
-                        break;
-                    }
-                }
-                if found.is_some() {
-                    break;
-                }
-            }
-            let Some(v) = found else { break };
-            let list = paras(v, &id);
-            let p = if list.is_empty() {
-                let from = table
-                    .ring(VertexId(v as u32))
-                    .map(|c| vtx(c.next()))
-                    .chain(table.ring(VertexId(v as u32)).map(|c| vtx(c.prev())))
-                    .find(|&w| id[w] != u32::MAX)
-                    .unwrap();
-                Prediction::Delta { from: id[from] }
-            } else {
-                let first = t.parallelograms.len() as u32;
-                t.parallelograms.extend_from_slice(&list);
-                Prediction::Multi {
-                    first,
-                    count: list.len() as u32,
-                }
-            };
-            emit(v, p, &mut id, &mut t);
-            refresh(v, &id, &mut degree, &mut buckets, &mut touched);
-        }
-    }
-    assert_eq!(t.order.len(), vertices);
-    t
-}
-
-#[test]
-#[ignore]
-fn degree_order() {
-    for (name, bits) in [("stanford-bunny.obj", 11u8), ("horse.ply", 12)] {
-        let Some(mesh) = corpus(name) else { return };
-        let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
-        let m = &cleaned.mesh;
-        let quant = Quantizer::from_positions(&m.positions, bits).unwrap();
-        for lifo in [false, true] {
-            let t = traverse_degree(&cleaned.table, m.positions.len(), lifo);
-            let q: Vec<[u32; 3]> = t
-                .order
-                .iter()
-                .map(|&v| quant.quantize(m.positions[v as usize]))
-                .collect();
-            let mut counts = [0u64; 9];
-            let mut res = Vec::new();
-            for (k, p) in t.predictions.iter().enumerate() {
-                if let Prediction::Multi { count, .. } = p {
-                    counts[(*count as usize).min(8)] += 1;
-                }
-                let pred = p.predict(&q[..k], &t.parallelograms, bits);
-                res.push(core::array::from_fn::<i64, 3, _>(|a| {
-                    q[k][a] as i64 - pred[a] as i64
-                }));
-            }
-            for select in 0..3 {
-                for ctx_mode in [2, 6] {
-                    let cfg = Config {
-                        ctx_mode,
-                        adaptive_top: 2,
-                        select,
-                    };
-                    let bytes = round_trip(&q, &t.predictions, &t.parallelograms, bits, cfg);
-                    eprintln!("{name} lifo={lifo} select={select} ctx={ctx_mode}: entropy {:.3}, coded {:.3} bits/vertex, counts {counts:?}", entropy_of(&res), bytes as f64 * 8.0 / q.len() as f64);
-                }
-            }
-        }
-    }
-}
-
-#[test]
-#[ignore]
-fn normal_bias() {
-    for (name, bits) in [("stanford-bunny.obj", 11u8), ("horse.ply", 12)] {
-        let Some(mesh) = corpus(name) else { return };
-        let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
-        let m = &cleaned.mesh;
-        let quant = Quantizer::from_positions(&m.positions, bits).unwrap();
-        let t = traverse_degree(&cleaned.table, m.positions.len(), false);
-        let q: Vec<[u32; 3]> = t
-            .order
-            .iter()
-            .map(|&v| quant.quantize(m.positions[v as usize]))
-            .collect();
-        let f = |v: u32| {
-            glam::DVec3::new(
-                q[v as usize][0] as f64,
-                q[v as usize][1] as f64,
-                q[v as usize][2] as f64,
-            )
-        };
-        let (mut sn, mut sn2, mut st2, mut n, mut se2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        let mut ratio = 0.0;
-        for (k, p) in t.predictions.iter().enumerate() {
-            let Prediction::Multi { first, count } = *p else {
-                continue;
-            };
-            let mut pred = glam::DVec3::ZERO;
-            let mut nrm = glam::DVec3::ZERO;
-            let mut len2 = 0.0;
-            for tri in &t.parallelograms[first as usize..(first + count) as usize] {
-                pred += f(tri[0]) + f(tri[1]) - f(tri[2]);
-                nrm += (f(tri[1]) - f(tri[2])).cross(f(tri[0]) - f(tri[2]));
-                len2 += (f(tri[0]) - f(tri[1])).length_squared();
-            }
-            pred /= count as f64;
-            len2 /= count as f64;
-            let r = f(k as u32) - pred;
-            let nh = nrm.normalize_or_zero();
-            let rn = r.dot(nh);
-            sn += rn;
-            sn2 += rn * rn;
-            st2 += (r - rn * nh).length_squared();
-            se2 += len2;
-            n += 1.0;
-            ratio += rn / len2.max(1.0);
-        }
-        eprintln!("{name}: mean r·n {:.3}, rms r·n {:.3}, rms tangential {:.3}, rms edge {:.2}, mean r·n/edge² {:.5}", sn / n, (sn2 / n).sqrt(), (st2 / n).sqrt(), (se2/n).sqrt(), ratio / n);
-    }
-}
-
-#[test]
-#[ignore]
-fn subset_oracle() {
-    for (name, bits) in [("stanford-bunny.obj", 11u8), ("horse.ply", 12)] {
-        let Some(mesh) = corpus(name) else { return };
-        let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
-        let m = &cleaned.mesh;
-        let quant = Quantizer::from_positions(&m.positions, bits).unwrap();
-        let t = traverse_degree(&cleaned.table, m.positions.len(), false);
-        let q: Vec<[u32; 3]> = t
-            .order
-            .iter()
-            .map(|&v| quant.quantize(m.positions[v as usize]))
-            .collect();
-        let mut all = Vec::new();
-        let mut best = Vec::new();
-        let mut choices = std::collections::HashMap::<(u32, u32), u64>::new();
-        for (k, p) in t.predictions.iter().enumerate() {
-            let pred = p.predict(&q[..k], &t.parallelograms, bits);
-            let r: [i64; 3] = core::array::from_fn(|a| q[k][a] as i64 - pred[a] as i64);
-            all.push(r);
-            let Prediction::Multi { first, count } = *p else {
-                best.push(r);
-                continue;
-            };
-            let list = &t.parallelograms[first as usize..(first + count) as usize];
-            let mut b = (i64::MAX, r, 0u32);
-            for mask in 1u32..(1 << count.min(6)) {
-                let sub: Vec<[u32; 3]> = (0..count)
-                    .filter(|i| mask >> i & 1 == 1)
-                    .map(|i| list[i as usize])
-                    .collect();
-                let pr = predict_multi(&q[..k], &sub, bits);
-                let rr: [i64; 3] = core::array::from_fn(|a| q[k][a] as i64 - pr[a] as i64);
-                let l1 = rr.iter().map(|x| x.abs()).sum::<i64>();
-                if l1 < b.0 {
-                    b = (l1, rr, mask);
-                }
-            }
-            *choices.entry((count, b.2)).or_default() += 1;
-            best.push(b.1);
-        }
         eprintln!(
-            "{name}: all {:.3} oracle-subset {:.3}; choices {:?}",
-            entropy_of(&all),
-            entropy_of(&best),
-            {
-                let mut c: Vec<_> = choices.into_iter().collect();
-                c.sort();
-                c
-            }
+            "{name} at {bits} bits: breadth-first parallelogram {bfs:.3}, \
+             breadth-first multi {bfs_multi:.3}, max-degree multi {degree:.3} bits/vertex"
         );
+        assert!(degree <= ceiling, "{name}: {degree:.3} > {ceiling}");
+        assert!(degree < bfs_multi && bfs_multi < bfs);
     }
 }

@@ -128,21 +128,36 @@ pub fn read_mesh_bytes(
 pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), Error> {
     let format = MeshFormat::from_path(path)?;
     mesh.validate()?;
+    write_atomic(path, |file| write_mesh_to(file, format, mesh))
+}
+
+/// Writes `bytes` (e.g. a `.swm` file) to `path` the way [`write_mesh`]
+/// does: complete or not at all.
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    write_atomic(path, |file| Ok(file.write_all(bytes)?))
+}
+
+/// Runs `fill` on a temporary file next to `path` and renames it over
+/// `path` only if `fill` succeeded and the data reached the disk.
+fn write_atomic(
+    path: &Path,
+    fill: impl FnOnce(&mut File) -> Result<(), Error>,
+) -> Result<(), Error> {
     let temp = temp_path(path);
-    let result = write_file(&temp, format, mesh).and_then(|()| Ok(fs::rename(&temp, path)?));
+    let result = File::create(&temp)
+        .map_err(Error::from)
+        .and_then(|mut file| {
+            fill(&mut file)?;
+            // On disk before the rename, so that a crash cannot leave
+            // `path` naming a file whose blocks were never written.
+            file.sync_all()?;
+            Ok(())
+        })
+        .and_then(|()| Ok(fs::rename(&temp, path)?));
     if result.is_err() {
         let _ = fs::remove_file(&temp);
     }
     result
-}
-
-fn write_file(temp: &Path, format: MeshFormat, mesh: &TriMesh) -> Result<(), Error> {
-    let mut file = File::create(temp)?;
-    write_mesh_to(&mut file, format, mesh)?;
-    // On disk before the rename, so that a crash cannot leave `path`
-    // naming a file whose blocks were never written.
-    file.sync_all()?;
-    Ok(())
 }
 
 /// `.{name}.tmp-{pid}` in the directory of `path`.

@@ -208,6 +208,7 @@ impl CornerTable {
     }
 
     /// Assembles a table whose parts were computed by this module's functions.
+    #[cfg(feature = "encoder")]
     pub(crate) fn from_raw(
         v: Vec<VertexId>,
         o: Vec<CornerId>,

@@ -1,0 +1,464 @@
+//! The lossless-connectivity mode: the input's own triangles, coded by
+//! Edgebreaker, and its positions quantized to `qp` bits on the bounding
+//! box and predicted by (multi-)parallelograms in decoding order.
+//!
+//! Sections (format-spec/04-lossless.md):
+//! * `HEAD`: `u8 qp`, `f32 origin[3]`, `f32 range`;
+//! * `TOPO`: varus: symbol count, dummy count and dummy vertices
+//!   (delta-coded), event count and events;
+//! * `CLRS`: the CLERS symbols, range coded with the previous symbol as
+//!   context;
+//! * `GEOM`: the position residuals (see `geometry::lossless`).
+//!
+//! Encoder and decoder steps that mirror each other sit side by side
+//! below; each pair must match exactly.
+
+mod predictions;
+
+#[cfg(test)]
+use crate::container::parse_container;
+use crate::container::{check_count_fits, Container, Tag};
+#[cfg(feature = "encoder")]
+use crate::container::{write_container, Header, Mode};
+use crate::edgebreaker::{self, Connectivity, Side, SplitEvent, Symbol};
+#[cfg(feature = "encoder")]
+use crate::entropy::Encoder;
+use crate::entropy::{ContextModel, Decoder};
+use crate::geometry::{lossless as geo, Quantizer};
+#[cfg(feature = "encoder")]
+use crate::varint;
+use crate::varint::Reader;
+#[cfg(feature = "encoder")]
+use crate::CornerTable;
+use crate::{Error, FormatError, Limits, Malformed, TriMesh};
+use predictions::predictions;
+
+/// Section sizes and counts of one lossless file.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LosslessStats {
+    /// Decoded vertices.
+    pub vertices: u64,
+    /// Decoded triangles.
+    pub triangles: u64,
+    /// Connected components.
+    pub components: u64,
+    /// Boundary loops (closed by dummy vertices for coding).
+    pub holes: u64,
+    /// Handle events (two per handle).
+    pub handle_events: u64,
+    /// CLERS histogram, in the order C, L, E, R, S.
+    pub clers: [u64; 5],
+    /// Bytes of each section, in file order.
+    pub sections: Vec<([u8; 4], usize)>,
+    /// Bytes of the whole file.
+    pub file_bytes: usize,
+}
+
+fn bad(why: &'static str) -> Error {
+    Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
+}
+
+#[cfg(feature = "encoder")]
+/// Encodes an oriented manifold mesh (a `clean` result) losslessly.
+/// Also returns, for each decoded vertex, the input vertex it came from.
+pub(crate) fn encode(
+    table: &CornerTable,
+    mesh: &TriMesh,
+    qp: u8,
+) -> Result<(Vec<u8>, LosslessStats, Vec<u32>), Error> {
+    let filled = edgebreaker::fill_holes(table);
+    let closed = CornerTable::new(&filled.triangles, filled.vertex_count)?;
+    let eb = edgebreaker::encode(&closed)?;
+    let conn = &eb.connectivity;
+    // The decoder's table, built the decoder's way, so predictions match.
+    let decoded = edgebreaker::decode(conn)?;
+    let real = mesh.vertex_count() as u32;
+    let mut rank = vec![u32::MAX; conn.vertices as usize];
+    let mut dummies = Vec::new();
+    let mut positions = Vec::with_capacity(real as usize);
+    let mut source = Vec::with_capacity(real as usize);
+    for (k, v) in eb.vertex_order.iter().enumerate() {
+        if v.0 < real {
+            rank[k] = positions.len() as u32;
+            positions.push(mesh.positions[v.idx()]);
+            source.push(v.0);
+        } else {
+            dummies.push(k as u32);
+        }
+    }
+    let quantizer = Quantizer::from_positions(&positions, qp)?;
+    let quantized: Vec<[u32; 3]> = positions.iter().map(|&p| quantizer.quantize(p)).collect();
+    let pred = predictions(&decoded, &rank);
+
+    let head = write_head(&quantizer);
+    let topo = write_topo(conn, &dummies);
+    let clrs = write_clers(&conn.symbols);
+    let mut enc = Encoder::new();
+    geo::encode_positions_cfg(
+        &quantized,
+        &pred.list,
+        &pred.parallelograms,
+        qp,
+        &mut enc,
+        Default::default(),
+    );
+    let geom = enc.finish();
+
+    let triangles = mesh.face_count() as u32;
+    let header = Header::new(Mode::Lossless, real, triangles, conn.components);
+    let sections: [(Tag, &[u8]); 4] = [
+        (Tag::HEAD, &head),
+        (Tag::TOPO, &topo),
+        (Tag::CLRS, &clrs),
+        (Tag::GEOM, &geom),
+    ];
+    let bytes = write_container(&header, &sections)?;
+    let mut clers = [0u64; 5];
+    for &s in &conn.symbols {
+        clers[s as usize] += 1;
+    }
+    let stats = LosslessStats {
+        vertices: real as u64,
+        triangles: triangles as u64,
+        components: conn.components as u64,
+        holes: dummies.len() as u64,
+        handle_events: conn.splits.len() as u64,
+        clers,
+        sections: sections.iter().map(|(t, b)| (t.0, b.len())).collect(),
+        file_bytes: bytes.len(),
+    };
+    Ok((bytes, stats, source))
+}
+
+/// Decodes a lossless-mode file whose container was parsed.
+pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
+    let (quantizer, conn, dummies) = read_connectivity(file, limits)?;
+    let table = edgebreaker::decode(&conn)?;
+    let real = file.header.vertex_count;
+    if conn.vertices as u64 != real as u64 + dummies.len() as u64 {
+        return Err(bad("vertex counts of header and topology disagree"));
+    }
+    let mut rank = vec![0u32; conn.vertices as usize];
+    for &d in &dummies {
+        rank[d as usize] = u32::MAX;
+    }
+    let mut next = 0;
+    for r in rank.iter_mut().filter(|r| **r == 0) {
+        *r = next;
+        next += 1;
+    }
+    let pred = predictions(&table, &rank);
+    let geom = file.require(Tag::GEOM)?.bytes;
+    let mut dec = Decoder::new(geom)?;
+    let mut quantized = Vec::with_capacity(real as usize);
+    geo::decode_positions_cfg(
+        &pred.list,
+        &pred.parallelograms,
+        quantizer.bits,
+        &mut dec,
+        &mut quantized,
+        Default::default(),
+    )?;
+    let positions: Vec<[f32; 3]> = quantized.iter().map(|&q| quantizer.dequantize(q)).collect();
+    let mut triangles = Vec::with_capacity(file.header.triangle_count as usize);
+    for t in table.vertices().chunks_exact(3) {
+        let r = [rank[t[0].idx()], rank[t[1].idx()], rank[t[2].idx()]];
+        if !r.contains(&u32::MAX) {
+            triangles.push(r);
+        }
+    }
+    if triangles.len() != file.header.triangle_count as usize {
+        return Err(bad("triangle count differs from the header"));
+    }
+    Ok(TriMesh {
+        positions,
+        triangles,
+    })
+}
+
+/// Reads HEAD, TOPO and CLRS; also used by `inspect`.
+pub(crate) fn read_connectivity(
+    file: &Container<'_>,
+    limits: &Limits,
+) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
+    let quantizer = read_head(file.require(Tag::HEAD)?.bytes)?;
+    let h = &file.header;
+    let clrs = file.require(Tag::CLRS)?.bytes;
+    let mut r = Reader::new(file.require(Tag::TOPO)?.bytes);
+    // Counts first, checked before anything sized by them is allocated.
+    let symbols = r.varu()?;
+    limits.check_faces(symbols)?;
+    // Each symbol costs at least -log2(1 - 4/2^16) > 4/2^16 bits: every
+    // symbol keeps a frequency of at least 1 in the 2^16 of a model.
+    check_count_fits(
+        "CLERS symbol",
+        symbols,
+        clrs.len(),
+        4,
+        1 << crate::entropy::PRECISION,
+    )?;
+    limits.check_alloc(symbols.saturating_mul(40))?;
+    let dummy_count = r.varu()?;
+    if dummy_count > symbols || dummy_count as usize > r.remaining() {
+        return Err(bad("more dummy vertices than the file can hold"));
+    }
+    let mut dummies = Vec::with_capacity(dummy_count as usize);
+    let mut prev = 0u64;
+    for i in 0..dummy_count {
+        let d = prev + r.varu()? + u64::from(i > 0);
+        dummies.push(u32::try_from(d).map_err(|_| bad("dummy vertex out of range"))?);
+        prev = d;
+    }
+    let split_count = r.varu()?;
+    if split_count > symbols || split_count as usize > r.remaining() / 3 {
+        return Err(bad("more handle events than the file can hold"));
+    }
+    let mut splits = Vec::with_capacity(split_count as usize);
+    let mut prev = 0u64;
+    for i in 0..split_count {
+        let split = prev + r.varu()? + u64::from(i > 0);
+        let source = split + 1 + r.varu()?;
+        let side = match r.u8()? {
+            0 => Side::Right,
+            1 => Side::Left,
+            _ => return Err(bad("handle event side is neither 0 nor 1")),
+        };
+        let (split, source) = (u32::try_from(split), u32::try_from(source));
+        let (Ok(split), Ok(source)) = (split, source) else {
+            return Err(bad("handle event out of range"));
+        };
+        splits.push(SplitEvent {
+            split,
+            source,
+            side,
+        });
+        prev = split as u64;
+    }
+    r.end()?;
+    let total_vertices = h.vertex_count as u64 + dummy_count;
+    if total_vertices > u32::MAX as u64 || dummies.iter().any(|&d| d as u64 >= total_vertices) {
+        return Err(bad("dummy vertex out of range"));
+    }
+    let symbols = read_clers(clrs, symbols as usize)?;
+    let conn = Connectivity {
+        symbols,
+        splits,
+        components: h.component_count,
+        vertices: total_vertices as u32,
+    };
+    Ok((quantizer, conn, dummies))
+}
+
+// --- HEAD: written and read side by side; must match exactly. ---
+
+#[cfg(feature = "encoder")]
+fn write_head(q: &Quantizer) -> Vec<u8> {
+    let mut out = vec![q.bits];
+    for x in q.origin.iter().chain([&q.range]) {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+    out
+}
+
+fn read_head(bytes: &[u8]) -> Result<Quantizer, Error> {
+    let mut r = Reader::new(bytes);
+    let bits = r.u8()?;
+    let origin = [r.f32()?, r.f32()?, r.f32()?];
+    let range = r.f32()?;
+    r.end()?;
+    if !(crate::geometry::MIN_BITS..=crate::geometry::MAX_BITS).contains(&bits) {
+        return Err(Error::Format(FormatError::new(
+            "SWM",
+            Malformed::BadHeader("quantization bits out of range"),
+        )));
+    }
+    if !origin.iter().all(|x| x.is_finite()) || !range.is_finite() || range < 0.0 {
+        return Err(Error::Format(FormatError::new(
+            "SWM",
+            Malformed::BadHeader("quantization grid is not finite"),
+        )));
+    }
+    Ok(Quantizer {
+        origin,
+        range,
+        bits,
+    })
+}
+
+// --- TOPO writer (reader above, in read_connectivity). ---
+
+#[cfg(feature = "encoder")]
+fn write_topo(conn: &Connectivity, dummies: &[u32]) -> Vec<u8> {
+    let mut out = Vec::new();
+    varint::put(&mut out, conn.symbols.len() as u64);
+    varint::put(&mut out, dummies.len() as u64);
+    for (i, &d) in dummies.iter().enumerate() {
+        let gap = if i == 0 {
+            d as u64
+        } else {
+            (d - dummies[i - 1] - 1) as u64
+        };
+        varint::put(&mut out, gap);
+    }
+    varint::put(&mut out, conn.splits.len() as u64);
+    for (i, e) in conn.splits.iter().enumerate() {
+        let gap = if i == 0 {
+            e.split as u64
+        } else {
+            (e.split - conn.splits[i - 1].split - 1) as u64
+        };
+        varint::put(&mut out, gap);
+        varint::put(&mut out, (e.source - e.split - 1) as u64);
+        out.push(match e.side {
+            Side::Right => 0,
+            Side::Left => 1,
+        });
+    }
+    out
+}
+
+// --- CLRS: the previous symbol is the context; must match exactly. ---
+
+#[cfg(feature = "encoder")]
+fn write_clers(symbols: &[Symbol]) -> Vec<u8> {
+    let mut enc = Encoder::new();
+    let mut model = ContextModel::new(5, 5);
+    let mut prev = Symbol::C;
+    for &s in symbols {
+        enc.encode(model.get(prev as usize), s as u32);
+        prev = s;
+    }
+    enc.finish()
+}
+
+fn read_clers(bytes: &[u8], count: usize) -> Result<Vec<Symbol>, Error> {
+    let mut dec = Decoder::new(bytes)?;
+    let mut model = ContextModel::new(5, 5);
+    let mut prev = Symbol::C;
+    let mut out = Vec::with_capacity(count);
+    for _ in 0..count {
+        let code = dec.decode(model.get(prev as usize))?;
+        prev = Symbol::from_code(code).ok_or(bad("CLERS code out of range"))?;
+        out.push(prev);
+    }
+    Ok(out)
+}
+
+/// Parses and decodes a whole lossless file (for tests).
+#[cfg(test)]
+pub(crate) fn decode_bytes(bytes: &[u8]) -> Result<TriMesh, Error> {
+    let limits = Limits::default();
+    decode(&parse_container(bytes, &limits)?, &limits)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::CleanOptions;
+
+    fn corpus(name: &str) -> Option<TriMesh> {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../shared/corpus")
+            .join(name);
+        if !path.is_file() {
+            println!("skipped: ../shared/corpus not found");
+            return None;
+        }
+        Some(crate::io::read_mesh(&path).unwrap())
+    }
+
+    /// Triangles as rotations starting at their smallest vertex, sorted:
+    /// equal lists mean the same triangles with the same orientations.
+    fn canonical(tris: impl Iterator<Item = [u32; 3]>) -> Vec<[u32; 3]> {
+        let mut v: Vec<[u32; 3]> = tris
+            .map(|t| {
+                let k = (0..3).min_by_key(|&k| t[k]).unwrap();
+                [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+            })
+            .collect();
+        v.sort_unstable();
+        v
+    }
+
+    /// decode(encode(M)) has exactly M's triangles (through the decoder's
+    /// vertex order), positions within half a step, and the connectivity
+    /// of the decoded mesh recompresses to the same symbols.
+    pub(crate) fn check_roundtrip(name: &str, mesh: &TriMesh, qp: u8) -> usize {
+        let c = crate::clean(mesh, &CleanOptions::default()).unwrap();
+        let (bytes, stats, source) = encode(&c.table, &c.mesh, qp).unwrap();
+        let again = encode(&c.table, &c.mesh, qp).unwrap().0;
+        assert_eq!(bytes, again, "{name}: encoding is not deterministic");
+        let out = decode_bytes(&bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mapped = out.triangles.iter().map(|t| t.map(|v| source[v as usize]));
+        assert_eq!(
+            canonical(mapped),
+            canonical(c.mesh.triangles.iter().copied()),
+            "{name}: triangles differ"
+        );
+        let q = Quantizer::from_positions(&c.mesh.positions, qp).unwrap();
+        let tol = q.step() / 2.0 * (1.0 + 1e-6) + f32::EPSILON as f64 * q.range as f64;
+        for (k, p) in out.positions.iter().enumerate() {
+            let o = c.mesh.positions[source[k] as usize];
+            for a in 0..3 {
+                let d = (p[a] as f64 - o[a] as f64).abs();
+                assert!(d <= tol, "{name}: vertex {k} axis {a} off by {d} > {tol}");
+            }
+        }
+        let table = CornerTable::new(&out.triangles, out.vertex_count()).unwrap();
+        let filled = edgebreaker::fill_holes(&table);
+        let closed = CornerTable::new(&filled.triangles, filled.vertex_count).unwrap();
+        let recoded = edgebreaker::encode(&closed).unwrap().connectivity;
+        let file = parse_container(&bytes, &Limits::default()).unwrap();
+        let (_, coded, _) = read_connectivity(&file, &Limits::default()).unwrap();
+        assert_eq!(
+            recoded.symbols, coded.symbols,
+            "{name}: recompression gives other symbols"
+        );
+        assert_eq!(stats.file_bytes, bytes.len());
+        bytes.len()
+    }
+
+    #[test]
+    fn small_meshes_roundtrip() {
+        use crate::edgebreaker::tests_support::*;
+        check_roundtrip("tetra", &tetra(), 12);
+        check_roundtrip("icosphere", &icosphere(), 8);
+        check_roundtrip("torus", &torus(12, 7), 16);
+        check_roundtrip("grid", &grid(9, 6), 24);
+        check_roundtrip("grid-qp6", &grid(9, 6), 6);
+    }
+
+    #[test]
+    fn corpus_roundtrips() {
+        for name in [
+            "fandisk.obj",
+            "stanford-bunny.obj",
+            "cheburashka.obj",
+            "teapot.obj",
+            "beetle.obj",
+            "suzanne.obj",
+        ] {
+            let Some(mesh) = corpus(name) else { return };
+            let bytes = check_roundtrip(name, &mesh, 12);
+            println!("{name}: {bytes} bytes at qp 12");
+        }
+    }
+
+    #[test]
+    fn corrupt_files_are_errors() {
+        use crate::edgebreaker::tests_support::*;
+        let c = crate::clean(&torus(8, 5), &CleanOptions::default()).unwrap();
+        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        for cut in 0..bytes.len() {
+            assert!(decode_bytes(&bytes[..cut]).is_err());
+        }
+        for bit in 0..bytes.len() * 8 {
+            let mut b = bytes.clone();
+            b[bit / 8] ^= 1 << (bit % 8);
+            assert!(
+                decode_bytes(&b).is_err(),
+                "bit {bit} flipped and still decoded"
+            );
+        }
+    }
+}
