@@ -461,4 +461,64 @@ mod tests {
             );
         }
     }
+
+    /// Rewrites the trailing CRC so that a mutation reaches the decoder
+    /// proper instead of stopping at the checksum.
+    fn fix_crc(b: &mut [u8]) {
+        let n = b.len() - 4;
+        let crc = crate::container::crc32(&b[..n]);
+        b[n..].copy_from_slice(&crc.to_le_bytes());
+    }
+
+    #[test]
+    fn random_overwrites_with_valid_crc_never_panic() {
+        use crate::edgebreaker::tests_support::*;
+        let c = crate::clean(&torus(10, 6), &CleanOptions::default()).unwrap();
+        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rand = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..4000 {
+            let mut b = bytes.clone();
+            for _ in 0..1 + rand() % 4 {
+                let at = (rand() % (b.len() as u64 - 4)) as usize;
+                b[at] = rand() as u8;
+            }
+            fix_crc(&mut b);
+            if let Ok(mesh) = decode_bytes(&b) {
+                mesh.validate().unwrap();
+            }
+        }
+    }
+
+    #[test]
+    fn absurd_counts_are_refused_before_allocating() {
+        use crate::edgebreaker::tests_support::*;
+        let c = crate::clean(&torus(10, 6), &CleanOptions::default()).unwrap();
+        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        // Header counts at offsets 9 (vertices), 13 (triangles), 17 (components).
+        for (at, value) in [
+            (9, u32::MAX),
+            (13, u32::MAX),
+            (13, 1 << 28),
+            (17, 1 << 27),
+            (9, 3),
+        ] {
+            let mut b = bytes.clone();
+            b[at..at + 4].copy_from_slice(&value.to_le_bytes());
+            fix_crc(&mut b);
+            assert!(decode_bytes(&b).is_err(), "count {value} at {at} accepted");
+        }
+        // A TOPO section claiming 2^40 symbols: its first varu.
+        let file = parse_container(&bytes, &Limits::default()).unwrap();
+        let topo = file.find(Tag::TOPO).unwrap().offset;
+        let mut b = bytes.clone();
+        b[topo..topo + 6].copy_from_slice(&[0x80, 0x80, 0x80, 0x80, 0x80, 0x20]);
+        fix_crc(&mut b);
+        assert!(decode_bytes(&b).is_err());
+    }
 }

@@ -1,0 +1,153 @@
+//! `swm encode` / `swm decode` / `swm info` on .swm files: round trips,
+//! determinism, and clean errors on malformed files.
+
+mod common;
+use common::*;
+use std::path::Path;
+
+fn encode(input: &Path, output: &Path, qp: &str) {
+    let out = swm(&[
+        "encode",
+        input.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+        "--mode",
+        "lossless",
+        "--qp",
+        qp,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn encode_decode_info_roundtrip() {
+    let dir = scratch("cli-roundtrip");
+    let input = dir.join("torus.ply");
+    swm::io::write_mesh(&input, &swm_corpus::torus(1.0, 0.35, 48, 16)).unwrap();
+    let swm_file = dir.join("torus.swm");
+    encode(&input, &swm_file, "14");
+    let first = std::fs::read(&swm_file).unwrap();
+    encode(&input, &swm_file, "14");
+    assert_eq!(
+        first,
+        std::fs::read(&swm_file).unwrap(),
+        "encoding is not deterministic"
+    );
+
+    let info = json(&swm(&["info", swm_file.to_str().unwrap(), "--json"]));
+    assert_eq!(info["mode"], "lossless");
+    assert_eq!(info["version"], "1.0");
+    assert_eq!(info["triangles"], 48 * 16 * 2);
+    assert_eq!(info["qp"], 14);
+    let clers = &info["clers"];
+    let total: u64 = ["C", "L", "E", "R", "S"]
+        .iter()
+        .map(|k| clers[k].as_u64().unwrap())
+        .sum();
+    assert_eq!(total + info["components"].as_u64().unwrap(), 48 * 16 * 2);
+
+    for ext in ["obj", "ply", "off"] {
+        let output = dir.join(format!("back.{ext}"));
+        let out = swm(&[
+            "decode",
+            swm_file.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+            "--json",
+        ]);
+        let stats = json(&out);
+        assert_eq!(stats["vertices"], 48 * 16);
+        let back = swm::io::read_mesh(&output).unwrap();
+        assert_eq!(back.face_count(), 48 * 16 * 2);
+        let v = json(&swm(&["info", output.to_str().unwrap(), "--json"]));
+        assert_eq!(v["genus"], 1, "the decoded torus keeps its handle");
+    }
+    let leftovers = std::fs::read_dir(&dir).unwrap().filter(|e| {
+        e.as_ref()
+            .unwrap()
+            .file_name()
+            .to_string_lossy()
+            .contains(".tmp-")
+    });
+    assert_eq!(leftovers.count(), 0, "temporary files left behind");
+}
+
+fn assert_clean_error(args: &[&str], file: &str, what: &str) {
+    let out = swm_capped(args, 1 << 20);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{what}: {stderr}");
+    assert!(
+        stderr.starts_with("swm: error:") && stderr.contains(file),
+        "{what}: {stderr}"
+    );
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{what}: {stderr}");
+}
+
+#[test]
+fn malformed_swm_files_are_clean_errors() {
+    let dir = scratch("cli-malformed");
+    let input = dir.join("sphere.obj");
+    swm::io::write_mesh(&input, &swm_corpus::icosphere(1.0, 2)).unwrap();
+    let good = dir.join("good.swm");
+    encode(&input, &good, "12");
+    let bytes = std::fs::read(&good).unwrap();
+    let out = dir.join("out.obj");
+    let mut cases: Vec<(String, Vec<u8>)> = vec![
+        ("empty".into(), vec![]),
+        ("truncated".into(), bytes[..bytes.len() / 2].to_vec()),
+        ("mesh-not-swm".into(), std::fs::read(&input).unwrap()),
+    ];
+    let mut flipped = bytes.clone();
+    flipped[bytes.len() / 3] ^= 0x10;
+    cases.push(("bit flip".into(), flipped));
+    let mut newer = bytes.clone();
+    newer[4] = 9; // major version
+    cases.push(("newer major".into(), newer));
+    let mut huge = bytes.clone();
+    huge[9..13].copy_from_slice(&u32::MAX.to_le_bytes()); // vertex count
+    let n = huge.len() - 4;
+    let crc = swm::container::crc32(&huge[..n]);
+    huge[n..].copy_from_slice(&crc.to_le_bytes());
+    cases.push(("absurd count".into(), huge));
+    for (what, data) in cases {
+        let path = dir.join(format!("{}.swm", what.replace(' ', "-")));
+        std::fs::write(&path, data).unwrap();
+        let p = path.to_str().unwrap();
+        assert_clean_error(&["decode", p, "-o", out.to_str().unwrap()], p, &what);
+        assert_clean_error(&["info", p], p, &what);
+        assert!(!out.exists(), "{what}: an output file was written");
+    }
+}
+
+#[test]
+fn output_never_overwrites_input_with_garbage() {
+    let dir = scratch("cli-same-path");
+    let input = dir.join("m.obj");
+    swm::io::write_mesh(&input, &swm_corpus::icosphere(1.0, 1)).unwrap();
+    let before = std::fs::read(&input).unwrap();
+    // Decoding a non-swm file onto itself fails and leaves it untouched.
+    let p = input.to_str().unwrap();
+    let out = swm(&["decode", p, "-o", p]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(std::fs::read(&input).unwrap(), before);
+}
+
+#[test]
+fn bunny_is_smaller_than_draco() {
+    let Some(corpus) = shared_corpus() else {
+        return;
+    };
+    let dir = scratch("cli-draco");
+    let output = dir.join("bunny.swm");
+    encode(&corpus.join("stanford-bunny.obj"), &output, "11");
+    let size = std::fs::metadata(&output).unwrap().len();
+    println!("stanford-bunny at qp 11: {size} bytes (Draco level 10: 42,828; level 7: 46,952)");
+    assert!(
+        size <= 46_952,
+        "{size} bytes: larger than Draco's default level"
+    );
+}
