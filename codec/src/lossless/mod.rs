@@ -13,8 +13,6 @@
 //! Encoder and decoder steps that mirror each other sit side by side
 //! below; each pair must match exactly.
 
-mod predictions;
-
 #[cfg(test)]
 use crate::container::parse_container;
 use crate::container::{check_count_fits, Container, Tag};
@@ -31,7 +29,6 @@ use crate::varint::Reader;
 #[cfg(feature = "encoder")]
 use crate::CornerTable;
 use crate::{Error, FormatError, Limits, Malformed, TriMesh};
-use predictions::predictions;
 
 /// Section sizes and counts of one lossless file.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -73,35 +70,22 @@ pub(crate) fn encode(
     // The decoder's table, built the decoder's way, so predictions match.
     let decoded = edgebreaker::decode(conn)?;
     let real = mesh.vertex_count() as u32;
-    let mut rank = vec![u32::MAX; conn.vertices as usize];
-    let mut dummies = Vec::new();
-    let mut positions = Vec::with_capacity(real as usize);
-    let mut source = Vec::with_capacity(real as usize);
-    for (k, v) in eb.vertex_order.iter().enumerate() {
-        if v.0 < real {
-            rank[k] = positions.len() as u32;
-            positions.push(mesh.positions[v.idx()]);
-            source.push(v.0);
-        } else {
-            dummies.push(k as u32);
-        }
-    }
-    let quantizer = Quantizer::from_positions(&positions, qp)?;
-    let quantized: Vec<[u32; 3]> = positions.iter().map(|&p| quantizer.quantize(p)).collect();
-    let pred = predictions(&decoded, &rank);
-
+    // Decoded vertex k is input vertex vertex_order[k]; dummies (ids past
+    // the real vertices) carry no position.
+    let excluded: Vec<bool> = eb.vertex_order.iter().map(|v| v.0 >= real).collect();
+    let source: Vec<u32> = eb.vertex_order.iter().map(|v| v.0).filter(|&v| v < real).collect();
+    let dummies: Vec<u32> = (0..excluded.len() as u32).filter(|&k| excluded[k as usize]).collect();
+    let quantizer = Quantizer::from_positions(&mesh.positions, qp)?;
+    let quantized: Vec<[u32; 3]> = eb
+        .vertex_order
+        .iter()
+        .map(|v| mesh.positions.get(v.idx()).map_or([0; 3], |&p| quantizer.quantize(p)))
+        .collect();
     let head = write_head(&quantizer);
     let topo = write_topo(conn, &dummies);
     let clrs = write_clers(&conn.symbols);
     let mut enc = Encoder::new();
-    geo::encode_positions_cfg(
-        &quantized,
-        &pred.list,
-        &pred.parallelograms,
-        qp,
-        &mut enc,
-        Default::default(),
-    );
+    geo::encode_mesh_positions(&decoded, &excluded, &quantized, qp, &mut enc)?;
     let geom = enc.finish();
 
     let triangles = mesh.face_count() as u32;
@@ -138,28 +122,24 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     if conn.vertices as u64 != real as u64 + dummies.len() as u64 {
         return Err(bad("vertex counts of header and topology disagree"));
     }
-    let mut rank = vec![0u32; conn.vertices as usize];
+    let mut excluded = vec![false; conn.vertices as usize];
     for &d in &dummies {
-        rank[d as usize] = u32::MAX;
+        excluded[d as usize] = true;
     }
-    let mut next = 0;
-    for r in rank.iter_mut().filter(|r| **r == 0) {
-        *r = next;
-        next += 1;
-    }
-    let pred = predictions(&table, &rank);
     let geom = file.require(Tag::GEOM)?.bytes;
     let mut dec = Decoder::new(geom)?;
-    let mut quantized = Vec::with_capacity(real as usize);
-    geo::decode_positions_cfg(
-        &pred.list,
-        &pred.parallelograms,
-        quantizer.bits,
-        &mut dec,
-        &mut quantized,
-        Default::default(),
-    )?;
-    let positions: Vec<[f32; 3]> = quantized.iter().map(|&q| quantizer.dequantize(q)).collect();
+    let mut quantized = Vec::new();
+    geo::decode_mesh_positions(&table, &excluded, quantizer.bits, &mut dec, &mut quantized)?;
+    dec.finish()?;
+    // Real vertices keep their decoded order; dummies are dropped.
+    let mut rank = vec![u32::MAX; conn.vertices as usize];
+    let mut positions = Vec::with_capacity(real as usize);
+    for (k, q) in quantized.iter().enumerate() {
+        if !excluded[k] {
+            rank[k] = positions.len() as u32;
+            positions.push(quantizer.dequantize(*q));
+        }
+    }
     let mut triangles = Vec::with_capacity(file.header.triangle_count as usize);
     for t in table.vertices().chunks_exact(3) {
         let r = [rank[t[0].idx()], rank[t[1].idx()], rank[t[2].idx()]];
