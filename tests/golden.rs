@@ -1,0 +1,138 @@
+//! Golden files of the `.swm` format (format-spec/versions.md): every
+//! golden file of every released version must keep decoding, forever, to
+//! the mesh whose hash its page of the spec lists.
+//!
+//! `lossless-v1.0.swm` is specified byte by byte in
+//! format-spec/04-lossless.md ("Golden file and worked example").
+
+use swm::{DecodeOptions, EncodeMode, EncodeOptions, TriMesh};
+
+const LOSSLESS_V1_0: &[u8] = include_bytes!("../format-spec/golden/lossless-v1.0.swm");
+
+/// The test vector of format-spec/04-lossless.md.
+const LOSSLESS_V1_0_VERTICES: usize = 48;
+const LOSSLESS_V1_0_TRIANGLES: usize = 94;
+const LOSSLESS_V1_0_FNV1A64: u64 = 0xEE8C_6338_75C1_F50B;
+
+/// 64-bit FNV-1a of a mesh: every position in vertex order as three
+/// little-endian `f32`s, then every triangle as three little-endian `u32`s.
+fn mesh_hash(mesh: &TriMesh) -> u64 {
+    let mut h = 0xCBF2_9CE4_8422_2325u64;
+    let mut eat = |bytes: [u8; 4]| {
+        for b in bytes {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0000_0100_0000_01B3);
+        }
+    };
+    for p in &mesh.positions {
+        for c in p {
+            eat(c.to_le_bytes());
+        }
+    }
+    for t in &mesh.triangles {
+        for v in t {
+            eat(v.to_le_bytes());
+        }
+    }
+    h
+}
+
+/// The mesh the golden file encodes: a torus grid of 8 × 6 vertices
+/// (R = 1, r = 0.4) with quad (3, 2) removed, so it has a handle and a
+/// hole. Cosines and sines of multiples of 45° and 60° come from `sqrt`
+/// alone, which IEEE 754 rounds exactly, so every platform builds the same
+/// `f32` positions.
+fn golden_torus() -> TriMesh {
+    let h = 0.5f64.sqrt();
+    let t = 0.75f64.sqrt();
+    let cos8 = [1.0, h, 0.0, -h, -1.0, -h, 0.0, h];
+    let sin8 = [0.0, h, 1.0, h, 0.0, -h, -1.0, -h];
+    let cos6 = [1.0, 0.5, -0.5, -1.0, -0.5, 0.5];
+    let sin6 = [0.0, t, t, 0.0, -t, -t];
+    let (nu, nv) = (8u32, 6u32);
+    let mut positions = Vec::new();
+    for i in 0..nu as usize {
+        for j in 0..nv as usize {
+            let rho = 1.0 + 0.4 * cos6[j];
+            positions.push([
+                (rho * cos8[i]) as f32,
+                (rho * sin8[i]) as f32,
+                (0.4 * sin6[j]) as f32,
+            ]);
+        }
+    }
+    let id = |i: u32, j: u32| (i % nu) * nv + j % nv;
+    let mut triangles = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            if (i, j) == (3, 2) {
+                continue;
+            }
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    TriMesh::new(positions, triangles)
+}
+
+/// Must hold forever: a failure means the decoder no longer reads format
+/// 1.0 as specified.
+#[test]
+fn lossless_v1_0_decodes_to_its_test_vector() {
+    let mesh = swm::decode(LOSSLESS_V1_0, &DecodeOptions::default())
+        .expect("golden file lossless-v1.0.swm must decode");
+    assert_eq!(mesh.positions.len(), LOSSLESS_V1_0_VERTICES);
+    assert_eq!(mesh.triangles.len(), LOSSLESS_V1_0_TRIANGLES);
+    assert_eq!(
+        mesh_hash(&mesh),
+        LOSSLESS_V1_0_FNV1A64,
+        "decoded mesh differs from format-spec/04-lossless.md's test vector"
+    );
+    // Spot checks from the worked example of the spec.
+    assert_eq!(
+        mesh.positions[0].map(f32::to_bits),
+        [0x3FB3_3333, 0x39B3_3E67, 0x3986_7B95]
+    );
+    assert_eq!(&mesh.triangles[..3], &[[0, 1, 2], [3, 0, 2], [4, 3, 2]]);
+}
+
+/// The golden mesh's input is rebuilt here; the decoded mesh has its
+/// triangles (lossless connectivity) and positions within half a step.
+#[test]
+fn lossless_v1_0_is_the_golden_torus() {
+    let input = golden_torus();
+    let mesh = swm::decode(LOSSLESS_V1_0, &DecodeOptions::default()).unwrap();
+    // Every decoded position is within half a grid step (2.8 / 4095 / 2)
+    // of a distinct input vertex.
+    let half_step = 2.8f64 / 4095.0 / 2.0 * (1.0 + 1e-6);
+    let mut used = vec![false; input.positions.len()];
+    for p in &mesh.positions {
+        let k = (0..input.positions.len())
+            .find(|&k| {
+                !used[k]
+                    && (0..3)
+                        .all(|a| (p[a] as f64 - input.positions[k][a] as f64).abs() <= half_step)
+            })
+            .expect("a decoded vertex matches no input vertex");
+        used[k] = true;
+    }
+}
+
+/// swm's encoder, given the same input and options, writes the golden
+/// bytes again. This pins the *encoder* (its choices, e.g. of subsets and
+/// start corners), not the format: if an encoder change that keeps the
+/// format breaks it, the golden file stays as it is and this check is
+/// what changes (compare decoded meshes instead of bytes).
+#[test]
+fn lossless_v1_0_reencodes_to_the_same_bytes() {
+    let options = EncodeOptions {
+        mode: EncodeMode::Lossless { qp: 12 },
+        ..EncodeOptions::default()
+    };
+    let encoded = swm::encode(&golden_torus(), &options).unwrap();
+    assert_eq!(
+        encoded.bytes, LOSSLESS_V1_0,
+        "re-encoding the golden torus no longer gives golden/lossless-v1.0.swm"
+    );
+}
