@@ -73,13 +73,39 @@ pub(crate) fn encode(
     // Decoded vertex k is input vertex vertex_order[k]; dummies (ids past
     // the real vertices) carry no position.
     let excluded: Vec<bool> = eb.vertex_order.iter().map(|v| v.0 >= real).collect();
-    let source: Vec<u32> = eb.vertex_order.iter().map(|v| v.0).filter(|&v| v < real).collect();
-    let dummies: Vec<u32> = (0..excluded.len() as u32).filter(|&k| excluded[k as usize]).collect();
+    let source: Vec<u32> = eb
+        .vertex_order
+        .iter()
+        .map(|v| v.0)
+        .filter(|&v| v < real)
+        .collect();
+    let dummies: Vec<u32> = (0..excluded.len() as u32)
+        .filter(|&k| excluded[k as usize])
+        .collect();
     let quantizer = Quantizer::from_positions(&mesh.positions, qp)?;
+    let grid_top = quantizer
+        .origin
+        .iter()
+        .map(|&o| o as f64 + quantizer.range as f64)
+        .fold(0.0, f64::max);
+    if !quantizer.range.is_finite() || !(grid_top as f32).is_finite() {
+        // The cubic grid over the bounding box would not fit in f32.
+        return Err(crate::ParameterError::OutOfRange {
+            name: "bounding box side",
+            value: quantizer.range as f64,
+            min: 0.0,
+            max: f32::MAX as f64,
+        }
+        .into());
+    }
     let quantized: Vec<[u32; 3]> = eb
         .vertex_order
         .iter()
-        .map(|v| mesh.positions.get(v.idx()).map_or([0; 3], |&p| quantizer.quantize(p)))
+        .map(|v| {
+            mesh.positions
+                .get(v.idx())
+                .map_or([0; 3], |&p| quantizer.quantize(p))
+        })
         .collect();
     let head = write_head(&quantizer);
     let topo = write_topo(conn, &dummies);
@@ -119,9 +145,6 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let (quantizer, conn, dummies) = read_connectivity(file, limits)?;
     let table = edgebreaker::decode(&conn)?;
     let real = file.header.vertex_count;
-    if conn.vertices as u64 != real as u64 + dummies.len() as u64 {
-        return Err(bad("vertex counts of header and topology disagree"));
-    }
     let mut excluded = vec![false; conn.vertices as usize];
     for &d in &dummies {
         excluded[d as usize] = true;
@@ -149,6 +172,17 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     }
     if triangles.len() != file.header.triangle_count as usize {
         return Err(bad("triangle count differs from the header"));
+    }
+    // A listed "dummy" that did not close a hole would leave real vertices
+    // without triangles; the encoder never writes such a file.
+    let mut used = vec![false; positions.len()];
+    for t in &triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    if used.contains(&false) {
+        return Err(bad("a vertex is used by no triangle"));
     }
     Ok(TriMesh {
         positions,
@@ -184,8 +218,12 @@ pub(crate) fn read_connectivity(
     }
     let mut dummies = Vec::with_capacity(dummy_count as usize);
     let mut prev = 0u64;
+    let overflow = || bad("topology value out of range");
     for i in 0..dummy_count {
-        let d = prev + r.varu()? + u64::from(i > 0);
+        let d = prev
+            .checked_add(r.varu()?)
+            .and_then(|d| d.checked_add(u64::from(i > 0)))
+            .ok_or_else(overflow)?;
         dummies.push(u32::try_from(d).map_err(|_| bad("dummy vertex out of range"))?);
         prev = d;
     }
@@ -196,8 +234,15 @@ pub(crate) fn read_connectivity(
     let mut splits = Vec::with_capacity(split_count as usize);
     let mut prev = 0u64;
     for i in 0..split_count {
-        let split = prev + r.varu()? + u64::from(i > 0);
-        let source = split + 1 + r.varu()?;
+        let (gap, offset) = (r.varu()?, r.varu()?);
+        let split = prev
+            .checked_add(gap)
+            .and_then(|x| x.checked_add(u64::from(i > 0)))
+            .ok_or_else(overflow)?;
+        let source = split
+            .checked_add(1)
+            .and_then(|x| x.checked_add(offset))
+            .ok_or_else(overflow)?;
         let side = match r.u8()? {
             0 => Side::Right,
             1 => Side::Left,
@@ -252,7 +297,12 @@ fn read_head(bytes: &[u8]) -> Result<Quantizer, Error> {
             Malformed::BadHeader("quantization bits out of range"),
         )));
     }
-    if !origin.iter().all(|x| x.is_finite()) || !range.is_finite() || range < 0.0 {
+    // Every dequantized point lies between origin and origin + range,
+    // which must stay finite in f32.
+    let inside = origin
+        .iter()
+        .all(|&o| o.is_finite() && ((o as f64 + range as f64) as f32).is_finite());
+    if !inside || !range.is_finite() || range < 0.0 {
         return Err(Error::Format(FormatError::new(
             "SWM",
             Malformed::BadHeader("quantization grid is not finite"),
@@ -321,6 +371,8 @@ fn read_clers(bytes: &[u8], count: usize) -> Result<Vec<Symbol>, Error> {
         prev = Symbol::from_code(code).ok_or(bad("CLERS code out of range"))?;
         out.push(prev);
     }
+    // The stream must end exactly where the encoder finished it.
+    dec.finish()?;
     Ok(out)
 }
 
@@ -500,5 +552,57 @@ mod tests {
         b[topo..topo + 6].copy_from_slice(&[0x80, 0x80, 0x80, 0x80, 0x80, 0x20]);
         fix_crc(&mut b);
         assert!(decode_bytes(&b).is_err());
+    }
+
+    /// Rebuilds `bytes` with one section's payload replaced (valid frame and CRC).
+    fn with_section(bytes: &[u8], tag: Tag, payload: &[u8]) -> Vec<u8> {
+        let file = parse_container(bytes, &Limits::default()).unwrap();
+        let owned: Vec<(Tag, Vec<u8>)> = file
+            .sections()
+            .map(|s| {
+                (
+                    s.tag,
+                    if s.tag == tag {
+                        payload.to_vec()
+                    } else {
+                        s.bytes.to_vec()
+                    },
+                )
+            })
+            .collect();
+        let refs: Vec<(Tag, &[u8])> = owned.iter().map(|(t, b)| (*t, b.as_slice())).collect();
+        write_container(&file.header, &refs).unwrap()
+    }
+
+    #[test]
+    fn hostile_sections_with_valid_frames_are_errors() {
+        use crate::edgebreaker::tests_support::*;
+        let c = crate::clean(&grid(6, 4), &CleanOptions::default()).unwrap();
+        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        let file = parse_container(&bytes, &Limits::default()).unwrap();
+        let (clrs, topo) = (
+            file.section(Tag::CLRS).unwrap().to_vec(),
+            file.section(Tag::TOPO).unwrap().to_vec(),
+        );
+        // CLRS with a word the encoder never wrote.
+        let mut longer = clrs.clone();
+        longer.extend_from_slice(&[0, 0, 0, 0]);
+        assert!(decode_bytes(&with_section(&bytes, Tag::CLRS, &longer)).is_err());
+        // TOPO whose dummy gaps overflow 64 bits.
+        let mut t = Vec::new();
+        varint::put(&mut t, topo[0] as u64); // symbol count (one byte for this mesh)
+        varint::put(&mut t, 2);
+        varint::put(&mut t, u64::MAX);
+        varint::put(&mut t, u64::MAX);
+        varint::put(&mut t, 0);
+        assert!(decode_bytes(&with_section(&bytes, Tag::TOPO, &t)).is_err());
+        // A grid that does not fit in f32: origin 3e38, range 1e38.
+        let mut head = vec![12u8];
+        for x in [3e38f32, 0.0, 0.0, 1e38] {
+            head.extend_from_slice(&x.to_le_bytes());
+        }
+        assert!(decode_bytes(&with_section(&bytes, Tag::HEAD, &head)).is_err());
+        // The unmodified frame still decodes (the helper itself is sound).
+        assert!(decode_bytes(&with_section(&bytes, Tag::CLRS, &clrs)).is_ok());
     }
 }
