@@ -229,59 +229,94 @@ pub fn decode(conn: &Connectivity) -> Result<CornerTable, FormatError> {
 }
 
 /// Resolves provisional vertices and numbers them in encoder order.
+///
+/// Why no manifold check (no fan walk) is needed here: every vertex
+/// identification the decoder makes is a [`State::glue`], which joins the
+/// corner `n(x)` with `p(y)` and `p(x)` with `n(y)` for a glued pair
+/// `(x, y)` — exactly the steps `c -> swing_left(c)` of the finished
+/// table. Once every edge is glued (checked below), `swing_left` is a
+/// permutation of the corners, so the union-find classes are precisely
+/// its cycles: every vertex is one closed fan, opposite corners see the
+/// same edge reversed, and `O` is an involution without fixed triangles
+/// (`glue` refuses to glue an edge twice or to its own triangle). The
+/// checks left are the ones the construction cannot give: a closed
+/// surface, distinct vertices per triangle, and the encoder's numbering.
+/// Debug builds still run the full [`CornerTable::check`].
 fn finish(
     conn: &Connectivity,
     ranges: &[(usize, usize)],
-    mut st: State,
+    st: State,
 ) -> Result<CornerTable, FormatError> {
-    let mut number = vec![UNSET; st.parent.len()];
+    // A union makes the larger root point to the smaller one and path
+    // halving only moves a parent lower, so parent[x] <= x: one forward
+    // pass turns the forest into a root per id, with no chasing.
+    let mut root = st.parent;
+    for x in 0..root.len() {
+        root[x] = root[root[x] as usize];
+    }
+    let root_of = |corner: u32| -> Result<usize, FormatError> {
+        let id = *st
+            .v
+            .get(corner as usize)
+            .ok_or(bad("corner out of range"))?;
+        root.get(id as usize)
+            .map(|&r| r as usize)
+            .ok_or(bad("a corner has no vertex"))
+    };
+    let mut number = vec![UNSET; root.len()];
     let mut next = 0u32;
-    let mut visit = |st: &mut State, number: &mut Vec<u32>, corner: u32, must_be_new: bool| {
-        let root = st.find(st.v[corner as usize]) as usize;
-        if number[root] == UNSET {
-            number[root] = next;
-            next += 1;
-            Ok(())
-        } else if must_be_new {
-            Err(bad("a C tip is a vertex seen before"))
-        } else {
-            Ok(())
+    let mut visit = |corner: u32| -> Result<(), FormatError> {
+        let r = root_of(corner)?;
+        if number[r] != UNSET {
+            return Err(bad("a C tip is a vertex seen before"));
         }
+        number[r] = next;
+        next += 1;
+        Ok(())
     };
     for (k, &(start, end)) in ranges.iter().enumerate() {
         let t = (start + k) as u32;
         for x in [3 * t, 3 * t + 1, 3 * t + 2] {
-            visit(&mut st, &mut number, x, true)?;
+            visit(x)?;
         }
         for i in start..end {
             if conn.symbols[i] == Symbol::C {
-                visit(&mut st, &mut number, 3 * (i + k + 1) as u32, true)?;
+                visit(3 * (i + k + 1) as u32)?;
             }
         }
     }
     if next != conn.vertices {
         return Err(bad("decoded vertex count differs from the header"));
     }
+    // Each closed fan's start is its lowest corner (as `vertex_fans`
+    // chooses it), i.e. the first corner of the vertex in corner order.
+    let mut vertex_corner = vec![CornerId::NONE; next as usize];
     let mut v = Vec::with_capacity(st.v.len());
-    for c in 0..st.v.len() {
-        let root = st.find(st.v[c]);
-        match number[root as usize] {
-            UNSET => return Err(bad("a vertex is neither a first vertex nor a C tip")),
-            n => v.push(VertexId(n)),
+    for (c, &id) in st.v.iter().enumerate() {
+        let n = root
+            .get(id as usize)
+            .and_then(|&r| number.get(r as usize))
+            .copied()
+            .unwrap_or(UNSET);
+        if n == UNSET {
+            return Err(bad("a vertex is neither a first vertex nor a C tip"));
         }
+        let first = &mut vertex_corner[n as usize];
+        if first.is_none() {
+            *first = CornerId(c as u32);
+        }
+        v.push(VertexId(n));
     }
     for t in v.chunks_exact(3) {
         if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
             return Err(bad("decoded triangle repeats a vertex"));
         }
     }
-    let o: Vec<CornerId> = st.o.iter().map(|&x| CornerId(x)).collect();
-    if o.iter().any(|x| x.is_none()) {
+    if st.o.contains(&UNSET) {
         return Err(bad("decoded surface is not closed"));
     }
-    let table = CornerTable::from_parts(v, o, next as usize);
-    table
-        .check()
-        .map_err(|_| bad("decoded surface is not a manifold"))?;
+    let o: Vec<CornerId> = st.o.into_iter().map(CornerId).collect();
+    let table = CornerTable::from_raw(v, o, vertex_corner);
+    debug_assert_eq!(table.check(), Ok(()), "decoder built an invalid table");
     Ok(table)
 }

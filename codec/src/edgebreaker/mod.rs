@@ -13,7 +13,8 @@
 //!
 //! Open meshes are closed first by [`fill_holes`]: a dummy vertex per
 //! boundary loop, coned to the loop (Rossignac's TPATCH scheme); the
-//! decoder drops the dummies and their fans again.
+//! decoder drops the dummies and their fans again. [`close_holes`] builds
+//! the closed mesh's corner table directly from the open one's.
 //!
 //! Invariants (tested): decode(encode(M)) has exactly M's triangles with
 //! M's orientation, with vertices renumbered in the encoder's order of
@@ -34,5 +35,5 @@ pub(crate) use tests::swm_corpus_like as tests_support;
 
 pub use decode::decode;
 pub use encode::{encode, Encoded};
-pub use holes::{fill_holes, Filled};
+pub use holes::{close_holes, fill_holes, Closed, Filled};
 pub use shared::{Connectivity, Side, SplitEvent, Symbol};

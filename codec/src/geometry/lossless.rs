@@ -52,7 +52,7 @@
 //! exceed `bits`, so decoded coordinates are always in the grid, and
 //! memory is bounded by the number of predictions.
 
-use super::predict::{average, Prediction, Predictions, MAX_SELECTABLE};
+use super::predict::{average, average_of, parallelogram, Prediction, Predictions, MAX_SELECTABLE};
 use super::quantize::{max_value, MAX_BITS};
 #[cfg(doc)]
 use super::traverse::traverse;
@@ -235,9 +235,15 @@ pub fn encode_positions(
         let list = p.selectable(paras);
         let pred = if list.len() >= 2 {
             let model = &m.subsets[list.len() - 2];
+            let mut points = [[0i64; 3]; MAX_SELECTABLE];
+            for (p, &abo) in points.iter_mut().zip(list) {
+                *p = parallelogram(decoded, abo);
+            }
+            let points = &points[..list.len()];
             let mut best = (u32::MAX, 0, [0; 3]);
             for subset in 1u32..(1 << list.len()) {
-                let pred = average(decoded, list, subset, bits);
+                // The point `average(decoded, list, subset, bits)` gives.
+                let pred = average_of(points, subset, bits);
                 let mut bits16 = cost(model, subset - 1);
                 let mut coded = [0u32; 3];
                 for axis in 0..3 {

@@ -190,25 +190,69 @@ impl Prediction {
 /// i.e. `⌊sum/n + 1/2⌋`, with a floor division. Must match the encoder
 /// exactly: both sides call this.
 pub fn average(decoded: &[[u32; 3]], list: &[[u32; 3]], subset: u32, bits: u8) -> [u32; 3] {
-    let max = max_value(bits) as i64;
     let mut sum = [0i64; 3];
     let mut n = 0i64;
-    for (i, &[a, b, o]) in list.iter().enumerate() {
-        if (subset >> i) & 1 == 0 {
-            continue;
-        }
-        n += 1;
-        let (a, b, o) = (
-            decoded[a as usize],
-            decoded[b as usize],
-            decoded[o as usize],
-        );
-        for k in 0..3 {
-            sum[k] += a[k] as i64 + b[k] as i64 - o[k] as i64;
+    for (i, &abo) in list.iter().enumerate() {
+        if (subset >> i) & 1 == 1 {
+            n += 1;
+            let p = parallelogram(decoded, abo);
+            for k in 0..3 {
+                sum[k] += p[k];
+            }
         }
     }
+    mean_in_grid(sum, n, bits)
+}
+
+/// The unclamped parallelogram prediction `a + b − opposite` of
+/// `[a, b, opposite]`.
+#[inline]
+pub(crate) fn parallelogram(decoded: &[[u32; 3]], [a, b, o]: [u32; 3]) -> [i64; 3] {
+    let (a, b, o) = (
+        decoded[a as usize],
+        decoded[b as usize],
+        decoded[o as usize],
+    );
+    core::array::from_fn(|k| a[k] as i64 + b[k] as i64 - o[k] as i64)
+}
+
+/// [`average`] of parallelograms computed beforehand with
+/// [`parallelogram`] (the encoder tries every subset of the same few).
+/// The same sums and rounding, so the same point.
+#[inline]
+pub(crate) fn average_of(points: &[[i64; 3]], subset: u32, bits: u8) -> [u32; 3] {
+    let mut sum = [0i64; 3];
+    let mut n = 0i64;
+    for (i, p) in points.iter().enumerate() {
+        if (subset >> i) & 1 == 1 {
+            n += 1;
+            for k in 0..3 {
+                sum[k] += p[k];
+            }
+        }
+    }
+    mean_in_grid(sum, n, bits)
+}
+
+/// `⌊(2·sum + n) / (2n)⌋` per axis (n at least 1), clamped into the grid.
+/// The usual n get constant divisors, which the compiler turns into
+/// shifts and multiplications: a 64-bit division is the slowest
+/// instruction of the whole prediction.
+#[inline]
+fn mean_in_grid(sum: [i64; 3], n: i64, bits: u8) -> [u32; 3] {
+    let max = max_value(bits) as i64;
     let n = n.max(1);
-    core::array::from_fn(|k| (2 * sum[k] + n).div_euclid(2 * n).clamp(0, max) as u32)
+    core::array::from_fn(|k| {
+        let x = 2 * sum[k] + n;
+        let mean = match n {
+            1 => x.div_euclid(2),
+            2 => x.div_euclid(4),
+            3 => x.div_euclid(6),
+            4 => x.div_euclid(8),
+            _ => x.div_euclid(2 * n),
+        };
+        mean.clamp(0, max) as u32
+    })
 }
 
 #[cfg(test)]
@@ -284,5 +328,39 @@ mod tests {
         assert!(m(0, 0).check(9, &list).is_err());
         assert!(m(1, 2).check(9, &list).is_err());
         assert!(m(u32::MAX, u32::MAX).check(9, &list).is_err());
+    }
+
+    #[test]
+    fn precomputed_points_average_the_same() {
+        let mut x = 0x1234_5678_9abc_def1u64;
+        let mut rand = move |n: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % n) as u32
+        };
+        for bits in [6u8, 12, 24] {
+            let d: Vec<[u32; 3]> = (0..20).map(|_| [0; 3].map(|_| rand(1 << bits))).collect();
+            for _ in 0..500 {
+                let n = 1 + rand(MAX_SELECTABLE as u64) as usize;
+                let list: Vec<[u32; 3]> = (0..n).map(|_| [0; 3].map(|_| rand(20))).collect();
+                let points: Vec<[i64; 3]> = list.iter().map(|&p| parallelogram(&d, p)).collect();
+                for subset in 1..1u32 << n {
+                    assert_eq!(
+                        average_of(&points, subset, bits),
+                        average(&d, &list, subset, bits)
+                    );
+                    // The constant divisors agree with the plain division.
+                    let sum = points
+                        .iter()
+                        .enumerate()
+                        .filter(|(i, _)| subset >> i & 1 == 1);
+                    let (k, total) = sum.fold((0i64, 0i64), |(k, t), (_, p)| (k + 1, t + p[0]));
+                    let plain =
+                        ((2 * total + k).div_euclid(2 * k)).clamp(0, max_value(bits) as i64);
+                    assert_eq!(average_of(&points, subset, bits)[0] as i64, plain);
+                }
+            }
+        }
     }
 }

@@ -63,8 +63,7 @@ pub(crate) fn encode(
     mesh: &TriMesh,
     qp: u8,
 ) -> Result<(Vec<u8>, LosslessStats, Vec<u32>), Error> {
-    let filled = edgebreaker::fill_holes(table);
-    let closed = CornerTable::new(&filled.triangles, filled.vertex_count)?;
+    let closed = edgebreaker::close_holes(table).table;
     let eb = edgebreaker::encode(&closed)?;
     let conn = &eb.connectivity;
     // The decoder's table, built the decoder's way, so predictions match.
@@ -98,20 +97,25 @@ pub(crate) fn encode(
         }
         .into());
     }
-    let quantized: Vec<[u32; 3]> = eb
-        .vertex_order
+    let head = write_head(&quantizer);
+    let topo = write_topo(conn, &dummies);
+    let clrs = write_clers(&conn.symbols);
+    // What `geo::encode_mesh_positions` does, with each point quantized
+    // straight from the input in coding order (decoded vertex k is input
+    // vertex vertex_order[k]; the traversal never visits a dummy).
+    let traversal = crate::geometry::traverse_except(&decoded, &excluded)?;
+    let ordered: Vec<[u32; 3]> = traversal
+        .order
         .iter()
-        .map(|v| {
+        .map(|k| {
+            let v = eb.vertex_order[k.idx()];
             mesh.positions
                 .get(v.idx())
                 .map_or([0; 3], |&p| quantizer.quantize(p))
         })
         .collect();
-    let head = write_head(&quantizer);
-    let topo = write_topo(conn, &dummies);
-    let clrs = write_clers(&conn.symbols);
     let mut enc = Encoder::new();
-    geo::encode_mesh_positions(&decoded, &excluded, &quantized, qp, &mut enc)?;
+    geo::encode_positions(&ordered, &traversal.predictions, qp, &mut enc);
     let geom = enc.finish();
 
     let triangles = mesh.face_count() as u32;
@@ -149,19 +153,37 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     for &d in &dummies {
         excluded[d as usize] = true;
     }
+    // Real vertices keep their decoded order; dummies are dropped.
+    let mut rank = vec![u32::MAX; conn.vertices as usize];
+    let mut next = 0u32;
+    for (r, &dummy) in rank.iter_mut().zip(&excluded) {
+        if !dummy {
+            *r = next;
+            next += 1;
+        }
+    }
+    // What `geo::decode_mesh_positions` does, with each point dequantized
+    // straight into its place instead of through a table by vertex.
+    let traversal = crate::geometry::traverse_except(&table, &excluded)?;
     let geom = file.require(Tag::GEOM)?.bytes;
     let mut dec = Decoder::new(geom)?;
     let mut quantized = Vec::new();
-    geo::decode_mesh_positions(&table, &excluded, quantizer.bits, &mut dec, &mut quantized)?;
+    geo::decode_positions(
+        &traversal.predictions,
+        quantizer.bits,
+        &mut dec,
+        &mut quantized,
+    )?;
     dec.finish()?;
-    // Real vertices keep their decoded order; dummies are dropped.
-    let mut rank = vec![u32::MAX; conn.vertices as usize];
-    let mut positions = Vec::with_capacity(real as usize);
-    for (k, q) in quantized.iter().enumerate() {
-        if !excluded[k] {
-            rank[k] = positions.len() as u32;
-            positions.push(quantizer.dequantize(*q));
-        }
+    let mut positions = vec![[0f32; 3]; real as usize];
+    for (v, q) in traversal.order.iter().zip(&quantized) {
+        // The traversal decodes exactly the vertices not excluded, so
+        // every real vertex gets its point (and the error cannot happen).
+        let slot = rank
+            .get(v.idx())
+            .and_then(|&r| positions.get_mut(r as usize))
+            .ok_or(bad("a dummy vertex has a position"))?;
+        *slot = quantizer.dequantize(*q);
     }
     let mut triangles = Vec::with_capacity(file.header.triangle_count as usize);
     for t in table.vertices().chunks_exact(3) {

@@ -23,7 +23,7 @@
 //! Vertex order is kept (a stable compaction), and so is face order, so a
 //! clean mesh passes through unchanged.
 
-use super::corner::{pair_edges, vertex_fans};
+use super::corner::{pair_edges, vertex_fans, Pairing};
 use super::{CornerId, CornerTable, FaceId, TriMesh, VertexId};
 use crate::{Error, TopologyError};
 
@@ -135,7 +135,7 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
     if triangles.is_empty() {
         return Err(TopologyError::NoTriangles.into());
     }
-    let manifold_components = orient(&mut triangles, positions.len(), &mut report)?;
+    let (manifold_components, pairing) = orient(&mut triangles, positions.len(), &mut report)?;
     // Without non-manifold edges the orientation pass already saw every
     // edge; otherwise count again through the edges it had to leave out.
     report.input_components = if report.non_manifold_edges == 0 {
@@ -147,7 +147,7 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
         positions,
         triangles,
     };
-    let table = split_non_manifold(&mut mesh, &mut report)?;
+    let table = split_non_manifold(&mut mesh, pairing, &mut report)?;
     Ok(Cleaned {
         mesh,
         table,
@@ -156,22 +156,72 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
     })
 }
 
+/// The bits of a position, with -0.0 turned into +0.0 (adding 0.0 does
+/// that), so that the two zeros compare equal.
+fn position_key(p: &[f32; 3]) -> [u32; 3] {
+    [
+        (p[0] + 0.0).to_bits(),
+        (p[1] + 0.0).to_bits(),
+        (p[2] + 0.0).to_bits(),
+    ]
+}
+
 /// Maps each vertex to the lowest-numbered vertex at the same position.
+///
+/// A hash table (open addressing, at most half full) visited in vertex
+/// order, so the first vertex seen at a position is its representative:
+/// linear time, where sorting the positions cost most of the cleaning.
+/// The hash is fixed, so input crafted to collide could make probing
+/// quadratic; past a probe budget the sort takes over, which gives the
+/// same answer in O(n log n) whatever the input.
 fn merge_coincident(positions: &[[f32; 3]]) -> Vec<u32> {
-    // Adding 0.0 turns -0.0 into +0.0, so the two zeros compare equal.
+    const EMPTY: u32 = u32::MAX;
+    let bits = (2 * positions.len())
+        .max(2)
+        .next_power_of_two()
+        .trailing_zeros();
+    let mask = (1usize << bits) - 1;
+    let mut slots = vec![EMPTY; mask + 1];
+    let mut remap = Vec::with_capacity(positions.len());
+    let mut budget = 8 * positions.len() + 64;
+    for (i, p) in positions.iter().enumerate() {
+        let key = position_key(p);
+        // A multiply-xorshift mix of the 96 bits; its top bits pick a slot.
+        let mut h =
+            (u64::from(key[0]) | u64::from(key[1]) << 32) ^ u64::from(key[2]).rotate_left(21);
+        h = h.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        h ^= h >> 29;
+        h = h.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        let mut slot = (h >> (64 - bits)) as usize & mask;
+        loop {
+            match slots[slot] {
+                EMPTY => {
+                    slots[slot] = i as u32;
+                    remap.push(i as u32);
+                    break;
+                }
+                j if position_key(&positions[j as usize]) == key => {
+                    remap.push(j);
+                    break;
+                }
+                _ => slot = (slot + 1) & mask,
+            }
+            budget = match budget.checked_sub(1) {
+                Some(b) => b,
+                None => return merge_coincident_by_sorting(positions),
+            };
+        }
+    }
+    remap
+}
+
+/// [`merge_coincident`] by sorting the positions: the fallback for input
+/// that defeats the hash, and the reference the tests compare it with.
+fn merge_coincident_by_sorting(positions: &[[f32; 3]]) -> Vec<u32> {
     let mut keyed: Vec<([u32; 3], u32)> = positions
         .iter()
         .enumerate()
-        .map(|(i, p)| {
-            (
-                [
-                    (p[0] + 0.0).to_bits(),
-                    (p[1] + 0.0).to_bits(),
-                    (p[2] + 0.0).to_bits(),
-                ],
-                i as u32,
-            )
-        })
+        .map(|(i, p)| (position_key(p), i as u32))
         .collect();
     keyed.sort_unstable();
     let mut remap = vec![0u32; positions.len()];
@@ -205,23 +255,7 @@ fn drop_degenerate(mesh: &TriMesh, remap: &[u32], report: &mut CleanReport) -> V
         }
         kept.push(t);
     }
-    // Duplicates: sort faces by their sorted vertex triple, keep the first of each run.
-    let mut keyed: Vec<([u32; 3], u32)> = kept
-        .iter()
-        .enumerate()
-        .map(|(f, t)| {
-            let mut k = *t;
-            k.sort_unstable();
-            (k, f as u32)
-        })
-        .collect();
-    keyed.sort_unstable();
-    let mut drop = vec![false; kept.len()];
-    for w in keyed.windows(2) {
-        if w[0].0 == w[1].0 {
-            drop[w[1].1 as usize] = true;
-        }
-    }
+    let drop = duplicate_faces(&kept, mesh.positions.len());
     let before = kept.len();
     let mut f = 0;
     kept.retain(|_| {
@@ -230,6 +264,61 @@ fn drop_degenerate(mesh: &TriMesh, remap: &[u32], report: &mut CleanReport) -> V
     });
     report.duplicate_faces = (before - kept.len()) as u64;
     kept
+}
+
+/// Marks every face whose three vertices (in any order) are those of an
+/// earlier face.
+///
+/// Faces are grouped by their lowest vertex with a counting sort (stable,
+/// so each group lists its faces in order), and compared only inside
+/// their group: linear time on any mesh whose vertices have bounded
+/// valence, where sorting every face cost a large share of the cleaning.
+/// A group bigger than a few faces is sorted instead, so a vertex of
+/// huge valence costs O(k log k), not O(k²).
+fn duplicate_faces(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<bool> {
+    let sorted = |t: &[u32; 3]| {
+        let mut k = *t;
+        k.sort_unstable();
+        k
+    };
+    let mut start = vec![0u32; vertex_count + 1];
+    for t in triangles {
+        start[sorted(t)[0] as usize + 1] += 1;
+    }
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    // Entries (middle vertex, highest vertex, face).
+    let mut entries = vec![(0u32, 0u32, 0u32); triangles.len()];
+    for (f, t) in triangles.iter().enumerate() {
+        let [lo, mid, hi] = sorted(t);
+        let slot = &mut start[lo as usize];
+        entries[*slot as usize] = (mid, hi, f as u32);
+        *slot += 1;
+    }
+    // `start[v]` now ends group v, which begins where group v - 1 ends.
+    let mut drop = vec![false; triangles.len()];
+    let mut begin = 0;
+    for &end in &start[..vertex_count] {
+        let group = &mut entries[begin..end as usize];
+        begin = end as usize;
+        if group.len() <= 8 {
+            for i in 1..group.len() {
+                let (mid, hi, f) = group[i];
+                if group[..i].iter().any(|e| (e.0, e.1) == (mid, hi)) {
+                    drop[f as usize] = true;
+                }
+            }
+        } else {
+            group.sort_unstable();
+            for w in group.windows(2) {
+                if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+                    drop[w[1].2 as usize] = true;
+                }
+            }
+        }
+    }
+    drop
 }
 
 /// Step 3: removes vertices no face uses, keeping the others' order.
@@ -292,16 +381,61 @@ fn edge_components(triangles: &[[u32; 3]]) -> u64 {
     components
 }
 
+/// The number of components of faces joined by the pairs of `o`.
+///
+/// A union-find over the pairs in corner order rather than a walk from
+/// face to face: a walk waits at every face for the cache misses of the
+/// one before (on large meshes, whose faces are rarely stored near their
+/// neighbours, that was most of the cleaning), while the unions' loads
+/// are independent of each other.
+fn count_components(o: &[CornerId], faces: usize) -> u64 {
+    let mut parent: Vec<u32> = (0..faces as u32).collect();
+    let find = |parent: &mut [u32], mut x: u32| {
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    };
+    let mut components = faces as u64;
+    for (c, &d) in o.iter().enumerate() {
+        if d.is_some() && d.idx() > c {
+            let (a, b) = (find(&mut parent, c as u32 / 3), find(&mut parent, d.0 / 3));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+                components -= 1;
+            }
+        }
+    }
+    components
+}
+
 /// Step 4: orients every component consistently across its two-face
-/// edges; returns the number of components joined by those edges.
+/// edges; returns the number of components joined by those edges, and
+/// the half-edge pairing of the oriented mesh.
+///
+/// That pairing is the undirected one this step builds anyway, with the
+/// corners of flipped faces renumbered: once every component is oriented,
+/// each edge it pairs has two half-edges of opposite direction, which is
+/// exactly what [`pair_half_edges`](super::corner::pair_half_edges) would
+/// pair (and the edges it cuts, shared by three faces or more, are cut
+/// there too), so step 5 need not pair the edges again.
 fn orient(
     triangles: &mut [[u32; 3]],
     vertex_count: usize,
     report: &mut CleanReport,
-) -> Result<u64, Error> {
+) -> Result<(u64, Pairing), Error> {
     let pairing = pair_edges(triangles, vertex_count, true);
     report.non_manifold_edges = pairing.cut_edges;
-    let o = pairing.o;
+    // With no pair running the same way, the faces agree already: no face
+    // needs flipping and no component can fail to orient, so only the
+    // components are left to count.
+    if pairing.same_direction == 0 {
+        let components = count_components(&pairing.o, triangles.len());
+        return Ok((components, pairing));
+    }
+    let mut o = pairing.o;
     // Direction bit of the half-edge V[n(c)] -> V[p(c)] facing corner c.
     let dir = |t: &[[u32; 3]], c: CornerId| {
         let tri = t[c.face().idx()];
@@ -359,18 +493,51 @@ fn orient(
             report.flipped_faces += 1;
         }
     }
-    Ok(ncomp as u64)
+    if report.flipped_faces > 0 {
+        // Swapping vertices 1 and 2 of a face swaps the edges its corners
+        // 1 and 2 face; renumber those corners on both sides of each pair.
+        let moved = |c: CornerId| match c.0 % 3 {
+            0 => c,
+            _ if !flip[c.face().idx()] => c,
+            1 => CornerId(c.0 + 1),
+            _ => CornerId(c.0 - 1),
+        };
+        let mut flipped_o = vec![CornerId::NONE; o.len()];
+        for (c, &d) in o.iter().enumerate() {
+            if d.is_some() {
+                flipped_o[moved(CornerId(c as u32)).idx()] = moved(d);
+            }
+        }
+        o = flipped_o;
+    }
+    let pairing = Pairing {
+        o,
+        cut_edges: report.non_manifold_edges,
+        same_direction: 0,
+    };
+    Ok((ncomp as u64, pairing))
 }
 
 /// Steps 5 and 6: pairs half-edges (cutting non-manifold edges) and gives
 /// every extra fan of a vertex its own copy of the vertex; returns the
 /// corner table of the result, built by the last round.
-fn split_non_manifold(mesh: &mut TriMesh, report: &mut CleanReport) -> Result<CornerTable, Error> {
+///
+/// `pairing` is the half-edge pairing of `mesh` as it comes in (from
+/// [`orient`]); later rounds pair the edges of the split mesh again.
+fn split_non_manifold(
+    mesh: &mut TriMesh,
+    pairing: Pairing,
+    report: &mut CleanReport,
+) -> Result<CornerTable, Error> {
     let mut split = vec![false; mesh.positions.len()];
+    let mut given = Some(pairing);
     // Each round adds at least one vertex, so this bound is never reached;
     // it only guards against a logic error turning into a hang.
     for _round in 0..mesh.triangles.len() + 1 {
-        let pairing = super::corner::pair_half_edges(&mesh.triangles, mesh.positions.len());
+        let pairing = match given.take() {
+            Some(p) => p,
+            None => super::corner::pair_half_edges(&mesh.triangles, mesh.positions.len()),
+        };
         let v: Vec<VertexId> = mesh
             .triangles
             .iter()
@@ -585,5 +752,117 @@ mod tests {
             clean(&m, &CleanOptions::default()),
             Err(Error::Topology(TopologyError::NoTriangles))
         ));
+    }
+
+    /// xorshift64, so the tests need no crate.
+    struct Rng(u64);
+
+    impl Rng {
+        fn below(&mut self, n: u64) -> u32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 % n) as u32
+        }
+    }
+
+    #[test]
+    fn merging_by_hash_matches_sorting() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for n in [0usize, 1, 2, 7, 100, 5000] {
+            // Few distinct values, so many positions coincide; -0.0 too.
+            let values = [0.0f32, -0.0, 1.0, -1.5, 3.25e-8, f32::MAX];
+            let p: Vec<[f32; 3]> = (0..n)
+                .map(|_| [0; 3].map(|_| values[rng.below(values.len() as u64) as usize]))
+                .collect();
+            assert_eq!(
+                merge_coincident(&p),
+                merge_coincident_by_sorting(&p),
+                "n = {n}"
+            );
+        }
+    }
+
+    #[test]
+    fn duplicate_faces_match_sorting() {
+        let mut rng = Rng(7);
+        for round in 0..300 {
+            // Small vertex counts make duplicates and big groups common.
+            let vertices = 3 + rng.below(if round % 2 == 0 { 5 } else { 40 }) as usize;
+            let tris: Vec<[u32; 3]> = (0..1 + rng.below(60))
+                .map(|_| [0; 3].map(|_| rng.below(vertices as u64)))
+                .filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+                .collect();
+            // The reference: sort the faces by their sorted triples and
+            // drop all but the first of each run.
+            let mut keyed: Vec<([u32; 3], usize)> = tris
+                .iter()
+                .enumerate()
+                .map(|(f, t)| {
+                    let mut k = *t;
+                    k.sort_unstable();
+                    (k, f)
+                })
+                .collect();
+            keyed.sort_unstable();
+            let mut expected = vec![false; tris.len()];
+            for w in keyed.windows(2) {
+                if w[0].0 == w[1].0 {
+                    expected[w[1].1] = true;
+                }
+            }
+            assert_eq!(duplicate_faces(&tris, vertices), expected, "{tris:?}");
+        }
+    }
+
+    /// Messy copies of a torus (faces flipped one by one and whole
+    /// components at once, duplicated faces, split vertices, a fin)
+    /// clean to a mesh whose table is the one built from scratch: the
+    /// pairing that orientation hands on is the real one.
+    #[test]
+    fn cleaned_table_is_the_table_of_the_result() {
+        let torus = crate::edgebreaker::tests_support::torus(9, 6);
+        let mut rng = Rng(11);
+        let (mut flipped, mut cut) = (0, 0);
+        for round in 0..60 {
+            let mut m = torus.clone();
+            let n = m.positions.len() as u32;
+            // A second, whole copy, flipped in even rounds.
+            m.positions
+                .extend(torus.positions.iter().map(|p| [p[0] + 10.0, p[1], p[2]]));
+            for f in 0..torus.triangles.len() {
+                let mut t = torus.triangles[f].map(|v| v + n);
+                if round % 2 == 0 {
+                    t.swap(0, 1);
+                }
+                m.triangles.push(t);
+            }
+            for _ in 0..rng.below(6) {
+                let f = rng.below(m.triangles.len() as u64) as usize;
+                m.triangles[f].swap(1, 2);
+            }
+            for _ in 0..rng.below(3) {
+                let f = rng.below(m.triangles.len() as u64) as usize;
+                let t = m.triangles[f];
+                m.triangles.push([t[1], t[0], t[2]]);
+            }
+            if round % 3 == 0 {
+                // A fin on the first edge of face 0, and a vertex copy.
+                let t = m.triangles[0];
+                m.positions.push([9.0, 9.0, 9.0]);
+                m.triangles.push([t[0], t[1], m.positions.len() as u32 - 1]);
+                m.positions.push(m.positions[t[2] as usize]);
+            }
+            let c = clean(&m, &CleanOptions::default()).unwrap();
+            let fresh = CornerTable::new(&c.mesh.triangles, c.mesh.vertex_count()).unwrap();
+            assert_eq!(c.table, fresh, "round {round}: {:?}", c.report);
+            assert_eq!(c.report.input_components, 2, "round {round}");
+            flipped += usize::from(c.report.flipped_faces > 0);
+            cut += usize::from(c.report.non_manifold_edges > 0);
+        }
+        assert!(
+            flipped > 20 && cut > 10,
+            "{flipped} rounds flipped, {cut} cut"
+        );
     }
 }

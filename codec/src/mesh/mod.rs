@@ -11,6 +11,7 @@ mod topology;
 #[cfg(feature = "encoder")]
 pub mod clean;
 
+pub(crate) use corner::corners_by_vertex;
 pub use corner::CornerTable;
 pub use ids::{CornerId, FaceId, VertexId};
 pub use topology::{Component, MeshStats};

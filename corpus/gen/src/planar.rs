@@ -114,7 +114,7 @@ fn ear_clip(poly: &[P2], eps_area: f64) -> Vec<[u32; 3]> {
                 poly[at(i) as usize],
                 poly[at(inx) as usize],
             );
-            if best.map_or(true, |(bq, _)| q > bq) {
+            if best.is_none_or(|(bq, _)| q > bq) {
                 best = Some((q, i));
             }
         }
