@@ -754,17 +754,7 @@ mod tests {
         ));
     }
 
-    /// xorshift64, so the tests need no crate.
-    struct Rng(u64);
-
-    impl Rng {
-        fn below(&mut self, n: u64) -> u32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 % n) as u32
-        }
-    }
+    use crate::mesh::test_rng::Rng;
 
     #[test]
     fn merging_by_hash_matches_sorting() {

@@ -8,6 +8,9 @@ mod corner;
 mod ids;
 mod topology;
 
+#[cfg(test)]
+pub(crate) mod test_rng;
+
 #[cfg(feature = "encoder")]
 pub mod clean;
 
