@@ -19,25 +19,16 @@
 //!
 //! Run: `cargo bench -p swm --bench codec`. Needs `../shared/corpus`.
 
+mod common;
+use common::corpus;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
-use std::path::PathBuf;
 use swm::container::{parse_container, Tag};
 use swm::edgebreaker::{self, Connectivity};
 use swm::entropy::Decoder;
 use swm::{CornerTable, DecodeOptions, EncodeMode, EncodeOptions, Limits, TriMesh};
 
 const QP: u8 = 12;
-
-fn corpus() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/corpus");
-    if dir.join("bunny-1m.ply").is_file() {
-        Some(dir)
-    } else {
-        eprintln!("skipped: ../shared/corpus not found");
-        None
-    }
-}
 
 fn options() -> EncodeOptions {
     EncodeOptions {

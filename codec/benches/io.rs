@@ -4,20 +4,11 @@
 //!
 //! Run: `cargo bench -p swm --bench io`. Needs `../shared/corpus`.
 
+mod common;
+use common::corpus;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
-use std::path::PathBuf;
 use swm::{CornerTable, Limits};
-
-fn corpus() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/corpus");
-    if dir.join("bunny-1m.ply").is_file() {
-        Some(dir)
-    } else {
-        eprintln!("skipped: ../shared/corpus not found");
-        None
-    }
-}
 
 fn io(c: &mut Criterion) {
     let Some(dir) = corpus() else { return };

@@ -130,23 +130,11 @@ pub fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> {
     let file = parse_container(bytes, limits)?;
     let h = &file.header;
     let (q, conn, dummies) = crate::lossless::read_connectivity(&file, limits)?;
-    let mut clers = [0u64; 5];
-    for &s in &conn.symbols {
-        clers[s as usize] += 1;
-    }
+    let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
     Ok(FileInfo {
         version: (h.major, h.minor),
         mode: h.mode,
         qp: q.bits,
-        stats: LosslessStats {
-            vertices: h.vertex_count as u64,
-            triangles: h.triangle_count as u64,
-            components: h.component_count as u64,
-            holes: dummies.len() as u64,
-            handle_events: conn.splits.len() as u64,
-            clers,
-            sections: file.sections().map(|s| (s.tag.0, s.bytes.len())).collect(),
-            file_bytes: bytes.len(),
-        },
+        stats: LosslessStats::new(h, &conn, dummies.len(), sections, bytes.len()),
     })
 }

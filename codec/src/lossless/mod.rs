@@ -51,6 +51,34 @@ pub struct LosslessStats {
     pub file_bytes: usize,
 }
 
+impl LosslessStats {
+    /// The figures of a file with this header, connectivity, number of
+    /// holes, sections (tag, bytes) and total size. The encoder and
+    /// `inspect` both build their statistics here.
+    pub(crate) fn new(
+        header: &crate::container::Header,
+        conn: &Connectivity,
+        holes: usize,
+        sections: impl Iterator<Item = ([u8; 4], usize)>,
+        file_bytes: usize,
+    ) -> Self {
+        let mut clers = [0u64; 5];
+        for &s in &conn.symbols {
+            clers[s as usize] += 1;
+        }
+        LosslessStats {
+            vertices: header.vertex_count as u64,
+            triangles: header.triangle_count as u64,
+            components: header.component_count as u64,
+            holes: holes as u64,
+            handle_events: conn.splits.len() as u64,
+            clers,
+            sections: sections.collect(),
+            file_bytes,
+        }
+    }
+}
+
 fn bad(why: &'static str) -> Error {
     Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
 }
@@ -127,20 +155,8 @@ pub(crate) fn encode(
         (Tag::GEOM, &geom),
     ];
     let bytes = write_container(&header, &sections)?;
-    let mut clers = [0u64; 5];
-    for &s in &conn.symbols {
-        clers[s as usize] += 1;
-    }
-    let stats = LosslessStats {
-        vertices: real as u64,
-        triangles: triangles as u64,
-        components: conn.components as u64,
-        holes: dummies.len() as u64,
-        handle_events: conn.splits.len() as u64,
-        clers,
-        sections: sections.iter().map(|(t, b)| (t.0, b.len())).collect(),
-        file_bytes: bytes.len(),
-    };
+    let tags = sections.iter().map(|(t, b)| (t.0, b.len()));
+    let stats = LosslessStats::new(&header, conn, dummies.len(), tags, bytes.len());
     Ok((bytes, stats, source))
 }
 
