@@ -25,6 +25,8 @@ pub mod geometry;
 mod limits;
 mod lossless;
 pub mod mesh;
+#[cfg(feature = "metrics")]
+pub mod metrics;
 mod varint;
 
 #[cfg(feature = "io")]

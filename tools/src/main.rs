@@ -14,8 +14,10 @@ macro_rules! say {
 }
 
 mod decode;
+mod distance;
 mod encode;
 mod info;
+mod rd;
 mod report;
 
 use clap::{Parser, Subcommand};
@@ -43,6 +45,13 @@ enum Command {
     /// mode, counts, bytes and bits per triangle of each section, CLERS
     /// histogram).
     Info(info::Args),
+    /// Measure the distance between two meshes (Metro-style L2, mean and
+    /// Hausdorff, both one-sided values).
+    Distance(distance::Args),
+    /// Rate-distortion table: code meshes at several rates with every
+    /// configuration, measure size and error; write CSV, Markdown and
+    /// plots; or --check a committed table for regressions.
+    Rd(rd::Args),
 }
 
 /// A failure tied to the file it concerns.
@@ -67,6 +76,8 @@ fn main() -> ExitCode {
         Command::Encode(args) => encode::run(&args),
         Command::Decode(args) => decode::run(&args),
         Command::Info(args) => info::run(&args),
+        Command::Distance(args) => distance::run(&args),
+        Command::Rd(args) => rd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

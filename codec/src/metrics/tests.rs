@@ -1,0 +1,268 @@
+//! Analytic checks of the surface distance: cases whose answer is known in
+//! closed form or by an independent quadrature.
+
+use super::*;
+use crate::edgebreaker::tests_support::grid;
+
+fn lifted(m: &TriMesh, dz: f32) -> TriMesh {
+    let mut m = m.clone();
+    for p in &mut m.positions {
+        p[2] += dz;
+    }
+    m
+}
+
+/// An icosahedron inscribed in the unit sphere, subdivided `levels` times
+/// with every new vertex pushed out onto the sphere.
+fn sphere(levels: u32) -> TriMesh {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut p: Vec<[f64; 3]> = [
+        [-1., t, 0.],
+        [1., t, 0.],
+        [-1., -t, 0.],
+        [1., -t, 0.],
+        [0., -1., t],
+        [0., 1., t],
+        [0., -1., -t],
+        [0., 1., -t],
+        [t, 0., -1.],
+        [t, 0., 1.],
+        [-t, 0., -1.],
+        [-t, 0., 1.],
+    ]
+    .map(unit)
+    .to_vec();
+    let mut f: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..levels {
+        let mut mid = std::collections::HashMap::new();
+        let mut next = Vec::new();
+        for tri in &f {
+            let m: [u32; 3] = core::array::from_fn(|k| {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    let (pa, pb) = (p[a as usize], p[b as usize]);
+                    p.push(unit(core::array::from_fn(|i| pa[i] + pb[i])));
+                    p.len() as u32 - 1
+                })
+            });
+            next.extend([
+                [tri[0], m[0], m[2]],
+                [tri[1], m[1], m[0]],
+                [tri[2], m[2], m[1]],
+                m,
+            ]);
+        }
+        f = next;
+    }
+    TriMesh::new(p.iter().map(|q| q.map(|c| c as f32)).collect(), f)
+}
+
+fn unit(p: [f64; 3]) -> [f64; 3] {
+    let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    p.map(|c| c / n)
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs()
+}
+
+#[test]
+fn identical_meshes_are_at_distance_zero() {
+    let m = sphere(2);
+    let d = distance(&m, &m, &DistanceOptions::default()).unwrap();
+    // Vertex samples are exactly on the other mesh; face and edge samples
+    // are off only by the rounding of their own coordinates.
+    assert!(d.hausdorff() < 1e-12, "{d:?}");
+    assert!(d.l2() < 1e-12);
+    assert!(d.forward.samples > 10 * 320);
+    assert_eq!(d.forward.samples, d.backward.samples);
+}
+
+#[test]
+fn offset_planes_are_exactly_the_offset_apart() {
+    let a = grid(4, 4);
+    let b = lifted(&a, 0.5);
+    for options in [
+        DistanceOptions::default(),
+        DistanceOptions::area_uniform(5000),
+    ] {
+        let d = distance(&a, &b, &options).unwrap();
+        for one in [d.forward, d.backward] {
+            assert!((one.max - 0.5).abs() < 1e-12);
+            assert!((one.mean - 0.5).abs() < 1e-12);
+            assert!((one.rms - 0.5).abs() < 1e-12);
+        }
+        assert!((d.l2_relative() - 0.5 / 32f64.sqrt()).abs() < 1e-12);
+        assert!((d.hausdorff_relative() - 0.5 / 32f64.sqrt()).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn one_raised_vertex_is_the_hausdorff_distance() {
+    let flat = grid(6, 6);
+    let mut bumped = flat.clone();
+    bumped.positions[3 * 7 + 3][2] = 0.75;
+    let d = distance(&flat, &bumped, &DistanceOptions::default()).unwrap();
+    // The raised vertex is a sample of the bumped mesh, 0.75 above the
+    // plane; nothing on the flat mesh is that far from the bump.
+    assert_eq!(d.backward.max, 0.75);
+    assert!(d.forward.max < 0.75);
+    assert_eq!(d.hausdorff(), 0.75);
+}
+
+/// Icosahedron inscribed in the unit sphere: its inradius is
+/// `√((5 + 2√5)/15)` times the circumradius, so the farthest point of a
+/// face from the sphere is its centre, `1 − inradius` away; the RMS over
+/// a face of `1 − |p|` comes from an independent midpoint quadrature.
+#[test]
+fn sphere_against_inscribed_icosahedron() {
+    let inradius = ((5.0 + 2.0 * 5f64.sqrt()) / 15.0).sqrt();
+    let expected_max = 1.0 - inradius;
+    let ico = sphere(0);
+    let t = ico.triangles[0].map(|v| ico.positions[v as usize].map(|c| c as f64));
+    let n = 600;
+    let (mut sum2, mut count) = (0.0, 0u64);
+    for i in 0..n {
+        for j in 0..n - i {
+            // Midpoints of the upright cells of an n × n barycentric grid
+            // (equal areas).
+            let (u, v) = (
+                (i as f64 + 1.0 / 3.0) / n as f64,
+                (j as f64 + 1.0 / 3.0) / n as f64,
+            );
+            let p: [f64; 3] = core::array::from_fn(|k| {
+                t[0][k] + u * (t[1][k] - t[0][k]) + v * (t[2][k] - t[0][k])
+            });
+            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            sum2 += (1.0 - r).powi(2);
+            count += 1;
+        }
+    }
+    let expected_rms = (sum2 / count as f64).sqrt();
+
+    // The sphere as a fine mesh: 20,480 faces, within 3e-4 of the sphere.
+    let fine = sphere(5);
+    let d = distance(&ico, &fine, &DistanceOptions::area_uniform(200_000)).unwrap();
+    assert!(
+        close(d.forward.max, expected_max, 3e-3),
+        "{} vs {expected_max}",
+        d.forward.max
+    );
+    assert!(
+        close(d.forward.rms, expected_rms, 3e-3),
+        "{} vs {expected_rms}",
+        d.forward.rms
+    );
+    // From the sphere's side the farthest points are above the face
+    // centres too.
+    assert!(
+        close(d.backward.max, expected_max, 3e-3),
+        "{}",
+        d.backward.max
+    );
+    assert!(close(d.hausdorff(), expected_max, 3e-3));
+}
+
+#[test]
+fn independent_of_the_thread_count() {
+    let a = sphere(3);
+    let b = lifted(&sphere(2), 0.01);
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| distance(&a, &b, &DistanceOptions::default()).unwrap())
+    };
+    let one = run(1);
+    assert_eq!(one, run(3));
+    assert_eq!(one, run(8));
+    // And the seed matters only to the face samples' positions.
+    let other_seed = distance(
+        &a,
+        &b,
+        &DistanceOptions {
+            seed: 9,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(other_seed.forward.samples, one.forward.samples);
+    assert_ne!(other_seed.forward.rms, one.forward.rms);
+}
+
+#[test]
+fn sample_counts_follow_the_options() {
+    let a = grid(10, 10);
+    let b = lifted(&a, 0.1);
+    let faces_only = distance(&a, &b, &DistanceOptions::area_uniform(1000)).unwrap();
+    assert_eq!(faces_only.forward.samples, 1000);
+    let default = distance(&a, &b, &DistanceOptions::default()).unwrap();
+    // 121 vertices, 320 edges of lengths 1 and √2 at √(2000/100) points
+    // per unit length, 2000 face samples.
+    let edges = 220.0 * 20f64.sqrt() + 100.0 * (2.0 * 20f64).sqrt();
+    let expected = 121.0 + edges + 2000.0;
+    assert!((default.forward.samples as f64 - expected).abs() < 2.0);
+    assert!(distance(
+        &a,
+        &b,
+        &DistanceOptions {
+            face_samples: Some(0),
+            vertex_samples: false,
+            edge_samples: false,
+            seed: 0
+        }
+    )
+    .is_err());
+}
+
+#[test]
+fn bad_meshes_are_errors() {
+    let good = grid(2, 2);
+    let empty = TriMesh::new(vec![[0.0; 3]], vec![]);
+    assert!(matches!(
+        distance(&good, &empty, &DistanceOptions::default()),
+        Err(Error::Topology(TopologyError::NoTriangles))
+    ));
+    let dangling = TriMesh::new(vec![[0.0; 3]; 2], vec![[0, 1, 2]]);
+    assert!(matches!(
+        distance(&dangling, &good, &DistanceOptions::default()),
+        Err(Error::Format(_))
+    ));
+    let nan = TriMesh::new(
+        vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, f32::NAN, 0.0]],
+        vec![[0, 1, 2]],
+    );
+    assert!(matches!(
+        distance(&good, &nan, &DistanceOptions::default()),
+        Err(Error::Format(_))
+    ));
+    // A degenerate (zero-area) surface is measurable.
+    let flat = TriMesh::new(
+        vec![[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
+        vec![[0, 1, 2]],
+    );
+    let d = distance(&good, &flat, &DistanceOptions::default()).unwrap();
+    assert!(d.hausdorff().is_finite() && d.hausdorff() > 0.0);
+}

@@ -1,0 +1,323 @@
+//! `swm rd`: the table, its files, the `--check` ratchet, and the
+//! committed regression tables under `corpus/rd/`.
+//!
+//! Kept to seconds: small generated meshes, few samples.
+
+mod common;
+use common::*;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn ok(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "swm failed: {}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The one line of a failed run's stderr.
+fn one_line_error(out: &Output, code: i32) -> String {
+    assert_eq!(out.status.code(), Some(code), "{out:?}");
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(err.lines().count(), 1, "not one line: {err}");
+    assert!(err.starts_with("swm: error: "), "{err}");
+    err
+}
+
+/// A small table: a torus from a file and `generated:cube`, two rates.
+fn small_table(name: &str) -> (PathBuf, PathBuf) {
+    let dir = scratch(name);
+    let torus = dir.join("torus.obj");
+    swm_corpus::save_obj(&swm_corpus::by_name("torus").unwrap(), &torus).unwrap();
+    let out = swm(&[
+        "rd",
+        s(&torus),
+        "generated:cube",
+        "--rates",
+        "8,1",
+        "--samples",
+        "3000",
+        "--out",
+        s(&dir),
+    ]);
+    ok(&out);
+    (dir.clone(), dir.join("rd.csv"))
+}
+
+/// CSV rows as maps from column to cell (comments skipped).
+fn read_csv(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .map(|h| h.to_string())
+                .zip(l.split(',').map(str::to_string))
+                .collect()
+        })
+        .collect()
+}
+
+/// The table at `csv` with `f` applied to `column` of the row starting
+/// with `row`.
+fn tamper(csv: &Path, row: &str, column: &str, f: impl Fn(&str) -> String) -> String {
+    let text = std::fs::read_to_string(csv).unwrap();
+    let header: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    let col = header.iter().position(|h| *h == column).unwrap();
+    let mut found = false;
+    let lines: Vec<String> = text
+        .lines()
+        .map(|l| {
+            if !l.starts_with(row) {
+                return l.to_string();
+            }
+            found = true;
+            let mut cells: Vec<String> = l.split(',').map(str::to_string).collect();
+            cells[col] = f(&cells[col]);
+            cells.join(",")
+        })
+        .collect();
+    assert!(found, "no row {row}");
+    lines.join("\n") + "\n"
+}
+
+#[test]
+fn writes_csv_markdown_and_plots() {
+    let (dir, csv) = small_table("rd-files");
+    let rows = read_csv(&csv);
+    // 2 meshes x 2 rates x 2 configurations, sorted by mesh (as given),
+    // rate, configuration.
+    let order: Vec<(String, String, String)> = rows
+        .iter()
+        .map(|r| {
+            (
+                r["mesh"].clone(),
+                r["rate_bpv"].clone(),
+                r["config"].clone(),
+            )
+        })
+        .collect();
+    let expect: Vec<(String, String, String)> = ["torus.obj", "generated:cube"]
+        .iter()
+        .flat_map(|m| {
+            ["1", "8"].iter().flat_map(move |r| {
+                ["lossless", "baseline"]
+                    .iter()
+                    .map(move |c| (m.to_string(), r.to_string(), c.to_string()))
+            })
+        })
+        .collect();
+    assert_eq!(order, expect);
+    for r in &rows {
+        for col in [
+            "mesh",
+            "rate_bpv",
+            "config",
+            "bytes",
+            "l2_rel",
+            "hausdorff_rel",
+            "encode_s",
+            "decode_s",
+            "status",
+            "bpv",
+            "faces",
+            "qp",
+            "budget_bytes",
+            "vertices",
+            "samples",
+        ] {
+            assert!(r.contains_key(col), "no column {col}");
+        }
+        let vertices: f64 = r["vertices"].parse().unwrap();
+        let rate: f64 = r["rate_bpv"].parse().unwrap();
+        let budget: u64 = r["budget_bytes"].parse().unwrap();
+        assert_eq!(budget, (rate * vertices / 8.0).floor() as u64);
+        match r["status"].as_str() {
+            "ok" => {
+                let bytes: u64 = r["bytes"].parse().unwrap();
+                assert!(bytes <= budget, "{r:?}");
+                assert!(r["l2_rel"].parse::<f64>().unwrap() >= 0.0);
+                assert!(
+                    r["hausdorff_rel"].parse::<f64>().unwrap()
+                        >= r["l2_rel"].parse::<f64>().unwrap()
+                );
+            }
+            "infeasible" => assert!(r["bytes"].is_empty() && r["l2_rel"].is_empty(), "{r:?}"),
+            other => panic!("status {other}"),
+        }
+    }
+    // The lossless mode cannot fit the torus's 3,072 triangles in 1 bit
+    // per vertex; simplification can.
+    let at = |mesh: &str, rate: &str, config: &str| {
+        rows.iter()
+            .find(|r| r["mesh"] == mesh && r["rate_bpv"] == rate && r["config"] == config)
+            .unwrap()
+    };
+    assert_eq!(at("torus.obj", "1", "lossless")["status"], "infeasible");
+    assert_eq!(at("torus.obj", "1", "baseline")["status"], "ok");
+    assert_eq!(at("torus.obj", "8", "lossless")["status"], "ok");
+
+    let md = std::fs::read_to_string(dir.join("rd.md")).unwrap();
+    assert!(md.contains("## torus") && md.contains("## cube"), "{md}");
+    assert!(md.contains("| baseline | L2 |"), "{md}");
+    for mesh in ["torus", "cube"] {
+        let svg = std::fs::read_to_string(dir.join(format!("rd-{mesh}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        assert!(svg.contains("bits per input vertex") && svg.contains(">\nbaseline\n<"));
+    }
+}
+
+#[test]
+fn json_prints_the_rows() {
+    let out = swm(&[
+        "rd",
+        "generated:torus",
+        "--rates",
+        "2",
+        "--configs",
+        "baseline",
+        "--samples",
+        "2000",
+        "--json",
+    ]);
+    let v = json(&out);
+    let rows = v.as_array().unwrap();
+    assert_eq!(rows.len(), 1);
+    let r = &rows[0];
+    assert_eq!(r["mesh"], "generated:torus");
+    assert_eq!(r["config"], "baseline");
+    assert_eq!(r["status"], "ok");
+    assert_eq!(r["rate_bpv"], 2.0);
+    assert!(r["bytes"].as_u64().unwrap() <= r["budget_bytes"].as_u64().unwrap());
+    assert!(r["l2_rel"].as_f64().unwrap() > 0.0);
+    assert!(r["qp"].as_u64().unwrap() >= 7 && r["qp"].as_u64().unwrap() <= 14);
+}
+
+#[test]
+fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
+    let (dir, csv) = small_table("rd-check");
+    let out = swm(&["rd", "--check", s(&csv)]);
+    let text = ok(&out);
+    // Every number but the times reproduces bit for bit.
+    let verdicts: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.contains("rows checked"))
+        .collect();
+    assert_eq!(verdicts.len(), 8, "{text}");
+    assert!(verdicts.iter().all(|l| l.starts_with("same ")), "{text}");
+
+    // Halve the L2 of the torus's 8 bpv lossless row.
+    let row = "torus.obj,8,lossless,ok,";
+    let tampered = dir.join("tampered.csv");
+    let halve = |c: &str| (c.parse::<f64>().unwrap() / 2.0).to_string();
+    std::fs::write(&tampered, tamper(&csv, row, "l2_rel", halve)).unwrap();
+    let out = swm(&["rd", "--check", s(&tampered)]);
+    let err = one_line_error(&out, 1);
+    assert!(err.contains(&tampered.display().to_string()), "{err}");
+    assert!(
+        err.contains("torus.obj 8 bpv lossless") && err.contains("l2_rel"),
+        "{err}"
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let worse: Vec<&str> = stdout.lines().filter(|l| l.starts_with("WORSE")).collect();
+    assert_eq!(worse.len(), 1, "{stdout}");
+    assert!(worse[0].contains("+100.0%"), "{stdout}");
+
+    // A file that grows by one byte fails too, though no distance moved.
+    let shrink = |c: &str| (c.parse::<u64>().unwrap() - 1).to_string();
+    std::fs::write(&tampered, tamper(&csv, row, "bytes", shrink)).unwrap();
+    let err = one_line_error(&swm(&["rd", "--check", s(&tampered)]), 1);
+    assert!(err.contains("bytes"), "{err}");
+
+    // --only keeps one mesh's rows; --json gives verdicts.
+    let out = swm(&["rd", "--check", s(&csv), "--only", "cube", "--json"]);
+    let v = json(&out);
+    let rows = v.as_array().unwrap();
+    assert_eq!(rows.len(), 4);
+    assert!(rows
+        .iter()
+        .all(|r| r["mesh"] == "generated:cube" && r["verdict"] == "pass"));
+}
+
+#[test]
+fn bad_inputs_give_one_line_errors() {
+    let dir = scratch("rd-errors");
+    let missing = dir.join("missing.obj");
+    let err = one_line_error(&swm(&["rd", s(&missing)]), 1);
+    assert!(
+        err.starts_with(&format!("swm: error: {}:", missing.display())),
+        "{err}"
+    );
+
+    let err = one_line_error(&swm(&["rd", "generated:teapot"]), 1);
+    assert!(err.starts_with("swm: error: generated:teapot:"), "{err}");
+
+    // Usage errors: clap's message names the option, exit status 2.
+    for (args, option) in [
+        (&["rd", "generated:cube", "--rates", "1,abc"][..], "--rates"),
+        (&["rd", "generated:cube", "--rates=-1"][..], "--rates"),
+        (&["rd", "generated:cube", "--rates", "0"][..], "--rates"),
+        (
+            &["rd", "generated:cube", "--configs", "swing"][..],
+            "--configs",
+        ),
+        (&["rd", "generated:cube", "--samples", "0"][..], "--samples"),
+        (&["rd"][..], "required"),
+        (&["rd", "generated:cube", "--check", "x.csv"][..], "--check"),
+    ] {
+        let out = swm(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {out:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.lines().next().unwrap().contains(option),
+            "{args:?}: {err}"
+        );
+    }
+
+    // Tables: missing, malformed, or without the mesh asked for.
+    let err = one_line_error(&swm(&["rd", "--check", s(&dir.join("none.csv"))]), 1);
+    assert!(err.contains("none.csv"), "{err}");
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "mesh,rate_bpv\ngenerated:cube,1\n").unwrap();
+    let err = one_line_error(&swm(&["rd", "--check", s(&bad)]), 1);
+    assert!(err.contains("bad.csv") && err.contains("line 1"), "{err}");
+    let (_, csv) = small_table("rd-errors-table");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    std::fs::write(&bad, text.replacen(",lossless,", ",lossy,", 1)).unwrap();
+    let err = one_line_error(&swm(&["rd", "--check", s(&bad)]), 1);
+    assert!(err.contains("line 3") && err.contains("config"), "{err}");
+    let err = one_line_error(&swm(&["rd", "--check", s(&csv), "--only", "bunny"]), 1);
+    assert!(err.contains("bunny"), "{err}");
+}
+
+/// The committed table over the generated corpus reproduces.
+#[test]
+fn committed_generated_table_holds() {
+    let table = Path::new(env!("CARGO_MANIFEST_DIR")).join("../corpus/rd/generated.csv");
+    let out = swm(&["rd", "--check", s(&table)]);
+    let text = ok(&out);
+    assert!(text.contains(" 0 regressed"), "{text}");
+}
+
+/// The fandisk rows of the committed shared-corpus table reproduce (the
+/// bunny and horse rows take longer; `swm rd --check corpus/rd/shared.csv`
+/// runs them all).
+#[test]
+fn committed_shared_table_holds_for_fandisk() {
+    if shared_corpus().is_none() {
+        return;
+    }
+    let table = Path::new(env!("CARGO_MANIFEST_DIR")).join("../corpus/rd/shared.csv");
+    let out = swm(&["rd", "--check", s(&table), "--only", "fandisk"]);
+    let text = ok(&out);
+    assert!(text.contains("10 rows checked, 0 regressed"), "{text}");
+}

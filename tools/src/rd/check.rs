@@ -1,0 +1,237 @@
+//! `swm rd --check TABLE`: the rate-distortion ratchet.
+//!
+//! Every row of a committed table is run again with the same mesh, rate,
+//! configuration and sample count, and compared with what the table says.
+//! A row regresses when
+//!
+//! * its file grows by even one byte,
+//! * its `l2_rel` or `hausdorff_rel` grows by more than the tolerance
+//!   (relative, 1% by default: `--tolerance 0.01`) plus [`SLACK`], or
+//! * it was coded and now nothing fits its budget.
+//!
+//! A row that was infeasible and stays so passes; so does every
+//! improvement. All measured numbers are deterministic, so on an unchanged
+//! codec every row reproduces exactly on the platform that wrote the table
+//! (the committed tables: x86-64 Linux); the tolerance absorbs last-bit
+//! differences of other platforms' math libraries in the distances (but
+//! not in sizes: `swm_corpus` meshes built with another libm's `sin` may
+//! differ in the last bit, and so may their files). A legitimate
+//! trade (more bytes for much less error within the same budget) also
+//! fails: regenerate the table in the same commit, so the change is seen.
+//! A row whose mesh changed (different vertex count or budget) is a
+//! failure too: the table no longer describes that mesh.
+
+use crate::rd::source::Source;
+use crate::rd::table::{self, Row};
+use crate::rd::{fail, Args, Job};
+use crate::CliError;
+use std::path::Path;
+
+/// Absolute slack on distances, in their unit (1e-4 of the diagonal):
+/// 1e-7 of the diagonal, the resolution of `f32` coordinates. Without it
+/// an exact reconstruction (distance 0) would fail on any rounding.
+pub const SLACK: f64 = 1e-3;
+
+/// One way a row got worse.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Regression {
+    /// The column: `bytes`, `l2_rel`, `hausdorff_rel`, `status`, `vertices`
+    /// or `budget_bytes`.
+    pub metric: &'static str,
+    /// The table's value (`NaN` where it has none).
+    pub old: f64,
+    /// The fresh value (`NaN` where there is none).
+    pub new: f64,
+}
+
+impl std::fmt::Display for Regression {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.metric {
+            "status" => write!(f, "status ok -> infeasible"),
+            "bytes" | "vertices" | "budget_bytes" => {
+                write!(f, "{} {} -> {}", self.metric, self.old, self.new)
+            }
+            _ => write!(
+                f,
+                "{} {:.4} -> {:.4} ({:+.1}%)",
+                self.metric,
+                self.old,
+                self.new,
+                100.0 * (self.new / self.old - 1.0)
+            ),
+        }
+    }
+}
+
+/// How `new` (a fresh run of `old`'s row) compares with `old`.
+pub fn compare(old: &Row, new: &Row, tolerance: f64) -> Vec<Regression> {
+    let mut out = Vec::new();
+    let exact = |metric, o: u64, n: u64| Regression {
+        metric,
+        old: o as f64,
+        new: n as f64,
+    };
+    if old.vertices != new.vertices {
+        out.push(exact("vertices", old.vertices, new.vertices));
+    }
+    if old.budget_bytes != new.budget_bytes {
+        out.push(exact("budget_bytes", old.budget_bytes, new.budget_bytes));
+    }
+    match (&old.coded, &new.coded) {
+        (Some(_), None) => out.push(Regression {
+            metric: "status",
+            old: f64::NAN,
+            new: f64::NAN,
+        }),
+        (Some(o), Some(n)) => {
+            if n.bytes > o.bytes {
+                out.push(exact("bytes", o.bytes, n.bytes));
+            }
+            for (metric, o, n) in [
+                ("l2_rel", o.l2_rel, n.l2_rel),
+                ("hausdorff_rel", o.hausdorff_rel, n.hausdorff_rel),
+            ] {
+                if n > o * (1.0 + tolerance) + SLACK {
+                    out.push(Regression {
+                        metric,
+                        old: o,
+                        new: n,
+                    });
+                }
+            }
+        }
+        (None, _) => {}
+    }
+    out
+}
+
+/// The line printed for one row.
+pub fn verdict_line(old: &Row, new: &Row, regressions: &[Regression]) -> String {
+    let what = match &new.coded {
+        Some(c) => format!(
+            "{} B, l2_rel {:.4}, hausdorff_rel {:.3}",
+            c.bytes, c.l2_rel, c.hausdorff_rel
+        ),
+        None => "infeasible".to_string(),
+    };
+    if regressions.is_empty() {
+        let same = match (&old.coded, &new.coded) {
+            (None, None) => true,
+            (Some(o), Some(n)) => {
+                (o.bytes, o.l2_rel, o.hausdorff_rel) == (n.bytes, n.l2_rel, n.hausdorff_rel)
+            }
+            _ => false,
+        };
+        let tag = if same { "same" } else { "ok" };
+        format!("{tag:<7}{}: {what}", old.key())
+    } else {
+        let why: Vec<String> = regressions.iter().map(|r| r.to_string()).collect();
+        format!("WORSE  {}: {}", old.key(), why.join("; "))
+    }
+}
+
+/// `swm rd --check TABLE`: re-runs the rows (those of `--only` meshes),
+/// prints a verdict per row, and fails naming the first regression.
+pub fn run(args: &Args, table_path: &Path) -> Result<(), CliError> {
+    let text = std::fs::read_to_string(table_path).map_err(|e| CliError::new(table_path, e))?;
+    let mut old = table::from_csv(&text).map_err(|e| CliError::new(table_path, e))?;
+    let table_dir = table_path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let short = |cell: &str| Source::from_table(cell, table_dir).short_name();
+    for only in &args.only {
+        if !old
+            .iter()
+            .any(|r| &r.mesh == only || &short(&r.mesh) == only)
+        {
+            return Err(fail(
+                table_path,
+                format!("no row is for the mesh `{only}` (--only)"),
+            ));
+        }
+    }
+    if !args.only.is_empty() {
+        old.retain(|r| {
+            args.only
+                .iter()
+                .any(|o| *o == r.mesh || *o == short(&r.mesh))
+        });
+    }
+    if old.is_empty() {
+        return Err(fail(table_path, "the table has no rows"));
+    }
+    let mut named: Vec<(Source, String)> = Vec::new();
+    for r in &old {
+        if !named.iter().any(|(_, n)| *n == r.mesh) {
+            named.push((Source::from_table(&r.mesh, table_dir), r.mesh.clone()));
+        }
+    }
+    let cases = super::load(named, Some(table_dir))?;
+    let jobs: Vec<Job> = old
+        .iter()
+        .map(|r| Job {
+            case: cases
+                .iter()
+                .position(|c| c.table_name == r.mesh)
+                .expect("loaded"),
+            rate: r.rate_bpv,
+            config: r.config,
+            samples: r.samples,
+        })
+        .collect();
+    let fresh = super::run_jobs(&cases, &jobs)?;
+    super::write_outputs(args, &cases, &fresh)?;
+
+    let mut worse = Vec::new();
+    let mut json_rows = Vec::new();
+    for (o, n) in old.iter().zip(&fresh) {
+        let regressions = compare(o, n, args.tolerance);
+        let line = verdict_line(o, n, &regressions);
+        if args.json {
+            let mut v = n.to_json();
+            v["verdict"] = if regressions.is_empty() {
+                "pass"
+            } else {
+                "worse"
+            }
+            .into();
+            v["regressions"] = regressions
+                .iter()
+                .map(|r| r.to_string())
+                .collect::<Vec<_>>()
+                .into();
+            json_rows.push(v);
+        } else {
+            say!("{line}");
+        }
+        if !regressions.is_empty() {
+            worse.push(line);
+        }
+    }
+    if args.json {
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&json_rows).expect("JSON of numbers")
+        );
+    } else {
+        say!(
+            "{} rows checked, {} regressed (tolerance {}%)",
+            old.len(),
+            worse.len(),
+            100.0 * args.tolerance
+        );
+    }
+    match worse.first() {
+        None => Ok(()),
+        Some(first) => Err(fail(
+            table_path,
+            format!(
+                "{} of {} rows regressed; first: {}",
+                worse.len(),
+                old.len(),
+                first.trim_start_matches("WORSE").trim_start()
+            ),
+        )),
+    }
+}

@@ -1,0 +1,330 @@
+//! `swm rd`: the rate-distortion harness.
+//!
+//! ```text
+//! swm rd MESH... [--rates 0.5,1,2,4,8] [--configs lossless,baseline]
+//!        [--samples N] [--out DIR] [--name rd] [--json]
+//! swm rd --check TABLE.csv [--only MESH]... [--tolerance 0.01] [--out DIR] [--json]
+//! ```
+//!
+//! For every mesh, rate and configuration, code the mesh into
+//! ⌊rate × V / 8⌋ bytes (V = vertices of the mesh as read, the unit of the
+//! thesis's tables), decode it, and measure the file and the distance of
+//! the decoded mesh from the input (L2 and Hausdorff, area-uniform samples
+//! on both surfaces, in 1e-4 of the input's bbox diagonal). A
+//! configuration that cannot fit the budget gives an `infeasible` row.
+//! With `--out DIR` it writes `DIR/NAME.csv` (see [`table`]), `NAME.md`
+//! and one plot per mesh, `NAME-MESH.svg` (see [`plot`]), each atomically.
+//!
+//! Jobs (mesh × rate × configuration) run in parallel; every number but
+//! the times is a pure function of the inputs, and rows come out in
+//! (mesh, rate, configuration) order, so a table is reproducible bit for
+//! bit. That is what lets `--check` ([`check`]) act as a ratchet.
+
+mod baseline;
+mod case;
+mod check;
+mod config;
+mod plot;
+mod source;
+mod table;
+
+use crate::CliError;
+use case::Case;
+use config::Config;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use source::Source;
+use std::path::{Path, PathBuf};
+use table::Row;
+
+/// Face samples per direction of a row's final distance, unless `--samples`
+/// says otherwise: the count of the shared corpus's peer figures.
+const DEFAULT_SAMPLES: u64 = 300_000;
+
+#[derive(clap::Args)]
+#[command(after_long_help = HELP)]
+pub struct Args {
+    /// Meshes: mesh files, `generated:NAME` (a mesh of swm-corpus, built in
+    /// memory) or `shared:FILE` (a file of ../shared/corpus).
+    #[arg(required_unless_present = "check", conflicts_with = "check")]
+    meshes: Vec<String>,
+    /// Target rates in bits per vertex of the mesh as read.
+    #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,4,8", value_parser = parse_rate, conflicts_with = "check")]
+    rates: Vec<f64>,
+    /// Configurations to run (default: all).
+    #[arg(long, value_enum, value_delimiter = ',', conflicts_with = "check")]
+    configs: Vec<Config>,
+    /// Area-uniform face samples per surface for each row's distance (the
+    /// baseline compares its candidates with a tenth of them).
+    #[arg(long, default_value_t = DEFAULT_SAMPLES, value_parser = clap::value_parser!(u64).range(1..), conflicts_with = "check")]
+    samples: u64,
+    /// Write NAME.csv, NAME.md and NAME-MESH.svg into this folder (with
+    /// --check: the fresh results, written before they are compared).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Base name of the files written by --out.
+    #[arg(long, default_value = "rd", value_parser = parse_name)]
+    name: String,
+    /// Re-run the rows of this table and compare; exit 1 if any regressed.
+    #[arg(long, value_name = "TABLE")]
+    check: Option<PathBuf>,
+    /// With --check: only the rows of this mesh (its table name or short
+    /// name, e.g. `fandisk`). Repeatable.
+    #[arg(long, requires = "check", value_name = "MESH")]
+    only: Vec<String>,
+    /// With --check: relative growth of l2_rel or hausdorff_rel tolerated.
+    #[arg(long, default_value_t = 0.01, value_parser = parse_tolerance)]
+    tolerance: f64,
+    /// Print the rows (with --check: rows and verdicts) as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+const HELP: &str = "\
+Rates: the byte budget is floor(rate x V / 8), V = vertices of the mesh as read.
+Configurations:
+  lossless  swm's lossless mode, the largest qp (6..24) that fits
+  baseline  quadric simplification (meshoptimizer), then the lossless mode,
+            at the face count and qp (7..14) with the lowest L2 that fits
+A configuration that cannot fit a budget gives a row with status infeasible.
+Distances: L2 (larger one-sided RMS) and Hausdorff, from area-uniform face
+samples on both surfaces, in units of 1e-4 of the input's bbox diagonal.
+
+--check TABLE re-runs every row of TABLE (same mesh, rate, configuration and
+samples) and prints one verdict per row. A row regresses when its file grows
+by one byte or more, when l2_rel or hausdorff_rel grows by more than
+--tolerance (relative; default 0.01 = 1%) plus 1e-7 of the diagonal, or when
+it no longer fits its budget; any regression makes the exit status 1. Rows
+that were infeasible and stay so pass.
+
+Tables name meshes so that a fresh clone can check them: generated:NAME,
+shared:FILE (found in $SWM_SHARED_CORPUS, else in the shared/corpus folder of
+the nearest ancestor of the table's folder or of the current folder), or a
+path relative to the table's folder.";
+
+fn parse_rate(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(r) if r.is_finite() && r > 0.0 && r <= 1e6 => Ok(r),
+        _ => Err(format!(
+            "`{s}` is not a rate (a positive number of bits per vertex)"
+        )),
+    }
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(t) if t.is_finite() && t >= 0.0 => Ok(t),
+        _ => Err(format!(
+            "`{s}` is not a tolerance (a non-negative fraction, e.g. 0.01)"
+        )),
+    }
+}
+
+fn parse_name(s: &str) -> Result<String, String> {
+    let ok = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'));
+    if ok {
+        Ok(s.to_string())
+    } else {
+        Err(format!(
+            "`{s}` is not a file base name (letters, digits, - _ .)"
+        ))
+    }
+}
+
+/// An error that is the harness's own, not the library's.
+pub fn fail(path: impl Into<PathBuf>, what: impl Into<String>) -> CliError {
+    CliError::new(path, std::io::Error::other(what.into()))
+}
+
+/// One row to compute.
+struct Job {
+    case: usize,
+    rate: f64,
+    config: Config,
+    samples: u64,
+}
+
+pub fn run(args: &Args) -> Result<(), CliError> {
+    match &args.check {
+        Some(table) => check::run(args, table),
+        None => run_fresh(args),
+    }
+}
+
+fn run_fresh(args: &Args) -> Result<(), CliError> {
+    let table_dir = args.out.clone().unwrap_or_else(|| PathBuf::from("."));
+    let mut sources: Vec<Source> = Vec::new();
+    for m in &args.meshes {
+        let s = Source::from_arg(m);
+        if !sources.contains(&s) {
+            sources.push(s);
+        }
+    }
+    let named = sources
+        .into_iter()
+        .map(|s| {
+            let name = s.table_name(&table_dir);
+            (s, name)
+        })
+        .collect();
+    let cases = load(named, None)?;
+    let mut rates = args.rates.clone();
+    rates.sort_by(f64::total_cmp);
+    rates.dedup();
+    let mut configs = if args.configs.is_empty() {
+        Config::ALL.to_vec()
+    } else {
+        args.configs.clone()
+    };
+    configs.sort();
+    configs.dedup();
+    let mut jobs = Vec::new();
+    for case in 0..cases.len() {
+        for &rate in &rates {
+            for &config in &configs {
+                jobs.push(Job {
+                    case,
+                    rate,
+                    config,
+                    samples: args.samples,
+                });
+            }
+        }
+    }
+    let rows = run_jobs(&cases, &jobs)?;
+    write_outputs(args, &cases, &rows)?;
+    if args.json {
+        let v: Vec<_> = rows.iter().map(Row::to_json).collect();
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&v).expect("JSON of numbers")
+        );
+    } else {
+        for r in &rows {
+            say!("{}", summary(r));
+        }
+    }
+    Ok(())
+}
+
+/// Reads and prepares every mesh, in parallel; refuses two meshes that
+/// would share a plot file.
+fn load(named: Vec<(Source, String)>, base: Option<&Path>) -> Result<Vec<Case>, CliError> {
+    let cases: Vec<Case> = named
+        .into_par_iter()
+        .map(|(source, name)| {
+            let mesh = source.load(base)?;
+            Case::new(source, name, mesh)
+        })
+        .collect::<Result<_, _>>()?;
+    for (i, a) in cases.iter().enumerate() {
+        if let Some(b) = cases[..i]
+            .iter()
+            .find(|b| b.source.short_name() == a.source.short_name())
+        {
+            return Err(fail(
+                a.label(),
+                format!(
+                    "has the same short name as {} ({}): their plots would collide",
+                    b.label().display(),
+                    a.source.short_name()
+                ),
+            ));
+        }
+    }
+    Ok(cases)
+}
+
+/// Runs every job in parallel, with a progress bar on a terminal; rows
+/// come back in job order.
+fn run_jobs(cases: &[Case], jobs: &[Job]) -> Result<Vec<Row>, CliError> {
+    let bar = ProgressBar::new(jobs.len() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("swm rd [{elapsed_precise}] {bar:40} {pos}/{len} rows")
+            .expect("a valid template"),
+    );
+    let rows = jobs
+        .par_iter()
+        .map(|job| {
+            let case = &cases[job.case];
+            let vertices = case.vertices();
+            let budget = (job.rate * vertices as f64 / 8.0).floor() as u64;
+            let coded = job.config.run(case, budget, job.samples)?;
+            bar.inc(1);
+            Ok(Row {
+                mesh: case.table_name.clone(),
+                rate_bpv: job.rate,
+                config: job.config,
+                vertices,
+                budget_bytes: budget,
+                samples: job.samples,
+                coded,
+            })
+        })
+        .collect::<Result<Vec<Row>, CliError>>();
+    bar.finish_and_clear();
+    rows
+}
+
+/// `--out DIR`: the CSV, the Markdown and one plot per mesh.
+fn write_outputs(args: &Args, cases: &[Case], rows: &[Row]) -> Result<(), CliError> {
+    let Some(dir) = &args.out else {
+        return Ok(());
+    };
+    std::fs::create_dir_all(dir).map_err(|e| CliError::new(dir, e))?;
+    let short = |mesh: &str| {
+        cases
+            .iter()
+            .find(|c| c.table_name == mesh)
+            .map_or_else(|| mesh.to_string(), |c| c.source.short_name())
+    };
+    let write = |file: String, text: String| {
+        let path = dir.join(file);
+        swm::io::write_bytes(&path, text.as_bytes()).map_err(|e| CliError::new(&path, e))
+    };
+    // Rows name meshes for the table they came from (`--check`); the new
+    // table names them for its own folder.
+    let rows: Vec<Row> = rows
+        .iter()
+        .map(|r| {
+            let case = cases.iter().find(|c| c.table_name == r.mesh);
+            let mesh = case.map_or_else(|| r.mesh.clone(), |c| c.source.table_name(dir));
+            Row { mesh, ..r.clone() }
+        })
+        .collect();
+    let rows = &rows[..];
+    write(format!("{}.csv", args.name), table::to_csv(rows))?;
+    write(
+        format!("{}.md", args.name),
+        table::to_markdown(&args.name, rows, short),
+    )?;
+    for case in cases {
+        let mine: Vec<&Row> = rows.iter().filter(|r| r.mesh == case.table_name).collect();
+        let name = case.source.short_name();
+        let title = format!("{name}: L2 error against rate");
+        let file = format!("{}-{name}.svg", args.name);
+        let svg = plot::svg(&title, &mine).map_err(|e| fail(dir.join(&file), e))?;
+        write(file, svg)?;
+    }
+    Ok(())
+}
+
+/// One line per row for the terminal.
+fn summary(r: &Row) -> String {
+    match (&r.coded, r.bpv()) {
+        (Some(c), Some(bpv)) => format!(
+            "{}: {} B ({bpv:.3} bpv), {} faces, qp {}, L2 {:.3}, Hausdorff {:.2} (1e-4 of the diagonal), encode {:.3} s, decode {:.4} s",
+            r.key(),
+            c.bytes,
+            c.faces,
+            c.qp,
+            c.l2_rel,
+            c.hausdorff_rel,
+            c.encode_s,
+            c.decode_s
+        ),
+        _ => format!("{}: infeasible (budget {} B)", r.key(), r.budget_bytes),
+    }
+}

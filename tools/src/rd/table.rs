@@ -1,0 +1,368 @@
+//! The rd table: one row per (mesh, rate, configuration), written as CSV
+//! (the regression record that `--check` reads back), Markdown (for
+//! people) and JSON (`--json`).
+//!
+//! CSV columns, in order (readers find them by name, so more may be added):
+//!
+//! | column | meaning |
+//! |---|---|
+//! | `mesh` | the mesh, as `rd::source` names it |
+//! | `rate_bpv` | the target rate, bits per input vertex |
+//! | `config` | the configuration (`lossless`, `baseline`, ...) |
+//! | `status` | `ok`, or `infeasible` when nothing fits the budget |
+//! | `vertices` | vertex count of the mesh as read (the rate's unit) |
+//! | `budget_bytes` | ⌊rate × vertices / 8⌋ |
+//! | `bytes` | size of the `.swm` file |
+//! | `bpv` | actual bits per input vertex, 8 × bytes / vertices |
+//! | `faces` | triangles of the decoded mesh |
+//! | `qp` | bits per coordinate used |
+//! | `samples` | area-proportional face samples per direction of the final distance |
+//! | `l2_rel` | L2 (max of the one-sided RMS), in 1e-4 of the input's bbox diagonal |
+//! | `hausdorff_rel` | Hausdorff distance, same unit |
+//! | `encode_s`, `decode_s` | wall times (simplification included in the baseline's encode) |
+//!
+//! Infeasible rows leave the measured columns empty. Numbers other than
+//! times are printed in Rust's shortest round-trip form, so a table read
+//! back compares bit for bit with a fresh run. Lines starting with `#` are
+//! comments.
+
+use crate::rd::config::Config;
+use serde_json::{json, Value};
+use swm::{FormatError, Location, Malformed};
+
+/// What a configuration produced at one rate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coded {
+    /// Size of the `.swm` file.
+    pub bytes: u64,
+    /// Triangles of the decoded mesh.
+    pub faces: u64,
+    /// Bits per coordinate.
+    pub qp: u8,
+    /// L2 distance, 1e-4 of the diagonal.
+    pub l2_rel: f64,
+    /// Hausdorff distance, 1e-4 of the diagonal.
+    pub hausdorff_rel: f64,
+    /// Seconds to encode (and simplify, for the baseline).
+    pub encode_s: f64,
+    /// Seconds to decode.
+    pub decode_s: f64,
+}
+
+/// One row of the table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// The mesh, as the table names it.
+    pub mesh: String,
+    /// Target bits per input vertex.
+    pub rate_bpv: f64,
+    /// The configuration.
+    pub config: Config,
+    /// Vertices of the mesh as read.
+    pub vertices: u64,
+    /// Byte budget derived from the rate.
+    pub budget_bytes: u64,
+    /// Face samples per direction of the final distance measurement.
+    pub samples: u64,
+    /// The outcome; `None` when nothing fits the budget.
+    pub coded: Option<Coded>,
+}
+
+impl Row {
+    /// `ok` or `infeasible`.
+    pub fn status(&self) -> &'static str {
+        if self.coded.is_some() {
+            "ok"
+        } else {
+            "infeasible"
+        }
+    }
+
+    /// Actual bits per input vertex.
+    pub fn bpv(&self) -> Option<f64> {
+        let c = self.coded.as_ref()?;
+        Some(8.0 * c.bytes as f64 / self.vertices.max(1) as f64)
+    }
+
+    /// How verdicts and messages name the row.
+    pub fn key(&self) -> String {
+        format!("{} {} bpv {}", self.mesh, self.rate_bpv, self.config.name())
+    }
+
+    /// The row as a JSON object with the CSV's keys (`null` when empty).
+    pub fn to_json(&self) -> Value {
+        let c = self.coded.as_ref();
+        json!({
+            "mesh": self.mesh,
+            "rate_bpv": self.rate_bpv,
+            "config": self.config.name(),
+            "status": self.status(),
+            "vertices": self.vertices,
+            "budget_bytes": self.budget_bytes,
+            "bytes": c.map(|c| c.bytes),
+            "bpv": self.bpv(),
+            "faces": c.map(|c| c.faces),
+            "qp": c.map(|c| c.qp),
+            "samples": self.samples,
+            "l2_rel": c.map(|c| c.l2_rel),
+            "hausdorff_rel": c.map(|c| c.hausdorff_rel),
+            "encode_s": c.map(|c| c.encode_s),
+            "decode_s": c.map(|c| c.decode_s),
+        })
+    }
+}
+
+/// The CSV columns, in the order written.
+pub const COLUMNS: [&str; 15] = [
+    "mesh",
+    "rate_bpv",
+    "config",
+    "status",
+    "vertices",
+    "budget_bytes",
+    "bytes",
+    "bpv",
+    "faces",
+    "qp",
+    "samples",
+    "l2_rel",
+    "hausdorff_rel",
+    "encode_s",
+    "decode_s",
+];
+
+/// The table as CSV.
+pub fn to_csv(rows: &[Row]) -> String {
+    let mut out = String::from(
+        "# swm rd table: l2_rel and hausdorff_rel in units of 1e-4 of the input's bounding-box diagonal; \
+         bpv = bits per vertex of the mesh as read. Check with: swm rd --check THIS_FILE\n",
+    );
+    out.push_str(&COLUMNS.join(","));
+    out.push('\n');
+    for r in rows {
+        let c = r.coded.as_ref();
+        let opt = |v: Option<String>| v.unwrap_or_default();
+        let cells = [
+            csv_cell(&r.mesh),
+            r.rate_bpv.to_string(),
+            r.config.name().to_string(),
+            r.status().to_string(),
+            r.vertices.to_string(),
+            r.budget_bytes.to_string(),
+            opt(c.map(|c| c.bytes.to_string())),
+            opt(r.bpv().map(|b| b.to_string())),
+            opt(c.map(|c| c.faces.to_string())),
+            opt(c.map(|c| c.qp.to_string())),
+            r.samples.to_string(),
+            opt(c.map(|c| c.l2_rel.to_string())),
+            opt(c.map(|c| c.hausdorff_rel.to_string())),
+            opt(c.map(|c| format!("{:.4}", c.encode_s))),
+            opt(c.map(|c| format!("{:.4}", c.decode_s))),
+        ];
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// Mesh names are the only free text; quote them when they need it.
+fn csv_cell(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// Splits one CSV line, honouring double quotes.
+fn split_csv(line: &str) -> Option<Vec<String>> {
+    let mut cells = Vec::new();
+    let mut cell = String::new();
+    let mut chars = line.chars().peekable();
+    let mut quoted = false;
+    while let Some(ch) = chars.next() {
+        match (quoted, ch) {
+            (true, '"') if chars.peek() == Some(&'"') => {
+                cell.push('"');
+                chars.next();
+            }
+            (true, '"') => quoted = false,
+            (false, '"') if cell.is_empty() => quoted = true,
+            (false, ',') => cells.push(std::mem::take(&mut cell)),
+            (_, c) => cell.push(c),
+        }
+    }
+    if quoted {
+        return None;
+    }
+    cells.push(cell);
+    Some(cells)
+}
+
+/// A CSV error at a line.
+fn bad(line: usize, why: &'static str) -> swm::Error {
+    FormatError::new("CSV", Malformed::BadSyntax(why))
+        .at(Location::Line(line as u64))
+        .into()
+}
+
+/// Reads a table written by [`to_csv`]. Columns are found by name.
+pub fn from_csv(text: &str) -> Result<Vec<Row>, swm::Error> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim_end_matches('\r')))
+        .filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'));
+    let Some((header_line, header)) = lines.next() else {
+        return Err(FormatError::new("CSV", Malformed::Empty).into());
+    };
+    let header =
+        split_csv(header).ok_or_else(|| bad(header_line, "unbalanced quotes in the header"))?;
+    let col = |name: &str| header.iter().position(|h| h.trim() == name);
+    let mut index = [0usize; COLUMNS.len()];
+    for (slot, name) in index.iter_mut().zip(COLUMNS) {
+        // Times are informative only; every other column is needed.
+        *slot = match col(name) {
+            Some(i) => i,
+            None if name.ends_with("_s") => usize::MAX,
+            None => return Err(bad(header_line, "the header lacks a column swm rd writes")),
+        };
+    }
+    let mut rows = Vec::new();
+    for (n, line) in lines {
+        let cells = split_csv(line).ok_or_else(|| bad(n, "unbalanced quotes"))?;
+        if cells.len() != header.len() {
+            return Err(bad(
+                n,
+                "the row has a different number of cells than the header",
+            ));
+        }
+        let get = |k: usize| cells.get(index[k]).map(|s| s.trim()).unwrap_or("");
+        rows.push(parse_row(n, get)?);
+    }
+    Ok(rows)
+}
+
+fn parse_row<'a>(n: usize, get: impl Fn(usize) -> &'a str) -> Result<Row, swm::Error> {
+    fn num<T: std::str::FromStr>(n: usize, s: &str, why: &'static str) -> Result<T, swm::Error> {
+        s.parse().map_err(|_| bad(n, why))
+    }
+    let rate_bpv: f64 = num(n, get(1), "rate_bpv is not a number")?;
+    if !(rate_bpv.is_finite() && rate_bpv > 0.0) {
+        return Err(bad(n, "rate_bpv must be positive"));
+    }
+    let config = Config::from_name(get(2)).ok_or_else(|| bad(n, "unknown config"))?;
+    let coded = match get(3) {
+        "infeasible" => None,
+        "ok" => Some(Coded {
+            bytes: num(n, get(6), "bytes is not a whole number")?,
+            faces: num(n, get(8), "faces is not a whole number")?,
+            qp: num(n, get(9), "qp is not a whole number")?,
+            l2_rel: num(n, get(11), "l2_rel is not a number")?,
+            hausdorff_rel: num(n, get(12), "hausdorff_rel is not a number")?,
+            encode_s: get(13).parse().unwrap_or(f64::NAN),
+            decode_s: get(14).parse().unwrap_or(f64::NAN),
+        }),
+        _ => return Err(bad(n, "status must be ok or infeasible")),
+    };
+    let samples: u64 = num(n, get(10), "samples is not a whole number")?;
+    if samples == 0 {
+        return Err(bad(n, "samples must be at least 1"));
+    }
+    Ok(Row {
+        mesh: get(0).to_string(),
+        rate_bpv,
+        config,
+        vertices: num(n, get(4), "vertices is not a whole number")?,
+        budget_bytes: num(n, get(5), "budget_bytes is not a whole number")?,
+        samples,
+        coded,
+    })
+}
+
+/// How a pivot table shows one measure of a row.
+type Show = fn(&Coded) -> String;
+
+/// The table as Markdown: per mesh, L2 and Hausdorff by rate and
+/// configuration (the layout of the thesis tables), then every row.
+pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> String) -> String {
+    let mut out = format!("# swm rd: {title}\n\n");
+    out.push_str(
+        "L2 and Hausdorff distances in units of 1e-4 of the input's bounding-box diagonal; \
+         rates in bits per vertex of the mesh as read. `—` = nothing fits the budget. \
+         Written by `swm rd`; the CSV beside this file is the record `swm rd --check` compares against.\n",
+    );
+    let mut meshes: Vec<&str> = Vec::new();
+    let mut rates: Vec<f64> = Vec::new();
+    for r in rows {
+        if !meshes.contains(&r.mesh.as_str()) {
+            meshes.push(&r.mesh);
+        }
+        if !rates.contains(&r.rate_bpv) {
+            rates.push(r.rate_bpv);
+        }
+    }
+    rates.sort_by(f64::total_cmp);
+    for mesh in &meshes {
+        let mine: Vec<&Row> = rows.iter().filter(|r| r.mesh == *mesh).collect();
+        let vertices = mine.first().map_or(0, |r| r.vertices);
+        out.push_str(&format!(
+            "\n## {} (`{mesh}`, {vertices} vertices)\n\n",
+            short_name(mesh)
+        ));
+        out.push_str("| config | metric |");
+        for r in &rates {
+            out.push_str(&format!(" {r} |"));
+        }
+        out.push_str("\n|---|---|");
+        out.push_str(&"---:|".repeat(rates.len()));
+        out.push('\n');
+        let mut configs: Vec<Config> = mine.iter().map(|r| r.config).collect();
+        configs.sort();
+        configs.dedup();
+        let metrics: [(&str, Show); 3] = [
+            ("L2", |c| format!("{:.3}", c.l2_rel)),
+            ("Hausdorff", |c| format!("{:.2}", c.hausdorff_rel)),
+            ("bytes", |c| c.bytes.to_string()),
+        ];
+        for config in configs {
+            for (metric, show) in metrics {
+                out.push_str(&format!("| {} | {metric} |", config.name()));
+                for rate in &rates {
+                    let cell = mine
+                        .iter()
+                        .find(|r| r.config == config && r.rate_bpv == *rate)
+                        .map(|r| r.coded.as_ref().map_or("—".to_string(), show))
+                        .unwrap_or_default();
+                    out.push_str(&format!(" {cell} |"));
+                }
+                out.push('\n');
+            }
+        }
+    }
+    out.push_str("\n## All rows\n\n");
+    out.push_str("| mesh | rate | config | status | budget | bytes | bpv | faces | qp | L2 | Hausdorff | encode s | decode s |\n");
+    out.push_str("|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for r in rows {
+        let head = format!(
+            "| {} | {} | {} | {} | {} |",
+            short_name(&r.mesh),
+            r.rate_bpv,
+            r.config.name(),
+            r.status(),
+            r.budget_bytes
+        );
+        out.push_str(&head);
+        match (&r.coded, r.bpv()) {
+            (Some(c), Some(bpv)) => out.push_str(&format!(
+                " {} | {bpv:.3} | {} | {} | {:.3} | {:.2} | {:.3} | {:.4} |\n",
+                c.bytes, c.faces, c.qp, c.l2_rel, c.hausdorff_rel, c.encode_s, c.decode_s
+            )),
+            _ => out.push_str(&" |".repeat(8)),
+        }
+        if r.coded.is_none() {
+            out.push('\n');
+        }
+    }
+    out
+}
