@@ -56,14 +56,15 @@ fn two_spheres_differ_by_their_facets() {
     let dir = scratch("distance-spheres");
     let fine = write(&dir, "fine.ply", &swm_corpus::icosphere(1.0, 4));
     let coarse = write(&dir, "coarse.off", &swm_corpus::icosphere(1.0, 1));
-    let v = json(&swm(&[
+    let args = [
         "distance",
         s(&fine),
         s(&coarse),
         "--samples",
         "5000",
         "--json",
-    ]));
+    ];
+    let v = json(&swm(&args));
     let f = |k: &str| v[k].as_f64().unwrap();
     // A level-1 icosphere's faces sink below the unit sphere by a few
     // percent of the radius; vertices of both lie on it.
@@ -82,14 +83,7 @@ fn two_spheres_differ_by_their_facets() {
             .max(v["backward"]["rms"].as_f64().unwrap())
     );
     // Same inputs, same numbers.
-    let again = json(&swm(&[
-        "distance",
-        s(&fine),
-        s(&coarse),
-        "--samples",
-        "5000",
-        "--json",
-    ]));
+    let again = json(&swm(&args));
     assert_eq!(v, again);
 
     let text = swm(&["distance", s(&fine), s(&coarse), "--samples", "5000"]);

@@ -30,10 +30,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             swm::inspect(&bytes, &options.limits).map_err(|e| CliError::new(&args.input, e))?;
         let mut v = crate::report::lossless_json(&info.stats, info.qp);
         v["decode_seconds"] = seconds.into();
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&v).expect("JSON of numbers")
-        );
+        crate::report::print_json(&v);
     } else {
         say!(
             "{} -> {}: {} vertices, {} triangles, {:.3} s",

@@ -75,10 +75,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "forward": side(&d.forward),
             "backward": side(&d.backward),
         });
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&v).expect("JSON of numbers")
-        );
+        crate::report::print_json(&v);
         return Ok(());
     }
     let (ra, rb) = (args.reference.display(), args.other.display());

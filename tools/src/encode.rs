@@ -46,10 +46,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         let mut v = stats;
         v["encode_seconds"] = seconds.into();
         v["cleaning"] = crate::report::clean_json(&encoded.stats.clean);
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&v).expect("JSON of numbers")
-        );
+        crate::report::print_json(&v);
     } else {
         say!(
             "{} -> {}: {} bytes, {} vertices, {} triangles, {:.3} bits/triangle, {:.3} s",

@@ -44,10 +44,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "bbox_diagonal": stats.bbox_diagonal,
             "area": stats.area,
         });
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&v).expect("JSON of numbers")
-        );
+        crate::report::print_json(&v);
         return Ok(());
     }
     say!("{}", args.file.display());
@@ -97,10 +94,7 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     let mut v = crate::report::lossless_json(&info.stats, info.qp);
     v["version"] = format!("{}.{}", info.version.0, info.version.1).into();
     if args.json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&v).expect("JSON of numbers")
-        );
+        crate::report::print_json(&v);
         return Ok(());
     }
     let s = &info.stats;

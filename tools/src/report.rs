@@ -1,6 +1,14 @@
-//! Statistics as JSON, shared by encode, decode and info.
+//! Statistics as JSON, shared by the subcommands.
 
 use serde_json::{json, Value};
+
+/// Prints `v` as indented JSON on stdout (`--json` of every subcommand).
+pub fn print_json(v: &Value) {
+    say!(
+        "{}",
+        serde_json::to_string_pretty(v).expect("JSON of numbers")
+    );
+}
 
 /// The figures of a lossless-mode file.
 pub fn lossless_json(s: &swm::LosslessStats, qp: u8) -> Value {

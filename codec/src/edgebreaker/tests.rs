@@ -175,10 +175,21 @@ pub(crate) mod swm_corpus_like {
         )
     }
 
-    /// An icosahedron subdivided twice (connectivity only matters here).
+    /// An icosahedron subdivided twice (connectivity only matters here):
+    /// midpoints in `f32`, not pushed out onto a sphere.
     pub fn icosphere() -> TriMesh {
         let t = (1.0 + 5f32.sqrt()) / 2.0;
-        let mut p: Vec<[f32; 3]> = vec![
+        let (p, f) = subdivided(icosahedron(t as f64), 2, |a, b| {
+            core::array::from_fn(|k| (a[k] as f32 + b[k] as f32) as f64 / 2.0)
+        });
+        TriMesh::new(p.iter().map(|q| q.map(|c| c as f32)).collect(), f)
+    }
+
+    /// The twelve vertices `(±1, ±t, 0)` and their cyclic permutations,
+    /// and the twenty faces, of an icosahedron (a regular one for
+    /// `t` the golden ratio).
+    pub fn icosahedron(t: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        let p = vec![
             [-1., t, 0.],
             [1., t, 0.],
             [-1., -t, 0.],
@@ -192,7 +203,7 @@ pub(crate) mod swm_corpus_like {
             [-t, 0., -1.],
             [-t, 0., 1.],
         ];
-        let mut f: Vec<[u32; 3]> = vec![
+        let f = vec![
             [0, 11, 5],
             [0, 5, 1],
             [0, 1, 7],
@@ -214,33 +225,37 @@ pub(crate) mod swm_corpus_like {
             [8, 6, 7],
             [9, 8, 1],
         ];
-        for _ in 0..2 {
-            let mut mid = std::collections::HashMap::new();
-            let mut nf = Vec::new();
+        (p, f)
+    }
+
+    /// Splits every triangle into four, `levels` times; the vertex on edge
+    /// `ab` is `mid(a, b)`, made once per edge.
+    pub fn subdivided(
+        (mut p, mut f): (Vec<[f64; 3]>, Vec<[u32; 3]>),
+        levels: u32,
+        mid: impl Fn([f64; 3], [f64; 3]) -> [f64; 3],
+    ) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        for _ in 0..levels {
+            let mut made = std::collections::HashMap::new();
+            let mut next = Vec::with_capacity(4 * f.len());
             for tri in &f {
-                let mut m = [0u32; 3];
-                for k in 0..3 {
+                let m: [u32; 3] = core::array::from_fn(|k| {
                     let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                    m[k] = *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                        let (pa, pb) = (p[a as usize], p[b as usize]);
-                        p.push([
-                            (pa[0] + pb[0]) / 2.,
-                            (pa[1] + pb[1]) / 2.,
-                            (pa[2] + pb[2]) / 2.,
-                        ]);
+                    *made.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                        p.push(mid(p[a as usize], p[b as usize]));
                         p.len() as u32 - 1
-                    });
-                }
-                nf.extend([
+                    })
+                });
+                next.extend([
                     [tri[0], m[0], m[2]],
                     [tri[1], m[1], m[0]],
                     [tri[2], m[2], m[1]],
                     m,
                 ]);
             }
-            f = nf;
+            f = next;
         }
-        TriMesh::new(p, f)
+        (p, f)
     }
 
     /// A torus grid of n by m quads.

@@ -37,7 +37,7 @@ use rayon::prelude::*;
 use crate::{Error, FormatError, Malformed, ParameterError, TopologyError, TriMesh};
 use bvh::{Bvh, Scratch};
 use sample::{area, carried_counts, edge_points, face_points, SplitMix};
-pub use triangle::Tri;
+use triangle::Tri;
 
 /// What to sample. Defaults are Metro's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -223,14 +223,6 @@ impl Surface {
     /// Diagonal of the bounding box of the vertices the faces use.
     pub fn diagonal(&self) -> f64 {
         self.diagonal
-    }
-
-    /// Distance from `p` to the nearest point of the surface.
-    pub fn distance_to(&self, p: [f64; 3]) -> f64 {
-        let mut scratch = Scratch::default();
-        self.bvh
-            .nearest(p, None, &mut scratch)
-            .map_or(f64::INFINITY, |n| n.distance2.sqrt())
     }
 }
 

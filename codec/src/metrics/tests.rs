@@ -2,7 +2,7 @@
 //! closed form or by an independent quadrature.
 
 use super::*;
-use crate::edgebreaker::tests_support::grid;
+use crate::edgebreaker::tests_support::{grid, icosahedron, subdivided};
 
 fn lifted(m: &TriMesh, dz: f32) -> TriMesh {
     let mut m = m.clone();
@@ -15,66 +15,11 @@ fn lifted(m: &TriMesh, dz: f32) -> TriMesh {
 /// An icosahedron inscribed in the unit sphere, subdivided `levels` times
 /// with every new vertex pushed out onto the sphere.
 fn sphere(levels: u32) -> TriMesh {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut p: Vec<[f64; 3]> = [
-        [-1., t, 0.],
-        [1., t, 0.],
-        [-1., -t, 0.],
-        [1., -t, 0.],
-        [0., -1., t],
-        [0., 1., t],
-        [0., -1., -t],
-        [0., 1., -t],
-        [t, 0., -1.],
-        [t, 0., 1.],
-        [-t, 0., -1.],
-        [-t, 0., 1.],
-    ]
-    .map(unit)
-    .to_vec();
-    let mut f: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..levels {
-        let mut mid = std::collections::HashMap::new();
-        let mut next = Vec::new();
-        for tri in &f {
-            let m: [u32; 3] = core::array::from_fn(|k| {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                    let (pa, pb) = (p[a as usize], p[b as usize]);
-                    p.push(unit(core::array::from_fn(|i| pa[i] + pb[i])));
-                    p.len() as u32 - 1
-                })
-            });
-            next.extend([
-                [tri[0], m[0], m[2]],
-                [tri[1], m[1], m[0]],
-                [tri[2], m[2], m[1]],
-                m,
-            ]);
-        }
-        f = next;
-    }
+    let (p, f) = icosahedron((1.0 + 5f64.sqrt()) / 2.0);
+    let p = p.into_iter().map(unit).collect();
+    let (p, f) = subdivided((p, f), levels, |a, b| {
+        unit(core::array::from_fn(|i| a[i] + b[i]))
+    });
     TriMesh::new(p.iter().map(|q| q.map(|c| c as f32)).collect(), f)
 }
 

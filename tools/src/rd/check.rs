@@ -210,10 +210,7 @@ pub fn run(args: &Args, table_path: &Path) -> Result<(), CliError> {
         }
     }
     if args.json {
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&json_rows).expect("JSON of numbers")
-        );
+        crate::report::print_json(&json_rows.into());
     } else {
         say!(
             "{} rows checked, {} regressed (tolerance {}%)",

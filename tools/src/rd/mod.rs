@@ -197,10 +197,7 @@ fn run_fresh(args: &Args) -> Result<(), CliError> {
     write_outputs(args, &cases, &rows)?;
     if args.json {
         let v: Vec<_> = rows.iter().map(Row::to_json).collect();
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&v).expect("JSON of numbers")
-        );
+        crate::report::print_json(&v.into());
     } else {
         for r in &rows {
             say!("{}", summary(r));
