@@ -8,10 +8,14 @@ use crate::{CleanOptions, CleanReport, ParameterError};
 use crate::{Error, Limits, TriMesh};
 
 pub use crate::lossless::LosslessStats;
+pub use crate::swing::SwingStats;
+
+#[cfg(feature = "encoder")]
+pub use crate::retile::rate::{Attempt, RateReport};
 
 #[cfg(feature = "encoder")]
 /// Which codec an encoder uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum EncodeMode {
     /// Keep the input's triangles; quantize positions to `qp` bits.
@@ -19,6 +23,29 @@ pub enum EncodeMode {
         /// Bits per coordinate, 6..=24. Default 12.
         qp: u8,
     },
+    /// SwingWrapper: retile into near-equilateral triangles of edge L,
+    /// one quantized dihedral angle per vertex.
+    Swing {
+        /// What to aim at: a size, a rate or an edge length.
+        target: SwingTarget,
+        /// Bits per dihedral angle K, 4..=12. Default 8.
+        angle_bits: u8,
+        /// A size in bytes never to exceed. Default none.
+        max_bytes: Option<u64>,
+    },
+}
+
+#[cfg(feature = "encoder")]
+/// What the SwingWrapper encoder aims at; the edge length L follows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SwingTarget {
+    /// A file size in bytes, met within 3%.
+    Bytes(u64),
+    /// Bits per vertex of the input mesh (as given to `encode`).
+    BitsPerVertex(f64),
+    /// The edge length L itself, in the mesh's units.
+    EdgeLength(f64),
 }
 
 #[cfg(feature = "encoder")]
@@ -48,11 +75,16 @@ pub struct DecodeOptions {
 #[cfg(feature = "encoder")]
 /// What [`encode`] learnt while encoding.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct EncodeStats {
     /// What cleaning changed in the input.
     pub clean: CleanReport,
-    /// Mode-specific figures.
-    pub lossless: LosslessStats,
+    /// Figures of a lossless-mode file.
+    pub lossless: Option<LosslessStats>,
+    /// Figures of a SwingWrapper file.
+    pub swing: Option<SwingStats>,
+    /// How a SwingWrapper encoder chose its edge length.
+    pub rate: Option<RateReport>,
 }
 
 #[cfg(feature = "encoder")]
@@ -86,11 +118,102 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
                 bytes,
                 stats: EncodeStats {
                     clean: cleaned.report,
-                    lossless,
+                    lossless: Some(lossless),
+                    swing: None,
+                    rate: None,
                 },
             })
         }
+        EncodeMode::Swing {
+            target,
+            angle_bits,
+            max_bytes,
+        } => encode_swing(mesh, options, target, angle_bits, max_bytes),
     }
+}
+
+#[cfg(feature = "encoder")]
+fn encode_swing(
+    mesh: &TriMesh,
+    options: &EncodeOptions,
+    target: SwingTarget,
+    angle_bits: u8,
+    max_bytes: Option<u64>,
+) -> Result<Encoded, Error> {
+    use crate::retile::rate;
+    use crate::swing::{MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+    if !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(&angle_bits) {
+        return Err(ParameterError::OutOfRange {
+            name: "angle bits",
+            value: angle_bits as f64,
+            min: MIN_ANGLE_BITS as f64,
+            max: MAX_ANGLE_BITS as f64,
+        }
+        .into());
+    }
+    let positive = |name: &'static str, value: f64| {
+        if value.is_finite() && value > 0.0 {
+            Ok(value)
+        } else {
+            Err(Error::from(ParameterError::OutOfRange {
+                name,
+                value,
+                min: 0.0,
+                max: f64::MAX,
+            }))
+        }
+    };
+    let cleaned = crate::clean(mesh, &options.clean)?;
+    let table = &cleaned.table;
+    let boundary_edges = table.opposites().iter().filter(|o| o.is_none()).count() as u64;
+    let components = table.component_labels().1;
+    let (v, f) = (table.vertex_count() as i64, table.face_count() as i64);
+    // Closed and connected: V − E + F = 2 − 2g with E = 3F/2.
+    let genus = (2 - (v - f / 2)) / 2;
+    if boundary_edges > 0 || components != 1 || genus != 0 {
+        return Err(crate::TopologyError::NotASphere {
+            boundary_edges,
+            components,
+            genus,
+        }
+        .into());
+    }
+    let bytes_for = |bpv: f64| (bpv * mesh.vertex_count() as f64 / 8.0).round() as u64;
+    let chosen = match target {
+        SwingTarget::EdgeLength(l) => rate::at_length(
+            &cleaned.mesh,
+            table,
+            positive("edge length", l)?,
+            angle_bits,
+        )?,
+        SwingTarget::Bytes(b) => {
+            let b = positive("size", b as f64)? as u64;
+            rate::at_size(&cleaned.mesh, table, b, max_bytes, angle_bits)?
+        }
+        SwingTarget::BitsPerVertex(bpv) => {
+            let b = bytes_for(positive("bits per vertex", bpv)?).max(1);
+            rate::at_size(&cleaned.mesh, table, b, max_bytes, angle_bits)?
+        }
+    };
+    if let Some(cap) = max_bytes {
+        if chosen.bytes.len() as u64 > cap {
+            return Err(crate::RetileError {
+                attempts: chosen.report.attempts.len() as u32,
+                smallest_edge_length: chosen.report.edge_length,
+                failure: None,
+            }
+            .into());
+        }
+    }
+    Ok(Encoded {
+        bytes: chosen.bytes,
+        stats: EncodeStats {
+            clean: cleaned.report,
+            lossless: None,
+            swing: Some(chosen.stats),
+            rate: Some(chosen.report),
+        },
+    })
 }
 
 /// Decodes a `.swm` file. Every byte is treated as hostile: a malformed
@@ -100,15 +223,7 @@ pub fn decode(bytes: &[u8], options: &DecodeOptions) -> Result<TriMesh, Error> {
     let file = parse_container(bytes, &options.limits)?;
     match file.header.mode {
         Mode::Lossless => crate::lossless::decode(&file, &options.limits),
-        // SwingWrapper files are defined by the format but not decoded yet.
-        other => Err(crate::error::UnsupportedError {
-            feature: crate::error::UnsupportedFeature::Mode(other.code()),
-            major: file.header.major,
-            minor: file.header.minor,
-            supported_major: crate::container::FORMAT_MAJOR,
-            supported_minor: crate::container::FORMAT_MINOR,
-        }
-        .into()),
+        Mode::Swing => crate::swing::decode(&file, &options.limits),
     }
 }
 
@@ -119,22 +234,40 @@ pub struct FileInfo {
     pub version: (u8, u8),
     /// The codec that wrote it.
     pub mode: Mode,
-    /// Quantization bits (lossless mode).
+    /// Quantization bits (lossless mode; 0 in other modes).
     pub qp: u8,
-    /// Figures, as the encoder reports them.
+    /// Figures common to every mode (counts, CLERS histogram, sections),
+    /// as the encoder reports them.
     pub stats: LosslessStats,
+    /// The SwingWrapper figures (edge length, angle bits, regularity,
+    /// bits per triangle of connectivity and geometry); `None` for other
+    /// modes.
+    pub swing: Option<SwingStats>,
 }
 
-/// Reads a file's header and connectivity (CLERS histogram included).
+/// Reads a file's header and connectivity (CLERS histogram included),
+/// without decoding geometry.
 pub fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> {
     let file = parse_container(bytes, limits)?;
     let h = &file.header;
-    let (q, conn, dummies) = crate::lossless::read_connectivity(&file, limits)?;
     let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
+    let (qp, stats, swing) = match h.mode {
+        Mode::Lossless => {
+            let (q, conn, dummies) = crate::lossless::read_connectivity(&file, limits)?;
+            let stats = LosslessStats::new(h, &conn, dummies.len(), sections, bytes.len());
+            (q.bits, stats, None)
+        }
+        Mode::Swing => {
+            let (conn, swing) = crate::swing::inspect(&file, limits, bytes.len())?;
+            let stats = LosslessStats::new(h, &conn, 0, sections, bytes.len());
+            (0, stats, Some(swing))
+        }
+    };
     Ok(FileInfo {
         version: (h.major, h.minor),
         mode: h.mode,
-        qp: q.bits,
-        stats: LosslessStats::new(h, &conn, dummies.len(), sections, bytes.len()),
+        qp,
+        stats,
+        swing,
     })
 }

@@ -31,7 +31,84 @@ pub enum Error {
     /// critical section or required flag this version does not know.
     #[error("{0}")]
     Unsupported(#[from] UnsupportedError),
+    /// SwingWrapper retiling found no edge length that works.
+    #[error("{0}")]
+    Retile(#[from] RetileError),
 }
+
+/// Why one SwingWrapper retiling run failed; every case means "the edge
+/// length L is too large for this part of the shape".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum RetileFailure {
+    /// The sphere of radius L around p1 does not meet the walk (p2).
+    NoSecondVertex,
+    /// The circle of the first edge does not meet M (p3).
+    NoThirdVertex,
+    /// No tip, snap or closing triangle works at the gate of M′ triangle
+    /// `triangle`.
+    NoTip {
+        /// Triangles made before.
+        triangle: u32,
+    },
+    /// More triangles than the area can hold: the front does not close.
+    Runaway,
+    /// The loops closed but `faces` faces of M were never claimed.
+    Uncovered {
+        /// Faces of M (after splits) left over.
+        faces: u32,
+    },
+    /// The input is empty or L is not a positive finite number.
+    BadInput,
+}
+
+impl fmt::Display for RetileFailure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RetileFailure::NoSecondVertex => write!(f, "no second vertex at distance L"),
+            RetileFailure::NoThirdVertex => write!(f, "no first triangle"),
+            RetileFailure::NoTip { triangle } => {
+                write!(f, "no valid triangle after {triangle} triangles")
+            }
+            RetileFailure::Runaway => write!(f, "the retiling front does not close"),
+            RetileFailure::Uncovered { faces } => {
+                write!(f, "{faces} faces of the surface were not covered")
+            }
+            RetileFailure::BadInput => write!(f, "empty mesh or invalid edge length"),
+        }
+    }
+}
+
+/// No SwingWrapper retiling of the input succeeded.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RetileError {
+    /// Runs made.
+    pub attempts: u32,
+    /// The smallest edge length tried.
+    pub smallest_edge_length: f64,
+    /// Why the last run failed (`None` if every run succeeded but none
+    /// fitted the size cap).
+    pub failure: Option<RetileFailure>,
+}
+
+impl fmt::Display for RetileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.failure {
+            Some(why) => write!(
+                f,
+                "SwingWrapper retiling failed at every edge length tried ({} runs, down to {:.4e}): {why}",
+                self.attempts, self.smallest_edge_length
+            ),
+            None => write!(
+                f,
+                "no SwingWrapper retiling fits the size cap ({} runs, down to edge length {:.4e})",
+                self.attempts, self.smallest_edge_length
+            ),
+        }
+    }
+}
+
+impl core::error::Error for RetileError {}
 
 /// Where in a file a problem was found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -314,6 +391,17 @@ pub enum TopologyError {
         /// Vertices whose faces form more than one fan.
         vertices: u64,
     },
+    /// The SwingWrapper mode retiles one closed genus-0 surface (holes,
+    /// handles and several components are not retiled yet; the lossless
+    /// mode takes them).
+    NotASphere {
+        /// Boundary edges.
+        boundary_edges: u64,
+        /// Connected components.
+        components: u32,
+        /// Handles (of the whole mesh, holes closed).
+        genus: i64,
+    },
 }
 
 impl fmt::Display for TopologyError {
@@ -327,6 +415,14 @@ impl fmt::Display for TopologyError {
             TopologyError::NonManifold { edges, vertices } => write!(
                 f,
                 "the mesh is not manifold ({edges} non-manifold edges, {vertices} non-manifold vertices)"
+            ),
+            TopologyError::NotASphere {
+                boundary_edges,
+                components,
+                genus,
+            } => write!(
+                f,
+                "SwingWrapper mode retiles one closed genus-0 surface for now; this mesh has {boundary_edges} boundary edges, {components} components, genus {genus} (the lossless mode takes it)"
             ),
         }
     }

@@ -27,17 +27,23 @@ mod lossless;
 pub mod mesh;
 #[cfg(feature = "metrics")]
 pub mod metrics;
+#[cfg(feature = "encoder")]
+mod retile;
+mod swing;
 mod varint;
 
 #[cfg(feature = "io")]
 pub mod io;
 
-pub use api::{decode, inspect, DecodeOptions, FileInfo, LosslessStats};
+pub use api::{decode, inspect, DecodeOptions, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
-pub use api::{encode, EncodeMode, EncodeOptions, EncodeStats, Encoded};
+pub use api::{
+    encode, Attempt, EncodeMode, EncodeOptions, EncodeStats, Encoded, RateReport, SwingTarget,
+};
 pub use container::Mode;
 pub use error::{
-    Error, FormatError, LimitError, Limited, Location, Malformed, ParameterError, TopologyError,
+    Error, FormatError, LimitError, Limited, Location, Malformed, ParameterError, RetileError,
+    RetileFailure, TopologyError,
 };
 pub use limits::Limits;
 pub use mesh::{CornerId, CornerTable, FaceId, MeshStats, TriMesh, VertexId};

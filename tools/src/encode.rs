@@ -1,4 +1,5 @@
-//! `swm encode IN -o OUT.swm [--mode lossless] [--qp N] [--json]`.
+//! `swm encode IN -o OUT.swm [--mode swing|lossless] [--size B | --bpv X |
+//! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--json]`.
 
 use crate::CliError;
 use std::path::PathBuf;
@@ -6,6 +7,9 @@ use std::time::Instant;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeArg {
+    /// SwingWrapper: retile into near-equilateral triangles, one dihedral
+    /// angle per vertex. Needs one closed genus-0 surface for now.
+    Swing,
     /// Keep the input's exact triangles; positions quantized to --qp bits.
     Lossless,
 }
@@ -17,10 +21,25 @@ pub struct Args {
     /// The .swm file to write.
     #[arg(short, long)]
     output: PathBuf,
-    /// The codec. (SwingWrapper, the planned default, is not released yet.)
-    #[arg(long, value_enum, default_value = "lossless")]
+    /// The codec.
+    #[arg(long, value_enum, default_value = "swing")]
     mode: ModeArg,
-    /// Bits per coordinate in the lossless mode.
+    /// Swing: target file size in bytes (met within 3%).
+    #[arg(long, conflicts_with_all = ["bpv", "edge_length"])]
+    size: Option<u64>,
+    /// Swing: target bits per input vertex (default 2 when no target is given).
+    #[arg(long, conflicts_with = "edge_length")]
+    bpv: Option<f64>,
+    /// Swing: the edge length L itself, in the mesh's units.
+    #[arg(long)]
+    edge_length: Option<f64>,
+    /// Swing: bits per dihedral angle.
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(4..=12))]
+    angle_bits: u8,
+    /// Swing: never write more than this many bytes.
+    #[arg(long)]
+    max_size: Option<u64>,
+    /// Lossless: bits per coordinate.
     #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u8).range(6..=24))]
     qp: u8,
     /// Print statistics as JSON.
@@ -30,10 +49,20 @@ pub struct Args {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     let mesh = swm::io::read_mesh(&args.input).map_err(|e| CliError::new(&args.input, e))?;
-    let options = swm::EncodeOptions {
-        mode: match args.mode {
-            ModeArg::Lossless => swm::EncodeMode::Lossless { qp: args.qp },
+    let mode = match args.mode {
+        ModeArg::Lossless => swm::EncodeMode::Lossless { qp: args.qp },
+        ModeArg::Swing => swm::EncodeMode::Swing {
+            target: match (args.size, args.bpv, args.edge_length) {
+                (Some(b), _, _) => swm::SwingTarget::Bytes(b),
+                (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
+                (_, bpv, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
+            },
+            angle_bits: args.angle_bits,
+            max_bytes: args.max_size,
         },
+    };
+    let options = swm::EncodeOptions {
+        mode,
         ..Default::default()
     };
     let start = Instant::now();
@@ -41,22 +70,53 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let seconds = start.elapsed().as_secs_f64();
     swm::io::write_bytes(&args.output, &encoded.bytes)
         .map_err(|e| CliError::new(&args.output, e))?;
-    let stats = crate::report::lossless_json(&encoded.stats.lossless, args.qp);
+    let stats = &encoded.stats;
+    let (mut json, vertices, triangles) = match (&stats.lossless, &stats.swing) {
+        (Some(l), _) => (
+            crate::report::lossless_json(l, args.qp),
+            l.vertices,
+            l.triangles,
+        ),
+        (_, Some(s)) => (crate::report::swing_json(s), s.vertices, s.triangles),
+        _ => (serde_json::json!({}), 0, 0),
+    };
     if args.json {
-        let mut v = stats;
-        v["encode_seconds"] = seconds.into();
-        v["cleaning"] = crate::report::clean_json(&encoded.stats.clean);
-        crate::report::print_json(&v);
-    } else {
+        json["encode_seconds"] = seconds.into();
+        json["input_vertices"] = mesh.vertex_count().into();
+        json["cleaning"] = crate::report::clean_json(&stats.clean);
+        if let Some(r) = &stats.rate {
+            json["rate_control"] = crate::report::rate_json(r);
+        }
+        crate::report::print_json(&json);
+        return Ok(());
+    }
+    say!(
+        "{} -> {}: {} bytes ({:.3} bits/input vertex), {} vertices, {} triangles, {:.3} bits/triangle, {:.3} s",
+        args.input.display(),
+        args.output.display(),
+        encoded.bytes.len(),
+        8.0 * encoded.bytes.len() as f64 / mesh.vertex_count().max(1) as f64,
+        vertices,
+        triangles,
+        8.0 * encoded.bytes.len() as f64 / triangles.max(1) as f64,
+        seconds
+    );
+    if let Some(r) = &stats.rate {
+        let failed = r.attempts.iter().filter(|a| a.outcome.is_err()).count();
         say!(
-            "{} -> {}: {} bytes, {} vertices, {} triangles, {:.3} bits/triangle, {:.3} s",
-            args.input.display(),
-            args.output.display(),
-            encoded.bytes.len(),
-            encoded.stats.lossless.vertices,
-            encoded.stats.lossless.triangles,
-            8.0 * encoded.bytes.len() as f64 / encoded.stats.lossless.triangles.max(1) as f64,
-            seconds
+            "edge length {:.6} after {} retilings{}{}",
+            r.edge_length,
+            r.attempts.len(),
+            if r.reduced {
+                format!(" ({failed} failed: the requested rate needed a longer edge than this shape allows, so the largest working one was used)")
+            } else {
+                String::new()
+            },
+            if r.within_tolerance {
+                ""
+            } else {
+                "; the size could not be brought within 3% of the request"
+            }
         );
     }
     Ok(())

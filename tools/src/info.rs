@@ -91,6 +91,9 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     let err = |e: swm::Error| CliError::new(&args.file, e);
     let bytes = std::fs::read(&args.file).map_err(|e| err(e.into()))?;
     let info = swm::inspect(&bytes, &swm::Limits::default()).map_err(err)?;
+    if let Some(swing) = &info.swing {
+        return print_swing(args, &info, swing);
+    }
     let mut v = crate::report::lossless_json(&info.stats, info.qp);
     v["version"] = format!("{}.{}", info.version.0, info.version.1).into();
     if args.json {
@@ -132,5 +135,67 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
         .map(|(l, n)| format!("{l} {n} ({:.1}%)", 100.0 * n as f64 / total as f64))
         .collect();
     say!("  CLERS                 {}", hist.join(", "));
+    Ok(())
+}
+
+/// The figures of a SwingWrapper file, as JSON.
+pub fn swing_json(info: &swm::FileInfo, s: &swm::SwingStats) -> serde_json::Value {
+    let mut v = crate::report::swing_json(s);
+    v["version"] = format!("{}.{}", info.version.0, info.version.1).into();
+    v
+}
+
+/// `swm info` of a SwingWrapper file.
+fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result<(), CliError> {
+    if args.json {
+        crate::report::print_json(&swing_json(info, s));
+        return Ok(());
+    }
+    let t = s.triangles.max(1) as f64;
+    say!("{}", args.file.display());
+    say!(
+        "  format version        {}.{}",
+        info.version.0,
+        info.version.1
+    );
+    say!(
+        "  mode                  SwingWrapper, edge length L = {}, {} angle bits",
+        s.edge_length,
+        s.angle_bits
+    );
+    say!("  vertices              {}", s.vertices);
+    say!("  triangles             {}", s.triangles);
+    say!("  components            {}", s.components);
+    say!("  handle events         {}", s.handle_events);
+    say!(
+        "  bytes                 {} ({:.3} bits/triangle)",
+        s.file_bytes,
+        8.0 * s.file_bytes as f64 / t
+    );
+    say!(
+        "  connectivity          {:.3} bits/triangle",
+        s.connectivity_bits_per_triangle
+    );
+    say!(
+        "  geometry              {:.3} bits/triangle, {:.3} bits/angle",
+        s.geometry_bits_per_triangle,
+        s.bits_per_angle
+    );
+    for (tag, n) in &s.sections {
+        let bpt = 8.0 * *n as f64 / t;
+        say!(
+            "    section {:<4}        {n} bytes, {bpt:.3} bits/triangle",
+            String::from_utf8_lossy(tag)
+        );
+    }
+    let total: u64 = s.clers.iter().sum::<u64>().max(1);
+    let hist: Vec<String> = ["C", "L", "E", "R", "S"]
+        .iter()
+        .zip(s.clers)
+        .map(|(l, n)| format!("{l} {n} ({:.1}%)", 100.0 * n as f64 / total as f64))
+        .collect();
+    say!("  CLERS                 {}", hist.join(", "));
+    say!("  C or R labels         {:.1}%", 100.0 * s.cr_share);
+    say!("  valence-6 vertices    {:.1}%", 100.0 * s.valence6_share);
     Ok(())
 }

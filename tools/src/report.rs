@@ -41,6 +41,62 @@ pub fn lossless_json(s: &swm::LosslessStats, qp: u8) -> Value {
     })
 }
 
+/// The figures of a SwingWrapper file.
+pub fn swing_json(s: &swm::SwingStats) -> Value {
+    let t = s.triangles.max(1) as f64;
+    let sections: Vec<Value> = s
+        .sections
+        .iter()
+        .map(|(tag, bytes)| {
+            json!({
+                "tag": String::from_utf8_lossy(tag),
+                "bytes": bytes,
+                "bits_per_triangle": 8.0 * *bytes as f64 / t,
+            })
+        })
+        .collect();
+    let [c, l, e, r, s_] = s.clers;
+    json!({
+        "mode": "swing",
+        "edge_length": s.edge_length,
+        "angle_bits": s.angle_bits,
+        "predicted_angle_code": s.predicted_code,
+        "bytes": s.file_bytes,
+        "vertices": s.vertices,
+        "triangles": s.triangles,
+        "components": s.components,
+        "handle_events": s.handle_events,
+        "bits_per_triangle": 8.0 * s.file_bytes as f64 / t,
+        "bits_per_vertex": 8.0 * s.file_bytes as f64 / s.vertices.max(1) as f64,
+        "connectivity_bits_per_triangle": s.connectivity_bits_per_triangle,
+        "geometry_bits_per_triangle": s.geometry_bits_per_triangle,
+        "bits_per_angle": s.bits_per_angle,
+        "cr_share": s.cr_share,
+        "valence6_share": s.valence6_share,
+        "clers": { "C": c, "L": l, "E": e, "R": r, "S": s_ },
+        "sections": sections,
+    })
+}
+
+/// How the SwingWrapper encoder chose its edge length.
+pub fn rate_json(r: &swm::RateReport) -> Value {
+    let attempts: Vec<Value> = r
+        .attempts
+        .iter()
+        .map(|a| match &a.outcome {
+            Ok(bytes) => json!({ "edge_length": a.edge_length, "bytes": bytes }),
+            Err(why) => json!({ "edge_length": a.edge_length, "failed": why.to_string() }),
+        })
+        .collect();
+    json!({
+        "requested_bytes": r.requested_bytes,
+        "edge_length": r.edge_length,
+        "reduced": r.reduced,
+        "within_tolerance": r.within_tolerance,
+        "attempts": attempts,
+    })
+}
+
 /// What cleaning changed.
 pub fn clean_json(r: &swm::CleanReport) -> Value {
     json!({

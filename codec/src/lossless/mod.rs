@@ -11,7 +11,8 @@
 //! * `GEOM`: the position residuals (see `geometry::lossless`).
 //!
 //! Encoder and decoder steps that mirror each other sit side by side
-//! below; each pair must match exactly.
+//! below; each pair must match exactly. The SwingWrapper mode writes and
+//! reads its `TOPO` and `CLRS` with the same functions.
 
 #[cfg(test)]
 use crate::container::parse_container;
@@ -234,6 +235,17 @@ pub(crate) fn read_connectivity(
     limits: &Limits,
 ) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
     let quantizer = read_head(file.require(Tag::HEAD)?.bytes)?;
+    let (conn, dummies) = read_topology(file, limits)?;
+    Ok((quantizer, conn, dummies))
+}
+
+/// Reads TOPO and CLRS (the connectivity and the dummy vertices), with
+/// every count checked before allocating. Shared with the SwingWrapper
+/// mode, whose TOPO and CLRS are these.
+pub(crate) fn read_topology(
+    file: &Container<'_>,
+    limits: &Limits,
+) -> Result<(Connectivity, Vec<u32>), Error> {
     let h = &file.header;
     let clrs = file.require(Tag::CLRS)?.bytes;
     let mut r = Reader::new(file.require(Tag::TOPO)?.bytes);
@@ -309,7 +321,7 @@ pub(crate) fn read_connectivity(
         components: h.component_count,
         vertices: total_vertices as u32,
     };
-    Ok((quantizer, conn, dummies))
+    Ok((conn, dummies))
 }
 
 // --- HEAD: written and read side by side; must match exactly. ---
@@ -353,10 +365,10 @@ fn read_head(bytes: &[u8]) -> Result<Quantizer, Error> {
     })
 }
 
-// --- TOPO writer (reader above, in read_connectivity). ---
+// --- TOPO writer (reader above, in read_topology). ---
 
 #[cfg(feature = "encoder")]
-fn write_topo(conn: &Connectivity, dummies: &[u32]) -> Vec<u8> {
+pub(crate) fn write_topo(conn: &Connectivity, dummies: &[u32]) -> Vec<u8> {
     let mut out = Vec::new();
     varint::put(&mut out, conn.symbols.len() as u64);
     varint::put(&mut out, dummies.len() as u64);
@@ -388,7 +400,7 @@ fn write_topo(conn: &Connectivity, dummies: &[u32]) -> Vec<u8> {
 // --- CLRS: the previous symbol is the context; must match exactly. ---
 
 #[cfg(feature = "encoder")]
-fn write_clers(symbols: &[Symbol]) -> Vec<u8> {
+pub(crate) fn write_clers(symbols: &[Symbol]) -> Vec<u8> {
     let mut enc = Encoder::new();
     let mut model = ContextModel::new(5, 5);
     let mut prev = Symbol::C;

@@ -1,0 +1,184 @@
+use super::surface::Surface;
+use super::*;
+use crate::edgebreaker::tests_support::{icosahedron, subdivided};
+
+/// A sphere of radius 1: an icosahedron subdivided `levels` times with
+/// the midpoints pushed out.
+pub fn sphere(levels: u32) -> TriMesh {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let (p, f) = subdivided(icosahedron(t), levels, |a, b| {
+        let m = DVec3::from(a) + DVec3::from(b);
+        (m / m.length()).to_array()
+    });
+    let p = p
+        .iter()
+        .map(|q| (DVec3::from(*q).normalize()).as_vec3().to_array())
+        .collect();
+    TriMesh::new(p, f)
+}
+
+/// An ellipsoid with semi-axes 1, 0.7, 0.45: curvature varies.
+fn ellipsoid(levels: u32) -> TriMesh {
+    let mut m = sphere(levels);
+    for p in &mut m.positions {
+        p[1] *= 0.7;
+        p[2] *= 0.45;
+    }
+    m
+}
+
+fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
+    let table = CornerTable::new(&mesh.triangles, mesh.vertex_count()).unwrap();
+    retile(
+        mesh,
+        &table,
+        &RetileOptions {
+            edge_length: l,
+            angle_bits: 8,
+            start_vertex: None,
+        },
+    )
+}
+
+fn check_closed_genus0(r: &Retiled) {
+    let table = CornerTable::new(&r.triangles, r.positions.len()).expect("M' is a manifold");
+    assert!(
+        table.opposites().iter().all(|o| o.is_some()),
+        "M' is closed"
+    );
+    let (v, f) = (r.positions.len() as i64, r.triangles.len() as i64);
+    assert_eq!(v - f * 3 / 2 + f, 2, "Euler characteristic of a sphere");
+    assert_eq!(r.symbols.len() + 1, r.triangles.len());
+    let cs = r.symbols.iter().filter(|&&s| s == Symbol::C).count();
+    assert_eq!(cs, r.codes.len());
+    assert_eq!(cs + 3, r.positions.len());
+}
+
+#[test]
+fn splits_keep_the_surface_consistent() {
+    let m = sphere(1);
+    let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
+    let pos: Vec<DVec3> = m
+        .positions
+        .iter()
+        .map(|p| p.map(f64::from).into())
+        .collect();
+    let opp: Vec<u32> = table.opposites().iter().map(|c| c.0).collect();
+    let mut s = Surface::new(&pos, &m.triangles, &opp);
+    s.set_path(4);
+    let w = s.split_edge(4, 0.3);
+    s.check().unwrap();
+    assert_eq!(s.on_path[w as usize], 2);
+    let c = 21;
+    let p = (s.p(c) + s.p(surface::next(c)) + s.p(surface::prev(c))) / 3.0;
+    s.split_face(7, p);
+    s.check().unwrap();
+    for f in 0..s.face_count() as u32 {
+        s.insert_point(f % 11, s.p(3 * f) * 0.5 + s.p(3 * f + 1) * 0.5, 1e-12);
+        s.check().unwrap();
+    }
+}
+
+#[test]
+fn sphere_retiles_into_a_closed_regular_mesh() {
+    let m = sphere(4);
+    let r = run(&m, 0.25).expect("retiling succeeds");
+    check_closed_genus0(&r);
+    // Every vertex lies near the unit sphere: on M up to quantization.
+    for p in &r.positions {
+        let d = (DVec3::from(*p).length() - 1.0).abs();
+        assert!(d < 0.02, "vertex off the sphere by {d}");
+    }
+    let cr = r
+        .symbols
+        .iter()
+        .filter(|&&s| s == Symbol::C || s == Symbol::R)
+        .count();
+    let share = cr as f64 / r.symbols.len() as f64;
+    assert!(share > 0.85, "C+R share {share}");
+}
+
+#[test]
+fn ellipsoid_retiles_at_several_lengths() {
+    let m = ellipsoid(4);
+    for l in [0.1, 0.17, 0.3] {
+        let r = run(&m, l).unwrap_or_else(|e| panic!("L = {l}: {e:?}"));
+        check_closed_genus0(&r);
+    }
+}
+
+#[test]
+fn retiling_is_deterministic() {
+    let m = ellipsoid(3);
+    let a = run(&m, 0.2).unwrap();
+    let b = run(&m, 0.2).unwrap();
+    assert_eq!(a.triangles, b.triangles);
+    assert_eq!(a.codes, b.codes);
+    assert_eq!(a.positions, b.positions);
+}
+
+#[test]
+fn oversized_edge_length_fails_cleanly() {
+    let m = sphere(2);
+    assert!(run(&m, 5.0).is_err());
+    assert_eq!(run(&m, -1.0).unwrap_err(), Failure::BadInput);
+}
+
+/// Manual probe on a real mesh: `SWM_RETILE=path:L[,L...]`, e.g.
+/// `SWM_RETILE=../shared/corpus/horse.ply:0.01 cargo test -p swm --release
+/// --lib retile::tests::probe -- --ignored --nocapture`.
+#[test]
+#[ignore]
+#[cfg(feature = "io")]
+fn probe() {
+    let Ok(spec) = std::env::var("SWM_RETILE") else {
+        return;
+    };
+    let (path, ls) = spec.rsplit_once(':').unwrap();
+    let mesh = crate::io::read_mesh(std::path::Path::new(path)).unwrap();
+    let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
+    let diag = cleaned.mesh.bbox_diagonal();
+    println!(
+        "{path}: {} faces, diagonal {diag:.4}, area {:.4}",
+        cleaned.mesh.face_count(),
+        cleaned.mesh.area()
+    );
+    for l in ls.split(',') {
+        let l: f64 = l.parse().unwrap();
+        let t0 = std::time::Instant::now();
+        let table = &cleaned.table;
+        let res = retile(
+            &cleaned.mesh,
+            table,
+            &RetileOptions {
+                edge_length: l * diag,
+                angle_bits: 8,
+                start_vertex: std::env::var("SWM_RETILE_START")
+                    .ok()
+                    .map(|s| s.parse().unwrap()),
+            },
+        );
+        let dt = t0.elapsed().as_secs_f64();
+        match res {
+            Ok(r) => {
+                let mut hist = [0usize; 5];
+                for &s in &r.symbols {
+                    hist[s as usize] += 1;
+                }
+                let mut val = vec![0u32; r.positions.len()];
+                for t in &r.triangles {
+                    for &v in t {
+                        val[v as usize] += 1;
+                    }
+                }
+                let v6 = val.iter().filter(|&&d| d == 6).count() as f64 / val.len() as f64;
+                let cr = (hist[0] + hist[3]) as f64 / r.symbols.len() as f64;
+                println!(
+                    "L={l}: {} triangles, CLERS {hist:?}, C+R {cr:.3}, valence-6 {v6:.3}, {dt:.3} s",
+                    r.triangles.len()
+                );
+            }
+            Err(e) => println!("L={l}: failed {e:?} after {dt:.3} s"),
+        }
+    }
+}

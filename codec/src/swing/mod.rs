@@ -1,0 +1,154 @@
+//! The SwingWrapper mode (mode 1): the retiled mesh's connectivity, coded
+//! by Edgebreaker exactly as the lossless mode codes it, and one quantized
+//! dihedral angle per C tip (M. Attene, *Surface Remeshing and
+//! Applications*, 2004, §7; `../shared/design/ALGORITHMS.md` §5).
+//!
+//! Sections (format-spec/05-swing.md):
+//! * `HEAD`: `u8 K`, `u16 q_pred`, then per component the three vertices
+//!   of its first triangle as `f32 ×9`;
+//! * `TOPO`, `CLRS`: as in the lossless mode (no dummy vertices);
+//! * `GEOM`: the angle residuals `(q − q_pred) mod 2^K`, range coded
+//!   ([`residual`]).
+//!
+//! The decoder rebuilds the corner table, then every vertex in one pass
+//! over the triangles ([`rebuild_positions`]); the encoder runs the same
+//! pass on the retiler's output before writing, so the file decodes to
+//! exactly the retiler's positions.
+//!
+//! One concern per file: `angle` (the exact arithmetic of a tip),
+//! `residual` (the GEOM stream), `write` (the encoder side), `read` (the
+//! decoder side and `inspect`).
+
+mod angle;
+mod read;
+mod residual;
+#[cfg(feature = "encoder")]
+mod write;
+
+#[cfg(test)]
+mod tests;
+
+pub use angle::{first_edge_length, rebuild_positions, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+// What the retiler builds its tips with: the decoder's own arithmetic.
+#[cfg(feature = "encoder")]
+pub use angle::{quantize, tip_radius, AngleTable, Frame};
+pub(crate) use read::{decode, inspect};
+#[cfg(feature = "encoder")]
+pub(crate) use write::write;
+
+use crate::edgebreaker::Symbol;
+
+/// What the retiler hands to the writer: the retiled mesh M′ in creation
+/// order, with the decoded positions the file must reproduce.
+///
+/// Conventions (format-spec/02-connectivity.md, "Decoded numbering"):
+/// triangle 0 is (p1, p3, p2) = vertices (0, 1, 2); every later triangle
+/// t is (tip, GL, GR), so that Edgebreaker run on M′ from corner 0 of
+/// triangle 0 visits the triangles in this order, each through corner
+/// 3t, reproduces `symbols`, and numbers the vertices 0, 1, 2, … as
+/// given (each C tip takes the next number).
+#[cfg(feature = "encoder")]
+#[derive(Clone, Debug, PartialEq)]
+pub struct Retiled {
+    /// Angle bits K, [`MIN_ANGLE_BITS`]`..=`[`MAX_ANGLE_BITS`].
+    pub angle_bits: u8,
+    /// p1, p3, p2: vertices 0, 1, 2, already binary32 values.
+    pub first: [[f64; 3]; 3],
+    /// Triangles in creation order, as above.
+    pub triangles: Vec<[u32; 3]>,
+    /// The decoded position X̂ of every vertex, by vertex number: what
+    /// the decoder computes, bit for bit.
+    pub positions: Vec<[f64; 3]>,
+    /// One CLERS symbol per triangle after the first.
+    pub symbols: Vec<Symbol>,
+    /// The angle code q of each C tip, in order.
+    pub codes: Vec<u32>,
+    /// L = |first[0] − first[2]| ([`first_edge_length`]).
+    pub edge_length: f64,
+}
+
+/// The figures of one SwingWrapper file (what `swm info` shows).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SwingStats {
+    /// Edge length L: the length of the first gate.
+    pub edge_length: f64,
+    /// Angle bits K.
+    pub angle_bits: u8,
+    /// The predicted angle code stored in `HEAD`.
+    pub predicted_code: u32,
+    /// Vertices of the retiled mesh.
+    pub vertices: u64,
+    /// Triangles of the retiled mesh.
+    pub triangles: u64,
+    /// Connected components.
+    pub components: u64,
+    /// Handle events (two per handle).
+    pub handle_events: u64,
+    /// CLERS histogram, in the order C, L, E, R, S.
+    pub clers: [u64; 5],
+    /// Share of the CLERS labels that are C or R (0 to 1).
+    pub cr_share: f64,
+    /// Share of the vertices of valence 6 (0 to 1).
+    pub valence6_share: f64,
+    /// Bits per triangle of the connectivity (`TOPO` and `CLRS`).
+    pub connectivity_bits_per_triangle: f64,
+    /// Bits per triangle of the angles (`GEOM`).
+    pub geometry_bits_per_triangle: f64,
+    /// Bits per coded angle (`GEOM` over the C tips).
+    pub bits_per_angle: f64,
+    /// Bytes of each section, in file order.
+    pub sections: Vec<([u8; 4], usize)>,
+    /// Bytes of the whole file.
+    pub file_bytes: usize,
+}
+
+impl SwingStats {
+    /// The figures of a file: its header fields, decoded corner table,
+    /// symbols and sections. The writer and `inspect` both build them
+    /// here.
+    pub(crate) fn new(
+        head: &read::Head,
+        table: &crate::CornerTable,
+        conn: &crate::edgebreaker::Connectivity,
+        sections: Vec<([u8; 4], usize)>,
+        file_bytes: usize,
+    ) -> Self {
+        let mut clers = [0u64; 5];
+        for &s in &conn.symbols {
+            clers[s as usize] += 1;
+        }
+        let labels = conn.symbols.len().max(1) as f64;
+        let mut valence = vec![0u32; table.vertex_count()];
+        for v in table.vertices() {
+            valence[v.idx()] += 1;
+        }
+        let six = valence.iter().filter(|&&k| k == 6).count();
+        let triangles = table.face_count() as u64;
+        let bytes_of = |tags: &[&[u8; 4]]| -> usize {
+            sections
+                .iter()
+                .filter(|(t, _)| tags.contains(&t))
+                .map(|(_, n)| n)
+                .sum()
+        };
+        let per_triangle = |bytes: usize| 8.0 * bytes as f64 / triangles.max(1) as f64;
+        let geom = bytes_of(&[b"GEOM"]);
+        SwingStats {
+            edge_length: head.first.first().map_or(0.0, first_edge_length),
+            angle_bits: head.bits,
+            predicted_code: head.predicted,
+            vertices: table.vertex_count() as u64,
+            triangles,
+            components: conn.components as u64,
+            handle_events: conn.splits.len() as u64,
+            clers,
+            cr_share: (clers[Symbol::C as usize] + clers[Symbol::R as usize]) as f64 / labels,
+            valence6_share: six as f64 / valence.len().max(1) as f64,
+            connectivity_bits_per_triangle: per_triangle(bytes_of(&[b"TOPO", b"CLRS"])),
+            geometry_bits_per_triangle: per_triangle(geom),
+            bits_per_angle: 8.0 * geom as f64 / (clers[Symbol::C as usize].max(1)) as f64,
+            sections,
+            file_bytes,
+        }
+    }
+}

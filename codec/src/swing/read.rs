@@ -1,0 +1,155 @@
+//! Decoding a SwingWrapper file: `HEAD`, then the connectivity (`TOPO`,
+//! `CLRS`, shared with the lossless mode), then the angle codes (`GEOM`)
+//! and the one pass that rebuilds the vertices. Every count is checked
+//! before anything sized by it is allocated.
+
+use super::{angle, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+use crate::container::{check_count_fits, Container, Tag};
+use crate::edgebreaker::{self, Connectivity, Symbol};
+use crate::varint::Reader;
+use crate::{CornerTable, Error, FormatError, Limits, Malformed, TriMesh};
+
+/// Bytes of `HEAD` before the first triangles: `K` and `q_pred`.
+const HEAD_FIXED_LEN: usize = 3;
+/// Bytes of one component's first triangle in `HEAD`: nine f32.
+const FIRST_LEN: usize = 36;
+
+/// The parameters in `HEAD`.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Head {
+    /// Angle bits K.
+    pub bits: u8,
+    /// The predicted code q_pred.
+    pub predicted: u32,
+    /// Each component's first triangle (corners 3t, 3t+1, 3t+2), read
+    /// from f32.
+    pub first: Vec<[[f64; 3]; 3]>,
+}
+
+fn bad_header(why: &'static str) -> Error {
+    Error::Format(FormatError::new("SWM", Malformed::BadHeader(why)))
+}
+
+fn bad(why: &'static str) -> Error {
+    Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
+}
+
+/// Writes `HEAD`; [`read_head`] must match it exactly.
+#[cfg(feature = "encoder")]
+pub(crate) fn write_head(head: &Head) -> Vec<u8> {
+    let mut out = Vec::with_capacity(HEAD_FIXED_LEN + FIRST_LEN * head.first.len());
+    out.push(head.bits);
+    out.extend_from_slice(&(head.predicted as u16).to_le_bytes());
+    for p in head.first.iter().flatten().flatten() {
+        out.extend_from_slice(&(*p as f32).to_le_bytes());
+    }
+    out
+}
+
+/// Reads and checks `HEAD` for a file of `components` components.
+pub(crate) fn read_head(bytes: &[u8], components: u32) -> Result<Head, Error> {
+    let mut r = Reader::new(bytes);
+    let bits = r.u8()?;
+    let predicted = u32::from(r.u8()?) | u32::from(r.u8()?) << 8;
+    if !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(&bits) {
+        return Err(bad_header("angle bits out of range"));
+    }
+    if predicted >> bits != 0 {
+        return Err(bad_header("predicted angle code out of range"));
+    }
+    // The length first, so that the allocation is bounded by the file.
+    let expected = HEAD_FIXED_LEN as u64 + FIRST_LEN as u64 * u64::from(components);
+    match (bytes.len() as u64).cmp(&expected) {
+        core::cmp::Ordering::Less => {
+            return Err(FormatError::new("SWM", Malformed::Truncated).into())
+        }
+        core::cmp::Ordering::Greater => {
+            return Err(FormatError::new("SWM", Malformed::TrailingData).into())
+        }
+        core::cmp::Ordering::Equal => {}
+    }
+    let mut first = Vec::with_capacity(components as usize);
+    for _ in 0..components {
+        let mut f = [[0.0; 3]; 3];
+        for p in &mut f {
+            for x in p.iter_mut() {
+                let v = r.f32()?;
+                if !v.is_finite() {
+                    return Err(bad_header("first vertex is not finite"));
+                }
+                *x = f64::from(v);
+            }
+        }
+        first.push(f);
+    }
+    r.end()?;
+    if let Some(f) = first.first() {
+        // sqrt of a sum of squares of differences of f32 values: finite.
+        if angle::first_edge_length(f) == 0.0 {
+            return Err(bad_header("the first gate has length zero"));
+        }
+    }
+    Ok(Head {
+        bits,
+        predicted,
+        first,
+    })
+}
+
+/// Reads `HEAD`, `TOPO` and `CLRS` and decodes the connectivity.
+fn read_connectivity(
+    file: &Container<'_>,
+    limits: &Limits,
+) -> Result<(Head, Connectivity, CornerTable), Error> {
+    let h = &file.header;
+    let head = read_head(file.require(Tag::HEAD)?.bytes, h.component_count)?;
+    let (conn, dummies) = crate::lossless::read_topology(file, limits)?;
+    if !dummies.is_empty() {
+        return Err(bad("a SwingWrapper file has no dummy vertices"));
+    }
+    if conn.triangles() != u64::from(h.triangle_count) {
+        return Err(bad("triangle count differs from the header"));
+    }
+    let table = edgebreaker::decode(&conn)?;
+    Ok((head, conn, table))
+}
+
+/// Decodes a SwingWrapper file whose container was parsed.
+pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
+    let (head, conn, table) = read_connectivity(file, limits)?;
+    let geom = file.require(Tag::GEOM)?.bytes;
+    let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
+    // A length costs more than K/2^16 bits: its model has K + 1 symbols.
+    check_count_fits(
+        "angle",
+        count as u64,
+        geom.len(),
+        u64::from(head.bits),
+        1 << crate::entropy::PRECISION,
+    )?;
+    // f64 and f32 positions, a length per vertex, a code per C tip.
+    limits.check_alloc((table.vertex_count() as u64).saturating_mul(41))?;
+    let codes = residual::decode(&table, geom, count, head.bits, head.predicted)?;
+    let x = super::rebuild_positions(&table, &head.first, head.bits, &codes)?;
+    let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
+    let triangles = table.triangles();
+    if triangles.len() != file.header.triangle_count as usize {
+        return Err(bad("triangle count differs from the header"));
+    }
+    Ok(TriMesh {
+        positions,
+        triangles,
+    })
+}
+
+/// The figures of a SwingWrapper file, read without decoding geometry.
+pub(crate) fn inspect(
+    file: &Container<'_>,
+    limits: &Limits,
+    file_bytes: usize,
+) -> Result<(Connectivity, SwingStats), Error> {
+    let (head, conn, table) = read_connectivity(file, limits)?;
+    let sections = file.sections().map(|s| (s.tag.0, s.bytes.len())).collect();
+    let stats = SwingStats::new(&head, &table, &conn, sections, file_bytes);
+    Ok((conn, stats))
+}
