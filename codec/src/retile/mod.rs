@@ -99,6 +99,7 @@ pub fn retile(
         paths: HashMap::new(),
         front: Front::default(),
         triangles: Vec::new(),
+        half_edges: HashMap::new(),
         symbols: Vec::new(),
         codes: Vec::new(),
         scratch: path::Scratch::default(),
@@ -147,6 +148,8 @@ struct Retiler {
     paths: HashMap<(u32, u32), Vec<u32>>,
     front: Front,
     triangles: Vec<[u32; 3]>,
+    /// Directed edge (a, b) of M′ to the triangle holding it CCW.
+    half_edges: HashMap<(u32, u32), u32>,
     symbols: Vec<Symbol>,
     codes: Vec<u32>,
     scratch: path::Scratch,
@@ -154,6 +157,10 @@ struct Retiler {
     cap: usize,
 }
 
+/// The longest edge a snap may create, in L.
+const MAX_EDGE: f64 = 2.0;
+/// The largest triangloid, in L² (an equilateral triangle is 0.43 L²).
+const MAX_REGION_AREA: f64 = 3.0;
 /// Border vertices tried as a forced snap before a gate fails.
 const SNAP_TRIES: usize = 6;
 /// How far (in L) a forced snap looks. The thesis sets no limit; a border
@@ -170,6 +177,33 @@ impl Retiler {
             self.s.sample[m as usize] = id;
         }
         id
+    }
+
+    fn push_triangle(&mut self, t: [u32; 3]) {
+        let id = self.triangles.len() as u32;
+        for k in 0..3 {
+            self.half_edges.insert((t[k], t[(k + 1) % 3]), id);
+        }
+        self.triangles.push(t);
+    }
+
+    fn normal(&self, t: [u32; 3]) -> DVec3 {
+        let [a, b, c] = t.map(|v| self.xhat[v as usize]);
+        (b - a).cross(c - a)
+    }
+
+    /// Triangle `t` (CCW) would fold back (normals over 120° apart) onto
+    /// an existing triangle across one of its edges.
+    fn folds(&self, t: [u32; 3]) -> bool {
+        let n = self.normal(t);
+        (0..3).any(|k| {
+            self.half_edges
+                .get(&(t[(k + 1) % 3], t[k]))
+                .is_some_and(|&u| {
+                    let m = self.normal(self.triangles[u as usize]);
+                    n.dot(m) < -0.5 * n.length() * m.length()
+                })
+        })
     }
 
     /// Undoes the last `add_vertex`.
@@ -219,7 +253,8 @@ impl Retiler {
                 let c = self.chain(a, b);
                 boundary.extend_from_slice(&c[..c.len() - 1]);
             }
-            match region::claim(&mut self.s, &boundary, id, &mut self.flood) {
+            let max_area = MAX_REGION_AREA * self.l * self.l;
+            match region::claim(&mut self.s, &boundary, id, max_area, &mut self.flood) {
                 Ok(_) => {
                     for &(a, b) in &made {
                         self.adj[a as usize].push(b);
@@ -304,7 +339,7 @@ impl Retiler {
         if !self.attempt([0, 1, 2], &[(0, 1), (1, 2)], 0) {
             return Err(Failure::NoThirdVertex);
         }
-        self.triangles.push([0, 1, 2]);
+        self.push_triangle([0, 1, 2]);
         let nodes = self.front.start(&[0, 1, 2]);
         // First gate: GR = p2, GL = p1, previous tip p3.
         Ok(((nodes[2], 1), [x1, x3, x2].map(|p| p.to_array())))
@@ -324,13 +359,22 @@ impl Retiler {
     ) -> ([Option<(DVec3, u32)>; 2], Option<(u32, DVec3)>) {
         let chain = self.chain(a, b);
         let s = &self.s;
-        let cross = chain
+        // The path may cross the bisecting plane more than once; start
+        // from the crossing nearest the circle's centre.
+        let crossing = chain
             .windows(2)
-            .find(|w| plane.positive(s.pos[w[0] as usize]) != plane.positive(s.pos[w[1] as usize]));
-        let Some(c) = cross.and_then(|w| s.edge(w[0], w[1])) else {
+            .filter(|w| {
+                plane.positive(s.pos[w[0] as usize]) != plane.positive(s.pos[w[1] as usize])
+            })
+            .filter_map(|w| s.edge(w[0], w[1]))
+            .map(|c| (c, plane.crossing(s, c).1))
+            .min_by(|a, b| {
+                a.1.distance_squared(centre)
+                    .total_cmp(&b.1.distance_squared(centre))
+            });
+        let Some((c, start)) = crossing else {
             return ([None, None], None);
         };
-        let start = plane.crossing(s, c).1;
         let budget = s.face_count();
         let max_len = 6.0 * self.radius;
         let hits = [c, s.opp[c as usize]].map(|side| {
@@ -382,7 +426,7 @@ impl Retiler {
             if self.s.owner[f as usize] == NONE {
                 let near = self.snap(f, v, 0.5 * self.l, lp, vl, vr, 1);
                 if let Some(&w) = near.first() {
-                    if let Some(out) = self.try_snap(gr, w, id) {
+                    if let Some(out) = self.try_snap((gr, tip), w, id, true) {
                         return Ok(out);
                     }
                 } else if let Some(gate) = self.try_c(gr, gl, tip, v, f, id) {
@@ -394,17 +438,27 @@ impl Retiler {
             // a limit, to the nearest border vertex that gives a valid
             // triangle.
             for w in self.snap(f, v, FORCED_SNAP * self.l, lp, vl, vr, SNAP_TRIES) {
-                if let Some(out) = self.try_snap(gr, w, id) {
+                if let Some(out) = self.try_snap((gr, tip), w, id, true) {
                     return Ok(out);
                 }
             }
         }
         // No usable tip on the circle (the surface is thinner than the
         // circle here, or every nearby choice failed): close the front
-        // with the border vertices nearest to the gate itself.
+        // with the border vertices nearest to the gate itself, and last
+        // with the gate's loop neighbours (an L or an R always shortens
+        // the loop where it is).
         if let Some((f, p)) = crossing {
             for w in self.snap(f, p, FORCED_SNAP * self.l, lp, vl, vr, SNAP_TRIES) {
-                if let Some(out) = self.try_snap(gr, w, id) {
+                if let Some(out) = self.try_snap((gr, tip), w, id, true) {
+                    return Ok(out);
+                }
+            }
+        }
+        for n in [self.front.next(gl), self.front.prev(gr)] {
+            let w = self.front.vertex(n);
+            if w != vl && w != vr {
+                if let Some(out) = self.try_snap((gr, tip), w, id, false) {
                     return Ok(out);
                 }
             }
@@ -433,15 +487,62 @@ impl Retiler {
 
     /// The triangle (W, GL, GR) with W a border vertex of the gate's loop,
     /// labelled by where W sits; `None` if it cannot be built.
-    fn try_snap(&mut self, gr: u32, w: u32, id: u32) -> Option<(Option<Gate>, Option<Gate>)> {
+    fn try_snap(
+        &mut self,
+        (gr, tip): Gate,
+        w: u32,
+        id: u32,
+        strict: bool,
+    ) -> Option<(Option<Gate>, Option<Gate>)> {
         let gl = self.front.next(gr);
         let (vl, vr) = (self.front.vertex(gl), self.front.vertex(gr));
         let Place::Loop(symbol, wn) = self.front.place(gr, w) else {
             return None;
         };
+        // An S that leaves a pocket of one vertex (W two steps from the
+        // gate along the loop) would close it at once with an E folded
+        // back over the S: take that vertex first, as an R or an L.
+        if symbol == Symbol::S {
+            let (before, after) = (self.front.prev(gr), self.front.next(gl));
+            let pocket = if self.front.prev(before) == wn {
+                Some(before)
+            } else if self.front.next(after) == wn {
+                Some(after)
+            } else {
+                None
+            };
+            if let Some(n) = pocket {
+                let out = self.try_snap((gr, tip), self.front.vertex(n), id, strict);
+                if out.is_some() {
+                    return out;
+                }
+            }
+        }
+        let max_edge = if strict { MAX_EDGE } else { 2.0 * MAX_EDGE };
+        // A triangle folded back onto a neighbour (normals more than 120°
+        // apart) is a crease the surface does not have; so is the E that a
+        // snap leaving a loop of three would force next.
+        if strict && (self.folds([w, vl, vr]) || self.forced_e_folds(gr, symbol, wn)) {
+            return None;
+        }
         // A new edge that exists already, not along the loop, would make
         // M′ non-manifold.
         let has = |a: u32, b: u32| self.adj[a as usize].contains(&b);
+        // A snap that makes an edge far longer than L starts a fan of
+        // ever longer triangles (a corridor zipped from one apex): refuse
+        // it, so the gate takes a C or a nearer border vertex instead.
+        let long = |a: u32, b: u32| {
+            self.xhat[a as usize].distance(self.xhat[b as usize]) > max_edge * self.l
+        };
+        let too_long = match symbol {
+            Symbol::L => long(vr, w),
+            Symbol::R => long(w, vl),
+            Symbol::S => long(vr, w) || long(w, vl),
+            _ => false,
+        };
+        if too_long {
+            return None;
+        }
         let new: &[(u32, u32)] = match symbol {
             Symbol::L if !has(vr, w) => &[(vr, w)],
             Symbol::R if !has(w, vl) => &[(w, vl)],
@@ -452,13 +553,31 @@ impl Retiler {
         if !self.attempt([w, vl, vr], new, id) {
             return None;
         }
-        self.triangles.push([w, vl, vr]);
+        self.push_triangle([w, vl, vr]);
         self.symbols.push(symbol);
         let (next, push) = self.front.apply(gr, symbol, wn);
         // After L and S the gate keeps GR and its previous tip is GL;
         // after R it keeps GL and the previous tip is GR.
         let next = next.map(|n| (n, if symbol == Symbol::R { vr } else { vl }));
         Some((next, push.map(|n| (n, vr))))
+    }
+
+    /// Whether applying `symbol` with tip node `wn` at gate `gr` leaves a
+    /// loop of three whose closing E would fold.
+    fn forced_e_folds(&self, gr: u32, symbol: Symbol, wn: u32) -> bool {
+        let f = &self.front;
+        let gl = f.next(gr);
+        let v = |n: u32| f.vertex(n);
+        // Each case: the three vertices (tip, GL, GR) of the E to come.
+        // Loop GR → W → a → GR left by an L. (Checking the loops an S
+        // leaves as well, or trying a C when a snap folds, was measured to
+        // make runs fail far more often: the pinched fronts behind most
+        // folds then have no valid triangle at all.)
+        let right = symbol == Symbol::L && f.next(f.next(wn)) == gr;
+        // Loop W → GL → b → W left by an R.
+        let left = symbol == Symbol::R && f.next(f.next(gl)) == wn;
+        (right && self.folds([v(f.next(wn)), v(wn), v(gr)]))
+            || (left && self.folds([v(f.next(gl)), v(gl), v(wn)]))
     }
 
     /// A C: quantize V's dihedral angle and continue from X̂. `None` when
@@ -483,7 +602,7 @@ impl Retiler {
             self.pop_vertex();
             return None;
         }
-        self.triangles.push([x, vl, vr]);
+        self.push_triangle([x, vl, vr]);
         self.symbols.push(Symbol::C);
         self.codes.push(q);
         Some((self.front.apply_c(gr, x), vl))

@@ -11,7 +11,11 @@
 //!   the right, means the three paths do not enclose a disk of free faces
 //!   (the "handle end" case of thesis Fig. 7.5);
 //! * its Euler characteristic V − E + F is 1 (a handle lying wholly
-//!   inside passes the previous test but not this one).
+//!   inside passes the previous test but not this one);
+//! * its area stays below a bound the caller sets from L: a region much
+//!   larger than its triangle means the front closed around free surface
+//!   (a check the thesis does not need, as it never closes a gate by
+//!   force; this retiler's fallbacks can).
 
 use super::surface::{face, prev, Surface, NONE};
 
@@ -24,6 +28,9 @@ pub enum Invalid {
     Leaks,
     /// The region is not a disk.
     NotDisk,
+    /// The region is far larger than a triangle of edge L: the paths
+    /// closed around free surface that other triangles should take.
+    TooLarge,
 }
 
 /// Reusable buffers.
@@ -38,7 +45,13 @@ pub struct Flood {
 /// Claims for triangle `id` the region left of the closed chain `boundary`
 /// (M vertices, first not repeated at the end). On failure the claim is
 /// left half done: the caller abandons the whole retiling.
-pub fn claim(s: &mut Surface, boundary: &[u32], id: u32, fl: &mut Flood) -> Result<usize, Invalid> {
+pub fn claim(
+    s: &mut Surface,
+    boundary: &[u32],
+    id: u32,
+    max_area: f64,
+    fl: &mut Flood,
+) -> Result<usize, Invalid> {
     fl.stack.clear();
     fl.faces.clear();
     let n = boundary.len();
@@ -59,8 +72,15 @@ pub fn claim(s: &mut Surface, boundary: &[u32], id: u32, fl: &mut Flood) -> Resu
         }
     }
     let mut boundary_edges = 0usize;
+    let mut area2 = 0.0;
     while let Some(f) = fl.stack.pop() {
         fl.faces.push(f);
+        let [c0, c1, c2] = Surface::corners(f);
+        let (a, b, c) = (s.p(c0), s.p(c1), s.p(c2));
+        area2 += (b - a).cross(c - a).length();
+        if area2 > 2.0 * max_area {
+            return Err(Invalid::TooLarge);
+        }
         for c in Surface::corners(f) {
             let g = face(s.opp[c as usize]);
             if s.path[c as usize] {

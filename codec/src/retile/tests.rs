@@ -100,7 +100,7 @@ fn sphere_retiles_into_a_closed_regular_mesh() {
 
 #[test]
 fn ellipsoid_retiles_at_several_lengths() {
-    let m = ellipsoid(4);
+    let m = ellipsoid(5);
     for l in [0.1, 0.17, 0.3] {
         let r = run(&m, l).unwrap_or_else(|e| panic!("L = {l}: {e:?}"));
         check_closed_genus0(&r);
@@ -172,6 +172,31 @@ fn probe() {
                     }
                 }
                 let v6 = val.iter().filter(|&&d| d == 6).count() as f64 / val.len() as f64;
+                // Folds: triangles whose normal turns more than 120° from
+                // the triangle across their gate.
+                let table = CornerTable::new(&r.triangles, r.positions.len()).unwrap();
+                let x = |v: u32| DVec3::from(r.positions[v as usize]);
+                let normal = |t: usize| {
+                    let [a, b, c] = r.triangles[t].map(x);
+                    (b - a).cross(c - a).normalize()
+                };
+                let mut folds = std::collections::HashMap::new();
+                let sym = |t: usize| {
+                    if t == 0 {
+                        '0'
+                    } else {
+                        r.symbols[t - 1].letter()
+                    }
+                };
+                for c in 0..3 * r.triangles.len() as u32 {
+                    let o = table.opposite(crate::CornerId(c));
+                    let (t, u) = ((c / 3) as usize, o.face().idx());
+                    if t < u && normal(t).dot(normal(u)) < -0.5 {
+                        let gate = c % 3 == 0 || o.0 % 3 == 0;
+                        *folds.entry((sym(t), sym(u), gate)).or_insert(0) += 1;
+                    }
+                }
+                println!("  folds (older, newer, across a gate): {folds:?}");
                 let cr = (hist[0] + hist[3]) as f64 / r.symbols.len() as f64;
                 println!(
                     "L={l}: {} triangles, CLERS {hist:?}, C+R {cr:.3}, valence-6 {v6:.3}, {dt:.3} s",
@@ -181,4 +206,77 @@ fn probe() {
             Err(e) => println!("L={l}: failed {e:?} after {dt:.3} s"),
         }
     }
+}
+
+/// The header allowance of the size bound, in bytes (format-spec/05-swing.md).
+const HEADER_ALLOWANCE: f64 = 85.0;
+
+#[test]
+fn decoding_reproduces_the_retiled_mesh_exactly() {
+    for (mesh, l) in [(sphere(4), 0.2), (ellipsoid(5), 0.12)] {
+        let r = run(&mesh, l).unwrap();
+        let (bytes, stats) = crate::swing::write(&r).unwrap();
+        let decoded = crate::decode(&bytes, &Default::default()).unwrap();
+        assert_eq!(decoded.triangles, r.triangles);
+        let expected: Vec<[f32; 3]> = r.positions.iter().map(|p| p.map(|c| c as f32)).collect();
+        assert_eq!(decoded.positions, expected);
+        // Thesis bound: bits <= 288 + 5.83 T, plus the container's header.
+        let bits = 8.0 * bytes.len() as f64;
+        let bound = 288.0 + 5.83 * stats.triangles as f64 + 8.0 * HEADER_ALLOWANCE;
+        assert!(bits <= bound, "{bits} bits > {bound}");
+    }
+}
+
+#[test]
+fn rate_control_lands_within_three_percent_and_under_the_cap() {
+    let m = ellipsoid(5);
+    let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
+    for target in [1500u64, 4000] {
+        let chosen = rate::at_size(&m, &table, target, None, 8).unwrap();
+        let size = chosen.bytes.len() as f64;
+        assert!(chosen.report.within_tolerance);
+        assert!(
+            (size - target as f64).abs() <= rate::TOLERANCE * target as f64,
+            "{size} bytes for {target}"
+        );
+        // A cap just below what the free search found is still honoured.
+        let cap = chosen.bytes.len() as u64 - 1;
+        match rate::at_size(&m, &table, target, Some(cap), 8) {
+            Ok(c) => assert!(c.bytes.len() as u64 <= cap),
+            Err(e) => assert!(matches!(e, crate::Error::Retile(_)), "{e}"),
+        }
+    }
+}
+
+#[test]
+fn swing_encoding_through_the_api_is_deterministic() {
+    let m = ellipsoid(4);
+    let options = crate::EncodeOptions {
+        mode: crate::EncodeMode::Swing {
+            target: crate::SwingTarget::Bytes(1200),
+            angle_bits: 8,
+            max_bytes: None,
+        },
+        ..Default::default()
+    };
+    let a = crate::encode(&m, &options).unwrap();
+    let b = crate::encode(&m, &options).unwrap();
+    assert_eq!(a.bytes, b.bytes);
+    let stats = a.stats.swing.unwrap();
+    assert!(stats.cr_share > 0.85, "C+R share {}", stats.cr_share);
+}
+
+#[test]
+fn open_meshes_are_refused_by_the_swing_mode() {
+    let grid = crate::edgebreaker::tests_support::grid(4, 4);
+    let options = crate::EncodeOptions {
+        mode: crate::EncodeMode::Swing {
+            target: crate::SwingTarget::BitsPerVertex(2.0),
+            angle_bits: 8,
+            max_bytes: None,
+        },
+        ..Default::default()
+    };
+    let e = crate::encode(&grid, &options).unwrap_err();
+    assert!(matches!(e, crate::Error::Topology(crate::TopologyError::NotASphere { .. })));
 }

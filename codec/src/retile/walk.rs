@@ -121,8 +121,9 @@ impl<'a> Walker<'a> {
 }
 
 /// Walks from `start` (a point of the current face of `w`) until the
-/// polyline first reaches distance `radius` from `centre`. Returns the
-/// point and the face holding it.
+/// polyline first leaves the ball of `radius` around `centre`, having been
+/// inside it (a start outside — a path far from its chord — first walks
+/// in). Returns the point and the face holding it.
 pub fn walk_to_radius(
     w: &mut Walker<'_>,
     start: DVec3,
@@ -132,17 +133,17 @@ pub fn walk_to_radius(
 ) -> Option<(DVec3, u32)> {
     let r2 = radius * radius;
     let mut from = start;
+    let mut inside = from.distance_squared(centre) < r2;
     let mut length = 0.0;
-    if from.distance_squared(centre) >= r2 {
-        return Some((from, w.face()));
-    }
     loop {
         let f = w.face();
         let step = w.step()?;
         let to = step.point;
-        if to.distance_squared(centre) >= r2 {
+        let out = to.distance_squared(centre) >= r2;
+        if inside && out {
             return Some((segment_sphere(from, to, centre, r2), f));
         }
+        inside |= !out;
         length += from.distance(to);
         if length > max_length {
             return None;
