@@ -278,5 +278,8 @@ fn open_meshes_are_refused_by_the_swing_mode() {
         ..Default::default()
     };
     let e = crate::encode(&grid, &options).unwrap_err();
-    assert!(matches!(e, crate::Error::Topology(crate::TopologyError::NotASphere { .. })));
+    assert!(matches!(
+        e,
+        crate::Error::Topology(crate::TopologyError::NotASphere { .. })
+    ));
 }
