@@ -60,6 +60,7 @@ fn encode_decode_info_roundtrip() {
             "--json",
         ]);
         let stats = json(&out);
+        assert_eq!(stats["mode"], "lossless");
         assert_eq!(stats["vertices"], 48 * 16);
         let back = swm::io::read_mesh(&output).unwrap();
         assert_eq!(back.face_count(), 48 * 16 * 2);

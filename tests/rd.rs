@@ -31,8 +31,48 @@ fn one_line_error(out: &Output, code: i32) -> String {
     err
 }
 
-/// A small table: a torus from a file and `generated:cube`, two rates.
+/// The notes `swm rd` printed on stderr (lines starting `swm rd: `) that
+/// contain `what`.
+fn notes(out: &Output, what: &str) -> Vec<String> {
+    String::from_utf8_lossy(&out.stderr)
+        .lines()
+        .filter(|l| l.starts_with("swm rd: ") && l.contains(what))
+        .map(str::to_string)
+        .collect()
+}
+
+/// On a closed genus-0 mesh a swing row is `ok` (a file within the
+/// budget, 8 angle bits), `infeasible` (no file fits) or `failed` (the
+/// retiler gave up, which `swm rd` says on stderr), never `n/a`. Which
+/// of the three is the retiler's business, not the harness's: the
+/// committed tables ratchet it.
+fn check_swing_row(out: &Output, key: &str, status: &str, bytes: &str, budget: &str, qp: &str) {
+    match status {
+        "ok" => {
+            assert!(
+                bytes.parse::<u64>().unwrap() <= budget.parse::<u64>().unwrap(),
+                "{key}: {bytes} bytes over {budget}"
+            );
+            assert_eq!(qp, "8", "{key}");
+        }
+        "infeasible" => {}
+        "failed" => {
+            let said = notes(out, &format!("{key}: failed: "));
+            assert_eq!(said.len(), 1, "{key}: {said:?}");
+        }
+        other => panic!("{key}: status {other}"),
+    }
+}
+
+/// A small table: a torus from a file and `generated:cube`, two rates,
+/// every configuration (`swing` does not take the torus).
 fn small_table(name: &str) -> (PathBuf, PathBuf) {
+    let (dir, csv, _) = small_table_run(name);
+    (dir, csv)
+}
+
+/// [`small_table`] and the run's output.
+fn small_table_run(name: &str) -> (PathBuf, PathBuf, Output) {
     let dir = scratch(name);
     let torus = dir.join("torus.obj");
     swm_corpus::save_obj(&swm_corpus::by_name("torus").unwrap(), &torus).unwrap();
@@ -48,7 +88,14 @@ fn small_table(name: &str) -> (PathBuf, PathBuf) {
         s(&dir),
     ]);
     ok(&out);
-    (dir.clone(), dir.join("rd.csv"))
+    // Why the torus has no swing rows, said once for its two rates.
+    let said = notes(&out, "does not apply");
+    assert_eq!(said.len(), 1, "{said:?}");
+    assert!(
+        said[0].contains("torus.obj: swing does not apply"),
+        "{said:?}"
+    );
+    (dir.clone(), dir.join("rd.csv"), out)
 }
 
 /// CSV rows as maps from column to cell (comments skipped).
@@ -92,9 +139,9 @@ fn tamper(csv: &Path, row: &str, column: &str, f: impl Fn(&str) -> String) -> St
 
 #[test]
 fn writes_csv_markdown_and_plots() {
-    let (dir, csv) = small_table("rd-files");
+    let (dir, csv, out) = small_table_run("rd-files");
     let rows = read_csv(&csv);
-    // 2 meshes x 2 rates x 2 configurations, sorted by mesh (as given),
+    // 2 meshes x 2 rates x 3 configurations, sorted by mesh (as given),
     // rate, configuration.
     let order: Vec<(String, String, String)> = rows
         .iter()
@@ -110,7 +157,7 @@ fn writes_csv_markdown_and_plots() {
         .iter()
         .flat_map(|m| {
             ["1", "8"].iter().flat_map(move |r| {
-                ["lossless", "baseline"]
+                ["lossless", "baseline", "swing"]
                     .iter()
                     .map(move |c| (m.to_string(), r.to_string(), c.to_string()))
             })
@@ -151,7 +198,9 @@ fn writes_csv_markdown_and_plots() {
                         >= r["l2_rel"].parse::<f64>().unwrap()
                 );
             }
-            "infeasible" => assert!(r["bytes"].is_empty() && r["l2_rel"].is_empty(), "{r:?}"),
+            "infeasible" | "n/a" | "failed" => {
+                assert!(r["bytes"].is_empty() && r["l2_rel"].is_empty(), "{r:?}")
+            }
             other => panic!("status {other}"),
         }
     }
@@ -165,10 +214,25 @@ fn writes_csv_markdown_and_plots() {
     assert_eq!(at("torus.obj", "1", "lossless")["status"], "infeasible");
     assert_eq!(at("torus.obj", "1", "baseline")["status"], "ok");
     assert_eq!(at("torus.obj", "8", "lossless")["status"], "ok");
+    // SwingWrapper takes the cube (a closed genus-0 surface), not the
+    // torus.
+    for rate in ["1", "8"] {
+        assert_eq!(at("torus.obj", rate, "swing")["status"], "n/a");
+        let r = at("generated:cube", rate, "swing");
+        check_swing_row(
+            &out,
+            &format!("generated:cube {rate} bpv swing"),
+            &r["status"],
+            &r["bytes"],
+            &r["budget_bytes"],
+            &r["qp"],
+        );
+    }
 
     let md = std::fs::read_to_string(dir.join("rd.md")).unwrap();
     assert!(md.contains("## torus") && md.contains("## cube"), "{md}");
     assert!(md.contains("| baseline | L2 |"), "{md}");
+    assert!(md.contains("| swing | L2 | n/a | n/a |"), "{md}");
     for mesh in ["torus", "cube"] {
         let svg = std::fs::read_to_string(dir.join(format!("rd-{mesh}.svg"))).unwrap();
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
@@ -200,6 +264,52 @@ fn json_prints_the_rows() {
     assert!(r["bytes"].as_u64().unwrap() <= r["budget_bytes"].as_u64().unwrap());
     assert!(r["l2_rel"].as_f64().unwrap() > 0.0);
     assert!(r["qp"].as_u64().unwrap() >= 7 && r["qp"].as_u64().unwrap() <= 14);
+
+    // Swing: a row per mesh, `n/a` (with nulls) where it does not apply,
+    // and the reason on stderr.
+    let out = swm(&[
+        "rd",
+        "generated:icosphere",
+        "generated:torus",
+        "--rates",
+        "2",
+        "--configs",
+        "swing",
+        "--samples",
+        "2000",
+        "--json",
+    ]);
+    let v = json(&out);
+    let rows = v.as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    let (sphere, torus) = (&rows[0], &rows[1]);
+    assert_eq!(sphere["config"], "swing");
+    let cell = |v: &serde_json::Value| match v {
+        serde_json::Value::Null => String::new(),
+        other => other.to_string(),
+    };
+    check_swing_row(
+        &out,
+        "generated:icosphere 2 bpv swing",
+        sphere["status"].as_str().unwrap(),
+        &cell(&sphere["bytes"]),
+        &cell(&sphere["budget_bytes"]),
+        &cell(&sphere["qp"]),
+    );
+    if sphere["status"] == "ok" {
+        assert!(sphere["l2_rel"].as_f64().unwrap() > 0.0);
+    }
+    assert_eq!(torus["status"], "n/a", "{torus}");
+    assert!(
+        torus["bytes"].is_null() && torus["l2_rel"].is_null(),
+        "{torus}"
+    );
+    let said = notes(&out, "does not apply");
+    assert_eq!(said.len(), 1, "{said:?}");
+    assert!(
+        said[0].starts_with("swm rd: generated:torus: swing does not apply: "),
+        "{said:?}"
+    );
 }
 
 #[test]
@@ -212,7 +322,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
         .lines()
         .filter(|l| !l.contains("rows checked"))
         .collect();
-    assert_eq!(verdicts.len(), 8, "{text}");
+    assert_eq!(verdicts.len(), 12, "{text}");
     assert!(verdicts.iter().all(|l| l.starts_with("same ")), "{text}");
 
     // Halve the L2 of the torus's 8 bpv lossless row.
@@ -220,7 +330,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     let tampered = dir.join("tampered.csv");
     let halve = |c: &str| (c.parse::<f64>().unwrap() / 2.0).to_string();
     std::fs::write(&tampered, tamper(&csv, row, "l2_rel", halve)).unwrap();
-    let out = swm(&["rd", "--check", s(&tampered)]);
+    let out = swm(&["rd", "--check", s(&tampered), "--only", "torus"]);
     let err = one_line_error(&out, 1);
     assert!(err.contains(&tampered.display().to_string()), "{err}");
     assert!(
@@ -235,14 +345,39 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     // A file that grows by one byte fails too, though no distance moved.
     let shrink = |c: &str| (c.parse::<u64>().unwrap() - 1).to_string();
     std::fs::write(&tampered, tamper(&csv, row, "bytes", shrink)).unwrap();
-    let err = one_line_error(&swm(&["rd", "--check", s(&tampered)]), 1);
+    let err = one_line_error(&swm(&["rd", "--check", s(&tampered), "--only", "torus"]), 1);
     assert!(err.contains("bytes"), "{err}");
+
+    // A row that had a file and now has none regresses: claim that swing
+    // coded the torus at 8 bpv (with the lossless row's figures).
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lossless = text
+        .lines()
+        .find(|l| l.starts_with(row))
+        .unwrap()
+        .replace(",lossless,", ",swing,");
+    let claimed: Vec<&str> = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("torus.obj,8,swing,n/a,") {
+                lossless.as_str()
+            } else {
+                l
+            }
+        })
+        .collect();
+    std::fs::write(&tampered, claimed.join("\n") + "\n").unwrap();
+    let err = one_line_error(&swm(&["rd", "--check", s(&tampered), "--only", "torus"]), 1);
+    assert!(
+        err.contains("torus.obj 8 bpv swing") && err.contains("status ok -> n/a"),
+        "{err}"
+    );
 
     // --only keeps one mesh's rows; --json gives verdicts.
     let out = swm(&["rd", "--check", s(&csv), "--only", "cube", "--json"]);
     let v = json(&out);
     let rows = v.as_array().unwrap();
-    assert_eq!(rows.len(), 4);
+    assert_eq!(rows.len(), 6);
     assert!(rows
         .iter()
         .all(|r| r["mesh"] == "generated:cube" && r["verdict"] == "pass"));
@@ -267,7 +402,7 @@ fn bad_inputs_give_one_line_errors() {
         (&["rd", "generated:cube", "--rates=-1"][..], "--rates"),
         (&["rd", "generated:cube", "--rates", "0"][..], "--rates"),
         (
-            &["rd", "generated:cube", "--configs", "swing"][..],
+            &["rd", "generated:cube", "--configs", "lossy"][..],
             "--configs",
         ),
         (&["rd", "generated:cube", "--samples", "0"][..], "--samples"),
@@ -319,5 +454,12 @@ fn committed_shared_table_holds_for_fandisk() {
     let table = Path::new(env!("CARGO_MANIFEST_DIR")).join("../corpus/rd/shared.csv");
     let out = swm(&["rd", "--check", s(&table), "--only", "fandisk"]);
     let text = ok(&out);
-    assert!(text.contains("10 rows checked, 0 regressed"), "{text}");
+    // Five rates for each configuration the table has.
+    let rows = read_csv(&table)
+        .iter()
+        .filter(|r| r["mesh"] == "shared:fandisk.obj")
+        .count();
+    assert!(rows >= 10, "{rows} fandisk rows");
+    let expect = format!("{rows} rows checked, 0 regressed");
+    assert!(text.contains(&expect), "{text}");
 }

@@ -168,8 +168,10 @@ fn encode_swing(
     let boundary_edges = table.opposites().iter().filter(|o| o.is_none()).count() as u64;
     let components = table.component_labels().1;
     let (v, f) = (table.vertex_count() as i64, table.face_count() as i64);
-    // Closed and connected: V − E + F = 2 − 2g with E = 3F/2.
-    let genus = (2 - (v - f / 2)) / 2;
+    // V − E + F = 2c − 2g − b, with E = (3F + boundary edges) / 2.
+    let e = (3 * f + boundary_edges as i64) / 2;
+    let loops = table.boundary_loops().len() as i64;
+    let genus = (2 * components as i64 - loops - (v - e + f)) / 2;
     if boundary_edges > 0 || components != 1 || genus != 0 {
         return Err(crate::TopologyError::NotASphere {
             boundary_edges,
@@ -199,6 +201,12 @@ fn encode_swing(
         if chosen.bytes.len() as u64 > cap {
             return Err(crate::RetileError {
                 attempts: chosen.report.attempts.len() as u32,
+                successes: chosen
+                    .report
+                    .attempts
+                    .iter()
+                    .filter(|a| a.outcome.is_ok())
+                    .count() as u32,
                 smallest_edge_length: chosen.report.edge_length,
                 failure: None,
             }

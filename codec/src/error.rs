@@ -84,6 +84,8 @@ impl fmt::Display for RetileFailure {
 pub struct RetileError {
     /// Runs made.
     pub attempts: u32,
+    /// Runs that retiled the surface (their files did not fit the cap).
+    pub successes: u32,
     /// The smallest edge length tried.
     pub smallest_edge_length: f64,
     /// Why the last run failed (`None` if every run succeeded but none
@@ -94,15 +96,20 @@ pub struct RetileError {
 impl fmt::Display for RetileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.failure {
-            Some(why) => write!(
+            Some(why) if self.successes == 0 => write!(
                 f,
                 "SwingWrapper retiling failed at every edge length tried ({} runs, down to {:.4e}): {why}",
                 self.attempts, self.smallest_edge_length
             ),
+            Some(why) => write!(
+                f,
+                "no SwingWrapper retiling fits ({} runs, {} retiled but too large, down to edge length {:.4e}; last failure: {why})",
+                self.attempts, self.successes, self.smallest_edge_length
+            ),
             None => write!(
                 f,
-                "no SwingWrapper retiling fits the size cap ({} runs, down to edge length {:.4e})",
-                self.attempts, self.smallest_edge_length
+                "no SwingWrapper retiling fits the size cap ({} runs, {} retiled, down to edge length {:.4e})",
+                self.attempts, self.successes, self.smallest_edge_length
             ),
         }
     }

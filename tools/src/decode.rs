@@ -28,7 +28,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if args.json {
         let info =
             swm::inspect(&bytes, &options.limits).map_err(|e| CliError::new(&args.input, e))?;
-        let mut v = crate::report::lossless_json(&info.stats, info.qp);
+        let mut v = match &info.swing {
+            Some(s) => crate::report::swing_json(s),
+            None => crate::report::lossless_json(&info.stats, info.qp),
+        };
         v["decode_seconds"] = seconds.into();
         crate::report::print_json(&v);
     } else {

@@ -138,6 +138,8 @@ pub fn at_size(
     max_bytes: Option<u64>,
     bits: u8,
 ) -> Result<Chosen, Error> {
+    // A cap below the target is the real target.
+    let target = max_bytes.map_or(target, |cap| target.min(cap));
     let area = mesh.area();
     let s_bits = 8.0 * target as f64;
     let mut l = (16.0 * area / (3f64.sqrt() * s_bits)).sqrt();
@@ -225,6 +227,7 @@ fn infeasible(attempts: &[Attempt]) -> Error {
     let last = attempts.last();
     crate::error::RetileError {
         attempts: attempts.len() as u32,
+        successes: attempts.iter().filter(|a| a.outcome.is_ok()).count() as u32,
         smallest_edge_length: attempts
             .iter()
             .map(|a| a.edge_length)

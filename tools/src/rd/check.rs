@@ -7,9 +7,9 @@
 //! * its file grows by even one byte,
 //! * its `l2_rel` or `hausdorff_rel` grows by more than the tolerance
 //!   (relative, 1% by default: `--tolerance 0.01`) plus [`SLACK`], or
-//! * it was coded and now nothing fits its budget.
+//! * it was coded and now has no file (`infeasible`, `failed` or `n/a`).
 //!
-//! A row that was infeasible and stays so passes; so does every
+//! A row without a file passes whatever it becomes; so does every
 //! improvement. All measured numbers are deterministic, so on an unchanged
 //! codec every row reproduces exactly on the platform that wrote the table
 //! (the committed tables: x86-64 Linux); the tolerance absorbs last-bit
@@ -22,7 +22,7 @@
 //! failure too: the table no longer describes that mesh.
 
 use crate::rd::source::Source;
-use crate::rd::table::{self, Row};
+use crate::rd::table::{self, Outcome, Row};
 use crate::rd::{fail, Args, Job};
 use crate::CliError;
 use std::path::Path;
@@ -34,30 +34,45 @@ pub const SLACK: f64 = 1e-3;
 
 /// One way a row got worse.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Regression {
-    /// The column: `bytes`, `l2_rel`, `hausdorff_rel`, `status`, `vertices`
-    /// or `budget_bytes`.
-    pub metric: &'static str,
-    /// The table's value (`NaN` where it has none).
-    pub old: f64,
-    /// The fresh value (`NaN` where there is none).
-    pub new: f64,
+pub enum Regression {
+    /// The row was coded and now has no file.
+    Status {
+        /// The fresh status.
+        new: &'static str,
+        /// Why, when the encoder said (`failed`, `n/a`).
+        why: String,
+    },
+    /// A count that must not change did, or a file grew: `bytes`,
+    /// `vertices` or `budget_bytes`.
+    Count {
+        /// The column.
+        metric: &'static str,
+        /// The table's value.
+        old: u64,
+        /// The fresh value.
+        new: u64,
+    },
+    /// A distance grew beyond the tolerance: `l2_rel` or `hausdorff_rel`.
+    Distance {
+        /// The column.
+        metric: &'static str,
+        /// The table's value.
+        old: f64,
+        /// The fresh value.
+        new: f64,
+    },
 }
 
 impl std::fmt::Display for Regression {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.metric {
-            "status" => write!(f, "status ok -> infeasible"),
-            "bytes" | "vertices" | "budget_bytes" => {
-                write!(f, "{} {} -> {}", self.metric, self.old, self.new)
-            }
-            _ => write!(
+        match self {
+            Regression::Status { new, why } if why.is_empty() => write!(f, "status ok -> {new}"),
+            Regression::Status { new, why } => write!(f, "status ok -> {new} ({why})"),
+            Regression::Count { metric, old, new } => write!(f, "{metric} {old} -> {new}"),
+            Regression::Distance { metric, old, new } => write!(
                 f,
-                "{} {:.4} -> {:.4} ({:+.1}%)",
-                self.metric,
-                self.old,
-                self.new,
-                100.0 * (self.new / self.old - 1.0)
+                "{metric} {old:.4} -> {new:.4} ({:+.1}%)",
+                100.0 * (new / old - 1.0)
             ),
         }
     }
@@ -66,37 +81,31 @@ impl std::fmt::Display for Regression {
 /// How `new` (a fresh run of `old`'s row) compares with `old`.
 pub fn compare(old: &Row, new: &Row, tolerance: f64) -> Vec<Regression> {
     let mut out = Vec::new();
-    let exact = |metric, o: u64, n: u64| Regression {
-        metric,
-        old: o as f64,
-        new: n as f64,
-    };
+    let exact = |metric, old, new| Regression::Count { metric, old, new };
     if old.vertices != new.vertices {
         out.push(exact("vertices", old.vertices, new.vertices));
     }
     if old.budget_bytes != new.budget_bytes {
         out.push(exact("budget_bytes", old.budget_bytes, new.budget_bytes));
     }
-    match (&old.coded, &new.coded) {
-        (Some(_), None) => out.push(Regression {
-            metric: "status",
-            old: f64::NAN,
-            new: f64::NAN,
+    match (old.coded(), new.coded()) {
+        (Some(_), None) => out.push(Regression::Status {
+            new: new.status(),
+            why: match &new.outcome {
+                Outcome::Failed { why } | Outcome::NotApplicable { why } => why.clone(),
+                _ => String::new(),
+            },
         }),
         (Some(o), Some(n)) => {
             if n.bytes > o.bytes {
                 out.push(exact("bytes", o.bytes, n.bytes));
             }
-            for (metric, o, n) in [
+            for (metric, old, new) in [
                 ("l2_rel", o.l2_rel, n.l2_rel),
                 ("hausdorff_rel", o.hausdorff_rel, n.hausdorff_rel),
             ] {
-                if n > o * (1.0 + tolerance) + SLACK {
-                    out.push(Regression {
-                        metric,
-                        old: o,
-                        new: n,
-                    });
+                if new > old * (1.0 + tolerance) + SLACK {
+                    out.push(Regression::Distance { metric, old, new });
                 }
             }
         }
@@ -107,16 +116,16 @@ pub fn compare(old: &Row, new: &Row, tolerance: f64) -> Vec<Regression> {
 
 /// The line printed for one row.
 pub fn verdict_line(old: &Row, new: &Row, regressions: &[Regression]) -> String {
-    let what = match &new.coded {
+    let what = match new.coded() {
         Some(c) => format!(
             "{} B, l2_rel {:.4}, hausdorff_rel {:.3}",
             c.bytes, c.l2_rel, c.hausdorff_rel
         ),
-        None => "infeasible".to_string(),
+        None => new.status().to_string(),
     };
     if regressions.is_empty() {
-        let same = match (&old.coded, &new.coded) {
-            (None, None) => true,
+        let same = match (old.coded(), new.coded()) {
+            (None, None) => old.status() == new.status(),
             (Some(o), Some(n)) => {
                 (o.bytes, o.l2_rel, o.hausdorff_rel) == (n.bytes, n.l2_rel, n.hausdorff_rel)
             }

@@ -1,7 +1,7 @@
 //! `swm rd`: the rate-distortion harness.
 //!
 //! ```text
-//! swm rd MESH... [--rates 0.5,1,2,4,8] [--configs lossless,baseline]
+//! swm rd MESH... [--rates 0.5,1,2,4,8] [--configs lossless,baseline,swing]
 //!        [--samples N] [--out DIR] [--name rd] [--json]
 //! swm rd --check TABLE.csv [--only MESH]... [--tolerance 0.01] [--out DIR] [--json]
 //! ```
@@ -11,7 +11,11 @@
 //! thesis's tables), decode it, and measure the file and the distance of
 //! the decoded mesh from the input (L2 and Hausdorff, area-uniform samples
 //! on both surfaces, in 1e-4 of the input's bbox diagonal). A
-//! configuration that cannot fit the budget gives an `infeasible` row.
+//! configuration that cannot fit the budget gives an `infeasible` row, one
+//! whose encoder gives up a `failed` row, and one that does not take the
+//! mesh at all (`swing` on a mesh with holes) an `n/a` row; the reasons go
+//! to stderr (once per mesh and configuration for `n/a`) after a
+//! successful run.
 //! With `--out DIR` it writes `DIR/NAME.csv` (see [`table`]), `NAME.md`
 //! and one plot per mesh, `NAME-MESH.svg` (see [`plot`]), each atomically.
 //!
@@ -35,7 +39,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use source::Source;
 use std::path::{Path, PathBuf};
-use table::Row;
+use table::{Outcome, Row};
 
 /// Face samples per direction of a row's final distance, unless `--samples`
 /// says otherwise: the count of the shared corpus's peer figures.
@@ -51,7 +55,7 @@ pub struct Args {
     /// Target rates in bits per vertex of the mesh as read.
     #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,4,8", value_parser = parse_rate, conflicts_with = "check")]
     rates: Vec<f64>,
-    /// Configurations to run (default: all).
+    /// Configurations to run (default: all: lossless, baseline, swing).
     #[arg(long, value_enum, value_delimiter = ',', conflicts_with = "check")]
     configs: Vec<Config>,
     /// Area-uniform face samples per surface for each row's distance (the
@@ -86,7 +90,12 @@ Configurations:
   lossless  swm's lossless mode, the largest qp (6..24) that fits
   baseline  quadric simplification (meshoptimizer), then the lossless mode,
             at the face count and qp (7..14) with the lowest L2 that fits
-A configuration that cannot fit a budget gives a row with status infeasible.
+  swing     SwingWrapper (swm encode's default mode) with 8 angle bits, asked
+            for the budget and capped at it; one closed genus-0 surface only
+A configuration that cannot fit a budget gives a row with status infeasible;
+one whose encoder gives up, failed; one that does not take the mesh (swing
+on a mesh with holes, handles or several components), n/a. The reasons are
+printed on stderr.
 Distances: L2 (larger one-sided RMS) and Hausdorff, from area-uniform face
 samples on both surfaces, in units of 1e-4 of the input's bbox diagonal.
 
@@ -195,6 +204,7 @@ fn run_fresh(args: &Args) -> Result<(), CliError> {
     }
     let rows = run_jobs(&cases, &jobs)?;
     write_outputs(args, &cases, &rows)?;
+    explain(&rows);
     if args.json {
         let v: Vec<_> = rows.iter().map(Row::to_json).collect();
         crate::report::print_json(&v.into());
@@ -248,7 +258,7 @@ fn run_jobs(cases: &[Case], jobs: &[Job]) -> Result<Vec<Row>, CliError> {
             let case = &cases[job.case];
             let vertices = case.vertices();
             let budget = (job.rate * vertices as f64 / 8.0).floor() as u64;
-            let coded = job.config.run(case, budget, job.samples)?;
+            let outcome = job.config.run(case, budget, job.samples)?;
             bar.inc(1);
             Ok(Row {
                 mesh: case.table_name.clone(),
@@ -257,12 +267,34 @@ fn run_jobs(cases: &[Case], jobs: &[Job]) -> Result<Vec<Row>, CliError> {
                 vertices,
                 budget_bytes: budget,
                 samples: job.samples,
-                coded,
+                outcome,
             })
         })
         .collect::<Result<Vec<Row>, CliError>>();
     bar.finish_and_clear();
     rows
+}
+
+/// Says on stderr why rows have no file: once per mesh and configuration
+/// for one that does not apply (the reason is the same at every rate),
+/// once per row for an encoder that gave up. (`--check` says it in the
+/// verdict of a row that regressed so.)
+fn explain(rows: &[Row]) {
+    let mut told: Vec<(&str, Config)> = Vec::new();
+    for r in rows {
+        match &r.outcome {
+            Outcome::NotApplicable { why } if !told.contains(&(r.mesh.as_str(), r.config)) => {
+                told.push((&r.mesh, r.config));
+                eprintln!(
+                    "swm rd: {}: {} does not apply: {why}",
+                    r.mesh,
+                    r.config.name()
+                );
+            }
+            Outcome::Failed { why } => eprintln!("swm rd: {}: failed: {why}", r.key()),
+            _ => {}
+        }
+    }
 }
 
 /// `--out DIR`: the CSV, the Markdown and one plot per mesh.
@@ -310,18 +342,21 @@ fn write_outputs(args: &Args, cases: &[Case], rows: &[Row]) -> Result<(), CliErr
 
 /// One line per row for the terminal.
 fn summary(r: &Row) -> String {
-    match (&r.coded, r.bpv()) {
+    match (r.coded(), r.bpv()) {
         (Some(c), Some(bpv)) => format!(
-            "{}: {} B ({bpv:.3} bpv), {} faces, qp {}, L2 {:.3}, Hausdorff {:.2} (1e-4 of the diagonal), encode {:.3} s, decode {:.4} s",
+            "{}: {} B ({bpv:.3} bpv), {} faces, {}, L2 {:.3}, Hausdorff {:.2} (1e-4 of the diagonal), encode {:.3} s, decode {:.4} s",
             r.key(),
             c.bytes,
             c.faces,
-            c.qp,
+            match r.config {
+                Config::Swing => format!("{} angle bits", c.qp),
+                _ => format!("qp {}", c.qp),
+            },
             c.l2_rel,
             c.hausdorff_rel,
             c.encode_s,
             c.decode_s
         ),
-        _ => format!("{}: infeasible (budget {} B)", r.key(), r.budget_bytes),
+        _ => format!("{}: {} (budget {} B)", r.key(), r.status(), r.budget_bytes),
     }
 }

@@ -8,20 +8,21 @@
 //! |---|---|
 //! | `mesh` | the mesh, as `rd::source` names it |
 //! | `rate_bpv` | the target rate, bits per input vertex |
-//! | `config` | the configuration (`lossless`, `baseline`, ...) |
-//! | `status` | `ok`, or `infeasible` when nothing fits the budget |
+//! | `config` | the configuration (`lossless`, `baseline`, `swing`) |
+//! | `status` | `ok`; `infeasible` when nothing fits the budget; `failed` when the encoder gave up (the reason is printed on stderr); `n/a` when the configuration does not take the mesh (e.g. `swing` on a mesh with holes) |
 //! | `vertices` | vertex count of the mesh as read (the rate's unit) |
 //! | `budget_bytes` | ⌊rate × vertices / 8⌋ |
 //! | `bytes` | size of the `.swm` file |
 //! | `bpv` | actual bits per input vertex, 8 × bytes / vertices |
 //! | `faces` | triangles of the decoded mesh |
-//! | `qp` | bits per coordinate used |
+//! | `qp` | quantization bits: per coordinate (`lossless`, `baseline`), per dihedral angle (`swing`) |
 //! | `samples` | area-proportional face samples per direction of the final distance |
 //! | `l2_rel` | L2 (max of the one-sided RMS), in 1e-4 of the input's bbox diagonal |
 //! | `hausdorff_rel` | Hausdorff distance, same unit |
-//! | `encode_s`, `decode_s` | wall times (simplification included in the baseline's encode) |
+//! | `encode_s`, `decode_s` | wall times (simplification included in the baseline's encode, the rate search in swing's) |
 //!
-//! Infeasible rows leave the measured columns empty. Numbers other than
+//! Rows without a file (every status but `ok`) leave the measured columns
+//! empty. Numbers other than
 //! times are printed in Rust's shortest round-trip form, so a table read
 //! back compares bit for bit with a fresh run. Lines starting with `#` are
 //! comments.
@@ -30,6 +31,56 @@ use crate::rd::config::Config;
 use serde_json::{json, Value};
 use swm::{FormatError, Location, Malformed};
 
+/// How a configuration fared at one rate.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outcome {
+    /// A file within the budget, decoded and measured.
+    Coded(Coded),
+    /// Nothing the configuration makes fits the budget.
+    Infeasible,
+    /// The encoder gave up (e.g. the retiler found no working edge
+    /// length); `why` is its message, empty when read back from a table.
+    Failed {
+        /// The library's error message.
+        why: String,
+    },
+    /// The configuration does not take this mesh (e.g. `swing` on a mesh
+    /// that is not one closed genus-0 surface); `why` as for `Failed`.
+    NotApplicable {
+        /// The library's error message.
+        why: String,
+    },
+}
+
+impl Outcome {
+    /// The status column: `ok`, `infeasible`, `failed` or `n/a`.
+    pub fn status(&self) -> &'static str {
+        match self {
+            Outcome::Coded(_) => "ok",
+            Outcome::Infeasible => "infeasible",
+            Outcome::Failed { .. } => "failed",
+            Outcome::NotApplicable { .. } => "n/a",
+        }
+    }
+
+    /// The file's figures, when there is a file.
+    pub fn coded(&self) -> Option<&Coded> {
+        match self {
+            Outcome::Coded(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// What a table cell shows instead of a number when there is no file.
+    pub fn placeholder(&self) -> &'static str {
+        match self {
+            Outcome::Failed { .. } => "failed",
+            Outcome::NotApplicable { .. } => "n/a",
+            _ => "—",
+        }
+    }
+}
+
 /// What a configuration produced at one rate.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Coded {
@@ -37,7 +88,8 @@ pub struct Coded {
     pub bytes: u64,
     /// Triangles of the decoded mesh.
     pub faces: u64,
-    /// Bits per coordinate.
+    /// Quantization bits: per coordinate (lossless, baseline) or per
+    /// dihedral angle (swing).
     pub qp: u8,
     /// L2 distance, 1e-4 of the diagonal.
     pub l2_rel: f64,
@@ -64,23 +116,24 @@ pub struct Row {
     pub budget_bytes: u64,
     /// Face samples per direction of the final distance measurement.
     pub samples: u64,
-    /// The outcome; `None` when nothing fits the budget.
-    pub coded: Option<Coded>,
+    /// The outcome.
+    pub outcome: Outcome,
 }
 
 impl Row {
-    /// `ok` or `infeasible`.
+    /// `ok`, `infeasible`, `failed` or `n/a`.
     pub fn status(&self) -> &'static str {
-        if self.coded.is_some() {
-            "ok"
-        } else {
-            "infeasible"
-        }
+        self.outcome.status()
+    }
+
+    /// The file's figures, when there is a file.
+    pub fn coded(&self) -> Option<&Coded> {
+        self.outcome.coded()
     }
 
     /// Actual bits per input vertex.
     pub fn bpv(&self) -> Option<f64> {
-        let c = self.coded.as_ref()?;
+        let c = self.coded()?;
         Some(8.0 * c.bytes as f64 / self.vertices.max(1) as f64)
     }
 
@@ -91,7 +144,7 @@ impl Row {
 
     /// The row as a JSON object with the CSV's keys (`null` when empty).
     pub fn to_json(&self) -> Value {
-        let c = self.coded.as_ref();
+        let c = self.coded();
         json!({
             "mesh": self.mesh,
             "rate_bpv": self.rate_bpv,
@@ -140,7 +193,7 @@ pub fn to_csv(rows: &[Row]) -> String {
     out.push_str(&COLUMNS.join(","));
     out.push('\n');
     for r in rows {
-        let c = r.coded.as_ref();
+        let c = r.coded();
         let opt = |v: Option<String>| v.unwrap_or_default();
         let cells = [
             csv_cell(&r.mesh),
@@ -252,9 +305,11 @@ fn parse_row<'a>(n: usize, get: impl Fn(usize) -> &'a str) -> Result<Row, swm::E
         return Err(bad(n, "rate_bpv must be positive"));
     }
     let config = Config::from_name(get(2)).ok_or_else(|| bad(n, "unknown config"))?;
-    let coded = match get(3) {
-        "infeasible" => None,
-        "ok" => Some(Coded {
+    let outcome = match get(3) {
+        "infeasible" => Outcome::Infeasible,
+        "failed" => Outcome::Failed { why: String::new() },
+        "n/a" => Outcome::NotApplicable { why: String::new() },
+        "ok" => Outcome::Coded(Coded {
             bytes: num(n, get(6), "bytes is not a whole number")?,
             faces: num(n, get(8), "faces is not a whole number")?,
             qp: num(n, get(9), "qp is not a whole number")?,
@@ -263,7 +318,7 @@ fn parse_row<'a>(n: usize, get: impl Fn(usize) -> &'a str) -> Result<Row, swm::E
             encode_s: get(13).parse().unwrap_or(f64::NAN),
             decode_s: get(14).parse().unwrap_or(f64::NAN),
         }),
-        _ => return Err(bad(n, "status must be ok or infeasible")),
+        _ => return Err(bad(n, "status must be ok, infeasible, failed or n/a")),
     };
     let samples: u64 = num(n, get(10), "samples is not a whole number")?;
     if samples == 0 {
@@ -276,7 +331,7 @@ fn parse_row<'a>(n: usize, get: impl Fn(usize) -> &'a str) -> Result<Row, swm::E
         vertices: num(n, get(4), "vertices is not a whole number")?,
         budget_bytes: num(n, get(5), "budget_bytes is not a whole number")?,
         samples,
-        coded,
+        outcome,
     })
 }
 
@@ -289,7 +344,8 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
     let mut out = format!("# swm rd: {title}\n\n");
     out.push_str(
         "L2 and Hausdorff distances in units of 1e-4 of the input's bounding-box diagonal; \
-         rates in bits per vertex of the mesh as read. `—` = nothing fits the budget. \
+         rates in bits per vertex of the mesh as read. `—` = nothing fits the budget, \
+         `failed` = the encoder gave up, `n/a` = the configuration does not take the mesh. \
          Written by `swm rd`; the CSV beside this file is the record `swm rd --check` compares against.\n",
     );
     let mut meshes: Vec<&str> = Vec::new();
@@ -332,7 +388,7 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
                     let cell = mine
                         .iter()
                         .find(|r| r.config == config && r.rate_bpv == *rate)
-                        .map(|r| r.coded.as_ref().map_or("—".to_string(), show))
+                        .map(|r| r.coded().map_or(r.outcome.placeholder().to_string(), show))
                         .unwrap_or_default();
                     out.push_str(&format!(" {cell} |"));
                 }
@@ -353,16 +409,61 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
             r.budget_bytes
         );
         out.push_str(&head);
-        match (&r.coded, r.bpv()) {
+        match (r.coded(), r.bpv()) {
             (Some(c), Some(bpv)) => out.push_str(&format!(
                 " {} | {bpv:.3} | {} | {} | {:.3} | {:.2} | {:.3} | {:.4} |\n",
                 c.bytes, c.faces, c.qp, c.l2_rel, c.hausdorff_rel, c.encode_s, c.decode_s
             )),
-            _ => out.push_str(&" |".repeat(8)),
-        }
-        if r.coded.is_none() {
-            out.push('\n');
+            _ => out.push_str(&(" |".repeat(8) + "\n")),
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{from_csv, to_csv, to_markdown, Coded, Outcome, Row};
+    use crate::rd::config::Config;
+
+    fn row(config: Config, rate_bpv: f64, outcome: Outcome) -> Row {
+        Row {
+            mesh: "generated:torus".into(),
+            rate_bpv,
+            config,
+            vertices: 1536,
+            budget_bytes: (rate_bpv * 1536.0 / 8.0) as u64,
+            samples: 1000,
+            outcome,
+        }
+    }
+
+    /// Every status survives the CSV (reasons are not stored) and shows
+    /// in the Markdown.
+    #[test]
+    fn every_status_round_trips() {
+        let coded = Coded {
+            bytes: 380,
+            faces: 590,
+            qp: 8,
+            l2_rel: 0.1 + 0.2,
+            hausdorff_rel: 1.0 / 3.0,
+            encode_s: 0.25,
+            decode_s: 0.0625,
+        };
+        let why = "because".to_string();
+        let rows = vec![
+            row(Config::Swing, 2.0, Outcome::Coded(coded)),
+            row(Config::Lossless, 1.0, Outcome::Infeasible),
+            row(Config::Swing, 1.0, Outcome::Failed { why: why.clone() }),
+            row(Config::Swing, 4.0, Outcome::NotApplicable { why }),
+        ];
+        let back = from_csv(&to_csv(&rows)).expect("a table");
+        let statuses: Vec<&str> = back.iter().map(Row::status).collect();
+        assert_eq!(statuses, ["ok", "infeasible", "failed", "n/a"]);
+        assert_eq!(back[0], rows[0], "numbers round-trip bit for bit");
+        assert_eq!(back[2].outcome, Outcome::Failed { why: String::new() });
+        let md = to_markdown("t", &rows, |m| m.to_string());
+        assert!(md.contains("| swing | L2 | failed | 0.300 | n/a |"), "{md}");
+        assert!(md.contains("| lossless | L2 | — |"), "{md}");
+    }
 }

@@ -1,0 +1,322 @@
+//! `swm encode` in the SwingWrapper mode (the default) end to end: the
+//! three targets, the size cap, determinism, `swm decode` and `swm info`
+//! on the files, and clean refusals of what the mode does not take yet.
+//!
+//! The test mesh is an ellipsoid (an icosphere of 2,562 vertices with
+//! axes 1, 0.7 and 0.45), written to a scratch folder: closed, genus 0,
+//! and less symmetric than a sphere. Every encode takes well under a
+//! second.
+
+mod common;
+use common::*;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+/// Vertices of the test ellipsoid (icosphere, 4 subdivisions).
+const VERTICES: u64 = 2562;
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Writes the test ellipsoid into a fresh scratch folder.
+fn ellipsoid(name: &str) -> (PathBuf, PathBuf) {
+    let dir = scratch(name);
+    let mut mesh = swm_corpus::icosphere(1.0, 4);
+    for p in &mut mesh.positions {
+        p[1] *= 0.7;
+        p[2] *= 0.45;
+    }
+    assert_eq!(mesh.positions.len() as u64, VERTICES);
+    let path = dir.join("ellipsoid.obj");
+    swm::io::write_mesh(&path, &mesh).unwrap();
+    (dir, path)
+}
+
+/// `swm encode IN -o OUT EXTRA... --json`, parsed.
+fn encode_json(input: &Path, output: &Path, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["encode", s(input), "-o", s(output)];
+    args.extend_from_slice(extra);
+    args.push("--json");
+    json(&swm(&args))
+}
+
+/// A failed run: exit status 1, one line on stderr naming `file`.
+fn one_line_error(out: &Output, file: &Path) -> String {
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err}");
+    assert!(
+        err.starts_with(&format!("swm: error: {}: ", file.display())),
+        "{err}"
+    );
+    err
+}
+
+/// Names of the files in `dir` that `keep` rejects.
+fn files_but(dir: &Path, keep: impl Fn(&str) -> bool) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|f| !keep(f))
+        .collect()
+}
+
+/// Neither `output` nor a temporary file of any output is in its folder.
+fn assert_no_output(output: &Path) {
+    assert!(!output.exists(), "{} was written", output.display());
+    let left = files_but(output.parent().unwrap(), |f| !f.contains(".tmp-"));
+    assert!(left.is_empty(), "temporary files left behind: {left:?}");
+}
+
+/// Checks the encoder's JSON against the file on disk and the request;
+/// returns (bytes, triangles).
+fn check_encoded(v: &serde_json::Value, file: &Path, requested: Option<u64>) -> (u64, u64) {
+    assert_eq!(v["mode"], "swing", "{v}");
+    assert_eq!(v["angle_bits"], 8);
+    let bytes = v["bytes"].as_u64().unwrap();
+    assert_eq!(bytes, std::fs::metadata(file).unwrap().len());
+    let triangles = v["triangles"].as_u64().unwrap();
+    let vertices = v["vertices"].as_u64().unwrap();
+    // A closed genus-0 triangle mesh: T = 2V - 4.
+    assert!(triangles >= 4 && triangles == 2 * vertices - 4, "{v}");
+    assert_eq!(v["input_vertices"], VERTICES);
+    let rate = &v["rate_control"];
+    assert_eq!(rate["requested_bytes"].as_u64(), requested, "{v}");
+    let within = rate["within_tolerance"].as_bool().expect("a verdict");
+    if let (Some(r), true) = (requested, within) {
+        let miss = (bytes as f64 - r as f64).abs() / r as f64;
+        assert!(miss <= 0.03, "{bytes} bytes for {r} requested: {v}");
+    }
+    // The file is one of the retilings the search reports.
+    let attempts = rate["attempts"].as_array().unwrap();
+    assert!(
+        attempts
+            .iter()
+            .any(|a| a["edge_length"] == rate["edge_length"] && a["bytes"] == bytes),
+        "{v}"
+    );
+    (bytes, triangles)
+}
+
+#[test]
+fn the_three_targets_decode_and_inspect() {
+    let (dir, input) = ellipsoid("swing-targets");
+    let bpv = (2.0 * VERTICES as f64 / 8.0).round() as u64;
+    let targets: [(&str, &[&str], Option<u64>); 4] = [
+        ("bpv", &["--bpv", "2"], Some(bpv)),
+        ("default", &[], Some(bpv)),
+        ("size", &["--mode", "swing", "--size", "900"], Some(900)),
+        ("length", &["--edge-length", "0.1"], None),
+    ];
+    let mut files = Vec::new();
+    for (name, extra, requested) in targets {
+        let file = dir.join(format!("{name}.swm"));
+        let v = encode_json(&input, &file, extra);
+        let (bytes, triangles) = check_encoded(&v, &file, requested);
+        if name == "length" {
+            let rate = &v["rate_control"];
+            assert_eq!(rate["within_tolerance"], true, "{v}");
+            if rate["reduced"] == false {
+                // The file stores L as an f32.
+                let l = v["edge_length"].as_f64().unwrap();
+                assert!((l - 0.1).abs() < 1e-7, "{v}");
+            }
+        } else {
+            // The ellipsoid is easy: the rate control must land.
+            assert_eq!(v["rate_control"]["within_tolerance"], true, "{name}: {v}");
+        }
+
+        let info = json(&swm(&["info", s(&file), "--json"]));
+        assert_eq!(info["mode"], "swing");
+        assert_eq!(info["version"], "1.0");
+        for key in [
+            "bytes",
+            "triangles",
+            "vertices",
+            "edge_length",
+            "angle_bits",
+        ] {
+            assert_eq!(info[key], v[key], "{name}: {key}");
+        }
+        for key in ["cr_share", "valence6_share"] {
+            let share = info[key].as_f64().unwrap();
+            assert!((0.0..=1.0).contains(&share), "{key} {share}");
+        }
+        let clers: u64 = ["C", "L", "E", "R", "S"]
+            .iter()
+            .map(|k| info["clers"][k].as_u64().unwrap())
+            .sum();
+        assert!(clers > 0 && clers <= triangles, "{info}");
+
+        let out = dir.join(format!("{name}.ply"));
+        let d = json(&swm(&["decode", s(&file), "-o", s(&out), "--json"]));
+        assert_eq!(d["mode"], "swing", "decode --json names the file's mode");
+        assert_eq!(d["triangles"], triangles);
+        assert_eq!(d["bytes"], bytes);
+        assert!(d["decode_seconds"].as_f64().unwrap() >= 0.0);
+        let back = json(&swm(&["info", s(&out), "--json"]));
+        assert_eq!(back["faces"], triangles);
+        assert_eq!(
+            (&back["components"], &back["boundary_loops"], &back["genus"]),
+            (&1.into(), &0.into(), &0.into()),
+            "the retiled mesh is one closed sphere: {back}"
+        );
+        files.push(std::fs::read(&file).unwrap());
+    }
+    // No target means --bpv 2.
+    assert_eq!(files[0], files[1], "the default target is not --bpv 2");
+
+    // The text of `swm info` on a swing file.
+    let out = swm(&["info", s(&dir.join("size.swm"))]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    for needle in [
+        "SwingWrapper",
+        "8 angle bits",
+        "connectivity",
+        "bits/angle",
+        "C or R labels",
+        "valence-6 vertices",
+    ] {
+        assert!(text.contains(needle), "no `{needle}` in:\n{text}");
+    }
+    let left = files_but(&dir, |f| !f.contains(".tmp-"));
+    assert!(left.is_empty(), "temporary files left behind: {left:?}");
+}
+
+#[test]
+fn encoding_is_deterministic() {
+    let (dir, input) = ellipsoid("swing-determinism");
+    for extra in [&["--bpv", "3"][..], &["--size", "700", "--angle-bits", "6"]] {
+        let a = dir.join("a.swm");
+        let b = dir.join("b.swm");
+        for f in [&a, &b] {
+            let mut args = vec!["encode", s(&input), "-o", s(f)];
+            args.extend_from_slice(extra);
+            let out = swm(&args);
+            assert!(out.status.success(), "{out:?}");
+        }
+        let (a, b) = (std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+        assert!(!a.is_empty());
+        assert_eq!(a, b, "{extra:?}: two encodings differ");
+    }
+    let info = json(&swm(&["info", s(&dir.join("a.swm")), "--json"]));
+    assert_eq!(info["angle_bits"], 6);
+}
+
+#[test]
+fn max_size_is_never_exceeded() {
+    let (dir, input) = ellipsoid("swing-max-size");
+    // A cap at and above the target must be met; a cap below the target,
+    // or too small for any retiling of this shape, may give an error, but
+    // never a larger file.
+    for (target, cap, must) in [
+        ("800", "800", true),
+        ("500", "2000", true),
+        ("1200", "1000", false),
+        ("300", "40", false),
+    ] {
+        let file = dir.join("capped.swm");
+        let _ = std::fs::remove_file(&file);
+        let out = swm(&[
+            "encode",
+            s(&input),
+            "-o",
+            s(&file),
+            "--size",
+            target,
+            "--max-size",
+            cap,
+            "--json",
+        ]);
+        let cap: u64 = cap.parse().unwrap();
+        if out.status.success() {
+            let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            let bytes = std::fs::metadata(&file).unwrap().len();
+            assert_eq!(v["bytes"], bytes);
+            assert!(bytes <= cap, "{bytes} bytes over a cap of {cap}");
+        } else {
+            one_line_error(&out, &input);
+            assert_no_output(&file);
+            assert!(!must, "a cap of {cap} should be reachable: {out:?}");
+        }
+    }
+}
+
+#[test]
+fn what_swing_does_not_take_is_a_clean_error() {
+    let dir = scratch("swing-refusals");
+    let mut open = swm_corpus::icosphere(1.0, 3);
+    open.triangles.truncate(open.triangles.len() - 3);
+    let mut two = swm_corpus::icosphere(1.0, 2);
+    let shifted: Vec<[f32; 3]> = two
+        .positions
+        .iter()
+        .map(|p| [p[0] + 3.0, p[1], p[2]])
+        .collect();
+    let n = two.positions.len() as u32;
+    let more: Vec<[u32; 3]> = two.triangles.iter().map(|t| t.map(|v| v + n)).collect();
+    two.positions.extend(shifted);
+    two.triangles.extend(more);
+    let meshes = [
+        ("open.obj", open),
+        ("torus.off", swm_corpus::torus(1.0, 0.35, 32, 12)),
+        ("two-spheres.ply", two),
+    ];
+    for (name, mesh) in meshes {
+        let input = dir.join(name);
+        swm::io::write_mesh(&input, &mesh).unwrap();
+        let output = dir.join("out.swm");
+        // Default mode, then explicitly.
+        for extra in [&[][..], &["--mode", "swing", "--bpv", "4"]] {
+            let mut args = vec!["encode", s(&input), "-o", s(&output)];
+            args.extend_from_slice(extra);
+            let err = one_line_error(&swm(&args), &input);
+            assert!(err.contains("closed genus-0"), "{name}: {err}");
+            assert!(
+                err.contains("lossless"),
+                "{name}: the error names the way out: {err}"
+            );
+            assert_no_output(&output);
+        }
+        // The way out works.
+        let out = swm(&["encode", s(&input), "-o", s(&output), "--mode", "lossless"]);
+        assert!(out.status.success(), "{name}: {out:?}");
+        std::fs::remove_file(&output).unwrap();
+    }
+}
+
+#[test]
+fn bad_swing_options_are_usage_errors() {
+    let (dir, input) = ellipsoid("swing-usage");
+    let output = dir.join("out.swm");
+    for (extra, option) in [
+        (&["--size", "900", "--bpv", "2"][..], "--size"),
+        (&["--bpv", "2", "--edge-length", "0.1"], "--bpv"),
+        (&["--angle-bits", "3"], "--angle-bits"),
+        (&["--angle-bits", "13"], "--angle-bits"),
+        (&["--mode", "lossy"], "--mode"),
+    ] {
+        let mut args = vec!["encode", s(&input), "-o", s(&output)];
+        args.extend_from_slice(extra);
+        let out = swm(&args);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {out:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.lines().next().unwrap().contains(option),
+            "{extra:?}: {err}"
+        );
+    }
+    // Numbers clap accepts but the library refuses: exit 1, one line.
+    for extra in [
+        &["--bpv=-1"][..],
+        &["--edge-length", "0"],
+        &["--bpv", "nan"],
+    ] {
+        let mut args = vec!["encode", s(&input), "-o", s(&output)];
+        args.extend_from_slice(extra);
+        one_line_error(&swm(&args), &input);
+    }
+    assert_no_output(&output);
+}
