@@ -136,3 +136,145 @@ fn lossless_v1_0_reencodes_to_the_same_bytes() {
         "re-encoding the golden torus no longer gives golden/lossless-v1.0.swm"
     );
 }
+
+const SWING_V1_0: &[u8] = include_bytes!("../format-spec/golden/swing-v1.0.swm");
+
+/// The test vector of format-spec/05-swing.md ("Golden file").
+const SWING_V1_0_FNV1A64: u64 = 0x8249_F4EE_6BE4_5A0B;
+
+/// The golden swing file's input: an icosahedron subdivided three times
+/// with every vertex pushed onto the unit sphere (only `sqrt` and
+/// division, which IEEE 754 rounds exactly, so every platform builds the
+/// same `f32` positions).
+fn golden_sphere() -> TriMesh {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut p: Vec<[f64; 3]> = vec![
+        [-1., t, 0.],
+        [1., t, 0.],
+        [-1., -t, 0.],
+        [1., -t, 0.],
+        [0., -1., t],
+        [0., 1., t],
+        [0., -1., -t],
+        [0., 1., -t],
+        [t, 0., -1.],
+        [t, 0., 1.],
+        [-t, 0., -1.],
+        [-t, 0., 1.],
+    ];
+    let unit = |q: [f64; 3]| {
+        let n = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+        [q[0] / n, q[1] / n, q[2] / n]
+    };
+    for q in &mut p {
+        *q = unit(*q);
+    }
+    let mut f: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..3 {
+        let mut made = std::collections::HashMap::new();
+        let mut next = Vec::new();
+        for tri in &f {
+            let m: [u32; 3] = core::array::from_fn(|k| {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                *made.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    let (pa, pb) = (p[a as usize], p[b as usize]);
+                    p.push(unit([pa[0] + pb[0], pa[1] + pb[1], pa[2] + pb[2]]));
+                    p.len() as u32 - 1
+                })
+            });
+            next.extend([
+                [tri[0], m[0], m[2]],
+                [tri[1], m[1], m[0]],
+                [tri[2], m[2], m[1]],
+                m,
+            ]);
+        }
+        f = next;
+    }
+    TriMesh::new(p.iter().map(|q| q.map(|c| c as f32)).collect(), f)
+}
+
+fn golden_swing_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: swm::SwingTarget::EdgeLength(0.25),
+            angle_bits: 8,
+            max_bytes: None,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+/// Writes the golden swing file (run once, by hand, when the file is
+/// made: `cargo test --test golden -- --ignored write_swing_golden`).
+#[test]
+#[ignore]
+fn write_swing_golden() {
+    let encoded = swm::encode(&golden_sphere(), &golden_swing_options()).unwrap();
+    let mesh = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
+    std::fs::write(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../format-spec/golden/swing-v1.0.swm"
+        ),
+        &encoded.bytes,
+    )
+    .unwrap();
+    println!(
+        "{} bytes, {} vertices, {} triangles, hash {:#018X}",
+        encoded.bytes.len(),
+        mesh.positions.len(),
+        mesh.triangles.len(),
+        mesh_hash(&mesh)
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads the
+/// swing mode of format 1.0 as specified.
+#[test]
+fn swing_v1_0_decodes_to_its_test_vector() {
+    let mesh = swm::decode(SWING_V1_0, &DecodeOptions::default())
+        .expect("golden file swing-v1.0.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        SWING_V1_0_FNV1A64,
+        "decoded mesh differs from format-spec/05-swing.md's test vector"
+    );
+    // Every vertex lies on the unit sphere up to quantization of its angle.
+    for p in &mesh.positions {
+        let r = p.iter().map(|&c| (c as f64).powi(2)).sum::<f64>().sqrt();
+        assert!((r - 1.0).abs() < 0.02, "vertex at radius {r}");
+    }
+}
+
+/// The encoder still writes the golden bytes from the golden sphere (pins
+/// the encoder on this platform, not the format; see the lossless twin).
+#[test]
+fn swing_v1_0_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_sphere(), &golden_swing_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_V1_0,
+        "re-encoding the golden sphere no longer gives golden/swing-v1.0.swm"
+    );
+}
