@@ -5,9 +5,11 @@
 //! assumes 4 bits per equilateral triangle. Then, since the triangle count
 //! goes as 1/L², each run rescales L by √(O/S) (O the size obtained), a
 //! secant step on log L against log size, bracketed by the best runs on
-//! either side of the target. A run that fails (L too large for some
-//! part of the shape) becomes an upper bracket: the search then looks for
-//! the largest L that works, as the thesis's automated binary search did.
+//! either side of the target. A run that fails (some gate found no valid
+//! triangle) is retried at L nudged by a fraction of a percent: failures
+//! are not monotonic in L (measured on horse: runs fail and succeed
+//! alternately over a few percent of L), so they cannot bracket a binary
+//! search the way the thesis's "largest L that works" search assumed.
 //!
 //! The result is the run nearest the request among those within
 //! `max_bytes`; it lands within `TOLERANCE` of the request unless no run
@@ -144,12 +146,18 @@ pub fn at_size(
     let s_bits = 8.0 * target as f64;
     let mut l = (16.0 * area / (3f64.sqrt() * s_bits)).sqrt();
     let cap = max_bytes.unwrap_or(u64::MAX);
+    // With the cap at the target, aim a little below it so that a run
+    // lands inside [target − 3%, target].
+    let aim = if cap <= target {
+        (1.0 - TOLERANCE / 2.0) * target as f64
+    } else {
+        target as f64
+    };
     let mut attempts = Vec::new();
-    // Brackets: (L, size) of the nearest runs below and above the target
-    // in size, and the smallest failing L.
-    let mut small: Option<(f64, u64)> = None; // size < target: L too large
-    let mut large: Option<(f64, u64)> = None; // size > target: L too small
-    let mut bad = f64::INFINITY;
+    // Brackets from successful runs: (L, size) of the nearest runs below
+    // and above the aim in size.
+    let mut small: Option<(f64, u64)> = None; // size < aim: L too large
+    let mut large: Option<(f64, u64)> = None; // size > aim: L too small
     let mut best: Option<(f64, Vec<u8>, SwingStats)> = None;
     let score = |size: u64| {
         if size > cap {
@@ -158,9 +166,17 @@ pub fn at_size(
             (size as f64 / target as f64).ln().abs()
         }
     };
+    // `wanted` is the L the search asks for; after failures the run is
+    // made at `wanted` nudged by ±0.6%, ±1.2%, …: whether a run fails
+    // changes abruptly and unpredictably with L (one gate somewhere meets
+    // a pinched front), so failures say nothing about larger or smaller
+    // L and must not bracket the search.
+    let mut wanted = l;
+    let mut fails = 0u32;
     for _ in 0..MAX_RUNS {
         match run(mesh, table, l, bits)? {
             Ok((bytes, stats)) => {
+                fails = 0;
                 let size = bytes.len() as u64;
                 attempts.push(Attempt {
                     edge_length: l,
@@ -175,21 +191,19 @@ pub fn at_size(
                 if (size as f64 - target as f64).abs() <= TOLERANCE * target as f64 && size <= cap {
                     break;
                 }
-                if size < target {
+                if (size as f64) < aim {
                     small = Some((l, size));
                 } else {
                     large = Some((l, size));
                 }
                 // Size ~ 1/L²: rescale, then keep inside the brackets.
-                let mut next = l * (size as f64 / target as f64).sqrt();
+                let mut next = l * (size as f64 / aim).sqrt();
                 if let (Some((ls, _)), Some((ll, _))) = (small, large) {
                     if !(next > ll && next < ls) {
                         next = (ls * ll).sqrt();
                     }
                 }
-                if next >= bad {
-                    next = (l * bad).sqrt();
-                }
+                wanted = next;
                 l = next;
             }
             Err(f) => {
@@ -197,11 +211,15 @@ pub fn at_size(
                     edge_length: l,
                     outcome: Err(f),
                 });
-                // Whether a run fails changes abruptly with L (one gate
-                // somewhere meets a thin part or a tangle), so a slightly
-                // smaller L usually works: step down by 2%.
-                bad = bad.min(l);
-                l *= 0.98;
+                fails += 1;
+                // Four failures in a row around one L: the shape is too
+                // thin for it (the thesis's failure case); look 10% lower.
+                if fails % 4 == 0 {
+                    wanted *= 0.9;
+                }
+                let k = f64::from(fails % 4);
+                let sign = if fails % 2 == 1 { -1.0 } else { 1.0 };
+                l = wanted * (1.0 + sign * 0.006 * k);
             }
         }
     }
