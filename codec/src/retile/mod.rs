@@ -483,11 +483,20 @@ impl Retiler {
                 }
             }
         }
-        for n in [self.front.next(gl), self.front.prev(gr)] {
-            let w = self.front.vertex(n);
-            if w != vl && w != vr {
-                if let Some(out) = self.try_snap((gr, tip), w, id, false) {
-                    return Ok(out);
+        // The neighbour whose new edge is shorter first; strict, then
+        // allowing folds and edges up to twice as long.
+        let mut near: Vec<(f64, u32)> = [(self.front.next(gl), xr), (self.front.prev(gr), xl)]
+            .into_iter()
+            .map(|(n, other)| (self.xhat[self.front.vertex(n) as usize].distance(other), n))
+            .collect();
+        near.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for strict in [true, false] {
+            for &(_, n) in &near {
+                let w = self.front.vertex(n);
+                if w != vl && w != vr {
+                    if let Some(out) = self.try_snap((gr, tip), w, id, strict) {
+                        return Ok(out);
+                    }
                 }
             }
         }
