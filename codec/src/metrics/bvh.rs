@@ -1,36 +1,61 @@
 //! A bounding-volume hierarchy over triangles for exact nearest-point
 //! queries: axis-aligned boxes, binned surface-area-heuristic splits
 //! (Wald, "On fast construction of SAH-based bounding volume hierarchies",
-//! 2007), depth-first closest-first traversal with a shrinking bound.
+//! 2007), collapsed into a tree of eight-wide nodes (Dammertz, Hanika &
+//! Keller, "Shallow bounding volume hierarchies for fast SIMD ray tracing
+//! of incoherent rays", 2008) searched closest-first with a shrinking
+//! bound.
 //!
 //! Why our own and not parry3d: the queries here are one kind only
 //! (closest point of a triangle soup), they must give the same answer on
-//! every run and thread count, and they profit from a caller-supplied
-//! starting bound (consecutive samples lie close together, so the previous
-//! sample's triangle bounds the next search tightly). A small tree in
-//! `f32` with `f64` distance arithmetic does exactly that in a few hundred
-//! lines, without pulling in nalgebra.
+//! every run and thread count, and they profit from warm starts
+//! (consecutive samples lie close together). A small tree in `f32` with
+//! `f64` distance arithmetic does exactly that in a few hundred lines,
+//! without pulling in nalgebra.
+//!
+//! Where the speed comes from (issue 4 asks for 2 million queries per
+//! second against a million faces on one core):
+//! * a node holds up to eight children's boxes axis by axis, so one pass
+//!   of four-lane `f32` arithmetic per half measures them all, and a
+//!   query reads about a third as many nodes as in a binary tree;
+//! * the box tests are in `f32` against a threshold inflated just enough
+//!   to cover every rounding ([`Bound`]), so they stay exact;
+//! * warm starts: the caller's hint (the previous query's triangle) gives
+//!   the starting bound, and the [`Scratch`] remembers the path the last
+//!   query took down the tree, so the next one skips the levels whose
+//!   other children are certainly too far ([`Path`]).
 //!
 //! Invariants:
 //! * every node's box contains the boxes of all triangles below it, so a
 //!   subtree whose box is farther than the best distance found cannot hold
 //!   a nearer point: pruning is exact, not heuristic;
-//! * box and triangle distances are computed in `f64` from the stored
-//!   `f32` values (exactly representable), so the pruning test never
-//!   discards a subtree because of rounding in a narrower type;
-//! * nodes are stored depth-first: an inner node's left child follows it,
-//!   its right child is named; leaves hold a contiguous run of triangles.
+//! * triangle distances are computed in `f64` from the stored `f32`
+//!   corners (exactly representable); a subtree is discarded only if its
+//!   `f32` box distance, allowing for every rounding, exceeds the best
+//!   `f64` distance found: the result equals a brute-force minimum over
+//!   all triangles, bit for bit;
+//! * triangles are stored in leaf order, every subtree holding a
+//!   contiguous run; this order is also the order in which
+//!   `metrics::Surface` samples, so it is part of the output: the build
+//!   below must keep producing the same tree for the same input.
 //!
 //! Construction is iterative with an explicit stack (no recursion depth
 //! to exhaust on adversarial input): a range whose centroids all coincide
 //! is split at its middle, so every split makes progress.
 
 use super::triangle::{triangle_distance2, Tri};
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Triangles per leaf at most.
+/// Triangles per leaf at most. Part of the output: it sets the leaf
+/// order, which is the order `Surface` samples in.
 const LEAF_SIZE: usize = 2;
-/// Bins of the SAH split search.
+/// Bins of the SAH split search (part of the output, as `LEAF_SIZE`).
 const BINS: usize = 12;
+/// Children per node of the searched tree (eight measured about 3% faster
+/// than four; see BENCHMARKS.md).
+const W: usize = 8;
+// Leaf counts are stored in a byte, lanes in a `u32` mask.
+const _: () = assert!(LEAF_SIZE <= u8::MAX as usize && W <= 32);
 
 #[derive(Clone, Copy, Debug)]
 struct Aabb {
@@ -44,10 +69,24 @@ impl Aabb {
         max: [f32::NEG_INFINITY; 3],
     };
 
+    /// Plain comparisons rather than `f32::min`, whose NaN rules cost
+    /// instructions (every value here is finite or an empty box's ±∞).
+    #[inline(always)]
     fn grow(&mut self, other: &Aabb) {
         for k in 0..3 {
-            self.min[k] = self.min[k].min(other.min[k]);
-            self.max[k] = self.max[k].max(other.max[k]);
+            let (lo, hi) = (self.min[k], self.max[k]);
+            self.min[k] = if other.min[k] < lo { other.min[k] } else { lo };
+            self.max[k] = if other.max[k] > hi { other.max[k] } else { hi };
+        }
+    }
+
+    /// Grows the box to hold the point `p` (as [`Self::grow`]).
+    #[inline(always)]
+    fn grow_point(&mut self, p: &[f32; 3]) {
+        for (k, &c) in p.iter().enumerate() {
+            let (lo, hi) = (self.min[k], self.max[k]);
+            self.min[k] = if c < lo { c } else { lo };
+            self.max[k] = if c > hi { c } else { hi };
         }
     }
 
@@ -65,32 +104,9 @@ impl Aabb {
         let d: [f64; 3] = core::array::from_fn(|k| self.max[k] as f64 - self.min[k] as f64);
         d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
     }
-
-    /// Squared distance from `p` to the box (0 inside).
-    #[inline(always)]
-    fn distance2(&self, p: [f64; 3]) -> f64 {
-        (0..3).map(|k| gap2(self.min[k], self.max[k], p[k])).sum()
-    }
 }
 
-/// Squared distance along one axis from `x` to `[lo, hi]`. Plain
-/// comparisons rather than `f64::max`, whose NaN rules cost instructions
-/// (every value here is finite).
-#[inline(always)]
-fn gap2(lo: f32, hi: f32, x: f64) -> f64 {
-    let below = lo as f64 - x;
-    let above = x - hi as f64;
-    let d = if below > 0.0 {
-        below
-    } else if above > 0.0 {
-        above
-    } else {
-        0.0
-    };
-    d * d
-}
-
-/// A node of the tree as it is built (one box per node).
+/// A node of the binary tree as it is built (one box per node).
 #[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: Aabb,
@@ -107,51 +123,140 @@ pub struct Nearest {
     pub distance2: f64,
     /// Index of the triangle (in the order given to [`Bvh::new`]).
     pub triangle: u32,
+    /// Its position in the tree's leaf order: the hint for a next query.
+    pub slot: u32,
 }
 
-/// An inner node as it is searched: both children's boxes in one cache
-/// line, so that deciding where to go reads only this node (a child's own
-/// box would be a second, usually distant, memory access per level).
+/// A node as it is searched: up to `W` children, their boxes stored axis
+/// by axis so that one pass of `f32` arithmetic measures them all, and
+/// deciding where to go reads only this node (256 bytes, four cache
+/// lines).
 #[derive(Clone, Copy, Debug)]
-#[repr(align(64))]
-struct Inner {
-    min: [[f32; 3]; 2],
-    max: [[f32; 3]; 2],
-    /// Per child: the inner node's index, or for a leaf its first
-    /// triangle.
-    child: [u32; 2],
-    /// Per child: 0 for an inner node, else the leaf's triangle count.
-    count: [u32; 2],
+#[repr(C, align(64))]
+struct Wide {
+    /// `lo[axis][child]`, `hi[axis][child]`; unused lanes hold an empty
+    /// box (`+∞`, `−∞`), which is infinitely far.
+    lo: [[f32; W]; 3],
+    hi: [[f32; W]; 3],
+    /// Per child: the node's index, or for a leaf its first triangle.
+    child: [u32; W],
+    /// Per child: 0 for a node, else the leaf's triangle count.
+    leaf: [u8; W],
+    /// Bit `j` set if lane `j` holds a child (2 to `W` children, in the
+    /// first lanes).
+    lanes: u32,
+    /// Bit `j` set if lane `j` holds a leaf.
+    leaves: u32,
 }
 
-impl Inner {
+impl Wide {
+    /// The smallest of `d` over the children other than `j` (`d` as
+    /// returned by [`Self::distance2`], where unused lanes are infinite).
     #[inline(always)]
-    fn distance2(&self, side: usize, p: [f64; 3]) -> f64 {
-        gap2(self.min[side][0], self.max[side][0], p[0])
-            + gap2(self.min[side][1], self.max[side][1], p[1])
-            + gap2(self.min[side][2], self.max[side][2], p[2])
+    fn clearance(&self, d: &[f32; W], j: usize) -> f32 {
+        let mut m = f32::INFINITY;
+        for (k, &dk) in d.iter().enumerate() {
+            let v = if k == j { f32::INFINITY } else { dk };
+            m = if v < m { v } else { m };
+        }
+        m
+    }
+
+    /// Squared distances from `q` to the children's boxes, in `f32` (each
+    /// a slight under- or over-estimate: see [`Bound`]).
+    #[inline(always)]
+    fn distance2(&self, q: [f32; 3]) -> [f32; W] {
+        let mut d2 = [0.0f32; W];
+        for ((lo, hi), &x) in self.lo.iter().zip(&self.hi).zip(&q) {
+            for ((d, &lo), &hi) in d2.iter_mut().zip(lo).zip(hi) {
+                // Branch-free max: compiles to `maxps`.
+                let below = lo - x;
+                let above = x - hi;
+                let g = if below > above { below } else { above };
+                let g = if g > 0.0 { g } else { 0.0 };
+                *d += g * g;
+            }
+        }
+        d2
+    }
+}
+
+/// The search bound in both precisions: `best`, the smallest exact (`f64`)
+/// squared triangle distance found so far, and `prune`, an `f32` threshold
+/// such that a box whose computed `f32` squared distance exceeds it is
+/// certainly farther than `best`, whatever the rounding.
+///
+/// Why it is safe: the box distance is computed from `q`, the query
+/// rounded to `f32` (`|p − q| ≤ 2⁻²³·|p|∞`), with a relative error below
+/// `8·2⁻²⁴` (one rounding per subtraction, square and sum) plus at most
+/// `1e-44` from underflow. A box is pruned only when it is at least
+/// `√best + s` from `q`, where `s = 2⁻²⁰·max(|p|∞, largest |coordinate|
+/// of the triangles)` exceeds both `|p − q|` and the rounding of the `f64`
+/// triangle distances; so it holds no triangle whose computed distance is
+/// below `best`. Without a square root: `(√b + s)² ≤ (1 + t)·b + (1 +
+/// 1/t)·s²` for any `t > 0` (here `2⁻¹⁰`); the threshold is that, times
+/// `1 + 2⁻¹⁶` for the `f32` rounding, plus `1e-30`. An infinite threshold
+/// (no bound yet, or a huge one) prunes nothing.
+#[derive(Clone, Copy, Debug)]
+struct Bound {
+    best: f64,
+    prune: f32,
+    /// The threshold's constant term.
+    floor: f64,
+}
+
+impl Bound {
+    const GROW: f64 = 1.0 + 1.0 / (1u64 << 16) as f64;
+    const T: f64 = 1.0 / (1u64 << 10) as f64;
+
+    fn new(best: f64, slack: f64) -> Bound {
+        let mut b = Bound {
+            best,
+            prune: 0.0,
+            floor: slack * slack * (1.0 + 1.0 / Self::T) * Self::GROW + 1e-30,
+        };
+        b.set(best);
+        b
+    }
+
+    #[inline(always)]
+    fn set(&mut self, best: f64) {
+        self.best = best;
+        self.prune = (best * ((1.0 + Self::T) * Self::GROW) + self.floor) as f32;
+    }
+
+    /// Whether a box at computed `f32` squared distance `d2` may hold a
+    /// nearer triangle.
+    #[inline(always)]
+    fn admits(&self, d2: f32) -> bool {
+        d2 <= self.prune
     }
 }
 
 /// Triangles arranged for nearest-point queries.
 #[derive(Clone, Debug)]
 pub struct Bvh {
-    /// Inner nodes, the root first (empty when the root is a leaf).
-    inner: Vec<Inner>,
-    /// The root's box, and its triangle count if it is a leaf.
-    root: (Aabb, u32),
+    /// Unique per built tree (clones share it): what a [`Scratch`]'s
+    /// remembered path belongs to.
+    id: u64,
+    /// Nodes, the root first (empty when the root is a leaf).
+    nodes: Vec<Wide>,
+    /// Triangle count when the root is a leaf (no nodes).
+    root_count: u32,
+    /// Largest absolute coordinate of any triangle.
+    extent: f64,
     /// Triangles in leaf order.
     tris: Vec<Tri>,
     /// Original index of each entry of `tris`.
     ids: Vec<u32>,
-    /// Position in `tris` of each original triangle.
-    slot: Vec<u32>,
 }
 
-/// Reusable traversal stack (one per thread), so queries do not allocate.
+/// What a thread keeps between queries: the traversal stack, so queries do
+/// not allocate, and the last query's [`Path`].
 #[derive(Clone, Debug, Default)]
 pub struct Scratch {
-    stack: Vec<(u32, f64)>,
+    stack: Vec<(u32, f32)>,
+    path: Path,
 }
 
 impl Bvh {
@@ -159,58 +264,83 @@ impl Bvh {
     /// checks); an empty list gives a tree that finds nothing.
     pub fn new(tris: &[Tri]) -> Bvh {
         let n = tris.len();
-        let boxes: Vec<Aabb> = tris.iter().map(Aabb::of).collect();
-        let centroids: Vec<[f32; 3]> = boxes
+        let mut items: Vec<Item> = tris
             .iter()
-            .map(|b| core::array::from_fn(|k| 0.5 * b.min[k] + 0.5 * b.max[k]))
+            .enumerate()
+            .map(|(i, t)| {
+                let bounds = Aabb::of(t);
+                Item {
+                    centroid: core::array::from_fn(|k| 0.5 * bounds.min[k] + 0.5 * bounds.max[k]),
+                    bounds,
+                    id: i as u32,
+                }
+            })
             .collect();
-        let mut order: Vec<u32> = (0..n as u32).collect();
         let mut nodes: Vec<Node> = Vec::with_capacity(2 * n.div_ceil(LEAF_SIZE) + 1);
-        // Ranges still to build, each with the parent whose right-child
-        // index it must fill in (left children need none: they follow
-        // their parent). Left is pushed last so that it is built first.
-        let mut todo: Vec<(Option<usize>, usize, usize)> = Vec::new();
+        // Ranges still to build, each with its box, its centroids' box and
+        // the parent whose right-child index it must fill in (left
+        // children need none: they follow their parent). Left is pushed
+        // last so that it is built first.
+        let mut todo: Vec<Range> = Vec::new();
         if n > 0 {
-            todo.push((None, 0, n));
+            let (bounds, centroids) = bounds_of(&items);
+            todo.push(Range {
+                patch: None,
+                first: 0,
+                end: n,
+                bounds,
+                centroids,
+            });
         }
-        while let Some((patch, first, end)) = todo.pop() {
+        while let Some(r) = todo.pop() {
             let node = nodes.len();
-            if let Some(parent) = patch {
+            if let Some(parent) = r.patch {
                 nodes[parent].index = node as u32;
             }
-            let mut bounds = Aabb::EMPTY;
-            for &t in &order[first..end] {
-                bounds.grow(&boxes[t as usize]);
-            }
-            let count = end - first;
+            let count = r.end - r.first;
             if count <= LEAF_SIZE {
                 nodes.push(Node {
-                    bounds,
-                    index: first as u32,
+                    bounds: r.bounds,
+                    index: r.first as u32,
                     count: count as u32,
                 });
                 continue;
             }
             nodes.push(Node {
-                bounds,
+                bounds: r.bounds,
                 index: 0,
                 count: 0,
             });
-            let mid = first + split(&mut order[first..end], &boxes, &centroids);
-            todo.push((Some(node), mid, end));
-            todo.push((None, first, mid));
+            let [left, right] = split(&mut items[r.first..r.end], &r.centroids);
+            let mid = r.first + left.count;
+            todo.push(Range {
+                patch: Some(node),
+                first: mid,
+                end: r.end,
+                bounds: right.bounds,
+                centroids: right.centroids,
+            });
+            todo.push(Range {
+                patch: None,
+                first: r.first,
+                end: mid,
+                bounds: left.bounds,
+                centroids: left.centroids,
+            });
         }
-        let mut slot = vec![0u32; n];
-        for (i, &t) in order.iter().enumerate() {
-            slot[t as usize] = i as u32;
-        }
-        let (inner, root) = pack(&nodes);
+        let extent = tris
+            .iter()
+            .flatten()
+            .flatten()
+            .fold(0.0f64, |m, &c| m.max((c as f64).abs()));
+        static TREES: AtomicU64 = AtomicU64::new(1);
         Bvh {
-            inner,
-            root,
-            tris: order.iter().map(|&t| tris[t as usize]).collect(),
-            ids: order,
-            slot,
+            id: TREES.fetch_add(1, Ordering::Relaxed),
+            nodes: widen(&nodes),
+            root_count: nodes.first().map_or(0, |r| r.count),
+            extent,
+            tris: items.iter().map(|it| tris[it.id as usize]).collect(),
+            ids: items.iter().map(|it| it.id).collect(),
         }
     }
 
@@ -225,144 +355,365 @@ impl Bvh {
         &self.tris
     }
 
-    /// The triangle nearest to `p`, if any. `hint`, a triangle likely to be
-    /// near (such as the previous query's answer), only speeds the search
-    /// up: its distance is the starting bound, and a nearer triangle still
-    /// wins. Ties go to the triangle met first, so the distance, not the
-    /// triangle, is the meaningful output.
+    /// The triangle nearest to `p`, if any. `hint`, the [`Nearest::slot`]
+    /// of an earlier answer likely to be near (such as the previous
+    /// query's), only speeds the search up: its triangle's distance is the
+    /// starting bound, and a nearer triangle still wins. `scratch` carries
+    /// the search path from one query to the next (any scratch works with
+    /// any tree). Ties go to the triangle met first, which may depend on
+    /// the earlier queries: the distance, not the triangle, is the
+    /// meaningful output.
     pub fn nearest(
         &self,
         p: [f64; 3],
         hint: Option<u32>,
         scratch: &mut Scratch,
     ) -> Option<Nearest> {
-        let mut best = match hint.and_then(|h| self.slot.get(h as usize)) {
-            Some(&s) => Nearest {
-                distance2: triangle_distance2(p, &self.tris[s as usize]),
-                triangle: s,
-            },
-            None => Nearest {
-                distance2: f64::INFINITY,
-                triangle: u32::MAX,
-            },
-        };
-        let (root_box, root_count) = self.root;
-        let test = |first: u32, count: u32, best: &mut Nearest| {
+        // Covers the rounding of `p` to `f32` and of the triangle distances
+        // (see `Bound`).
+        let slack = self.extent.max(p[0].abs()).max(p[1].abs()).max(p[2].abs())
+            * (1.0 / (1u64 << 20) as f64);
+        let mut found = u32::MAX;
+        let mut bound = Bound::new(f64::INFINITY, slack);
+        if let Some(h) = hint.filter(|&h| (h as usize) < self.tris.len()) {
+            found = h;
+            bound.set(triangle_distance2(p, &self.tris[h as usize]));
+        }
+        // The hint's triangle, already measured, is skipped in its leaf.
+        let skip = found as usize;
+        let mut test = |first: u32, count: u8, bound: &mut Bound| {
             let first = first as usize;
             for (s, t) in self.tris[first..first + count as usize].iter().enumerate() {
+                if first + s == skip {
+                    continue;
+                }
                 let d = triangle_distance2(p, t);
-                if d < best.distance2 {
-                    *best = Nearest {
-                        distance2: d,
-                        triangle: (first + s) as u32,
-                    };
+                if d < bound.best {
+                    bound.set(d);
+                    found = (first + s) as u32;
                 }
             }
         };
-        if self.inner.is_empty() {
-            test(0, root_count, &mut best);
-        } else {
-            let stack = &mut scratch.stack;
-            stack.clear();
-            stack.push((0, root_box.distance2(p)));
-            while let Some((i, d2)) = stack.pop() {
-                if d2 >= best.distance2 {
+        if self.nodes.is_empty() {
+            test(0, self.root_count as u8, &mut bound);
+            return (found != u32::MAX).then(|| Nearest {
+                distance2: bound.best,
+                triangle: self.ids[found as usize],
+                slot: found,
+            });
+        }
+        let q = p.map(|c| c as f32);
+        let Scratch { stack, path } = scratch;
+        let mut level = path.entry(self, p, bound.best, slack);
+        let mut primary = true;
+        stack.clear();
+        // The node to search next without a trip through the stack: the
+        // nearest child of the last one, when it has one.
+        let mut next = Some((path.nodes[level], 0.0f32));
+        loop {
+            let i = match next.take() {
+                Some((i, _)) => i,
+                None => match stack.pop() {
+                    Some((i, d2)) if bound.admits(d2) => i,
+                    Some(_) => continue,
+                    None => break,
+                },
+            };
+            let node = &self.nodes[i as usize];
+            let d = node.distance2(q);
+            let mut admitted = 0u32;
+            for (j, &dj) in d.iter().enumerate() {
+                admitted |= (bound.admits(dj) as u32) << j;
+            }
+            admitted &= node.lanes;
+            let single = admitted != 0 && admitted & (admitted - 1) == 0;
+            if primary {
+                // Still on the way down from the entry: remember the path
+                // while it has one inner child to follow.
+                let j = admitted.trailing_zeros() as usize;
+                if single && node.leaf[j] == 0 {
+                    path.descend(level, node.child[j], node.clearance(&d, j), slack);
+                    level += 1;
+                } else {
+                    path.stop(level);
+                    primary = false;
+                }
+            }
+            if admitted == 0 {
+                continue;
+            }
+            if single {
+                // One child: the common case on the way down.
+                let j = admitted.trailing_zeros() as usize;
+                if node.leaf[j] > 0 {
+                    test(node.child[j], node.leaf[j], &mut bound);
+                } else {
+                    next = Some((node.child[j], d[j]));
+                }
+                continue;
+            }
+            // Several. Leaves are searched at once, nearest first (ties:
+            // lane order), which may shrink the bound before the farther
+            // ones and the nodes are judged.
+            let mut m = admitted & node.leaves;
+            while m != 0 {
+                let mut j = m.trailing_zeros() as usize;
+                let mut rest = m & (m - 1);
+                while rest != 0 {
+                    let k = rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    if d[k] < d[j] {
+                        j = k;
+                    }
+                }
+                m &= !(1 << j);
+                if bound.admits(d[j]) {
+                    test(node.child[j], node.leaf[j], &mut bound);
+                }
+            }
+            // The nearest node is searched next, the others wait on the
+            // stack.
+            let mut m = admitted & !node.leaves;
+            while m != 0 {
+                let j = m.trailing_zeros() as usize;
+                m &= m - 1;
+                if !bound.admits(d[j]) {
                     continue;
                 }
-                let node = &self.inner[i as usize];
-                let d = [node.distance2(0, p), node.distance2(1, p)];
-                let order = if d[0] <= d[1] { [0, 1] } else { [1, 0] };
-                let mut push = [None; 2];
-                // Nearer child first: a leaf is searched at once, which
-                // may shrink the bound before the farther child is judged.
-                for (slot, side) in push.iter_mut().zip(order) {
-                    if d[side] >= best.distance2 {
-                        continue;
-                    }
-                    if node.count[side] > 0 {
-                        test(node.child[side], node.count[side], &mut best);
-                    } else {
-                        *slot = Some((node.child[side], d[side]));
+                let c = (node.child[j], d[j]);
+                match next {
+                    Some(n) if n.1 <= c.1 => stack.push(c),
+                    _ => {
+                        if let Some(n) = next.replace(c) {
+                            stack.push(n);
+                        }
                     }
                 }
-                // Farther pushed first, so the nearer is popped first.
-                stack.extend(push[1]);
-                stack.extend(push[0]);
             }
         }
-        (best.triangle != u32::MAX).then(|| Nearest {
-            distance2: best.distance2,
-            triangle: self.ids[best.triangle as usize],
+        (found != u32::MAX).then(|| Nearest {
+            distance2: bound.best,
+            triangle: self.ids[found as usize],
+            slot: found,
         })
     }
 }
 
-/// The search layout of a built tree: its inner nodes with their children's
-/// boxes, and the root's box and leaf count (0 unless the root is a leaf).
-fn pack(nodes: &[Node]) -> (Vec<Inner>, (Aabb, u32)) {
-    let Some(root) = nodes.first() else {
-        return (Vec::new(), (Aabb::EMPTY, 0));
-    };
-    // Inner nodes keep their relative (depth-first) order.
-    let mut id = vec![u32::MAX; nodes.len()];
-    let mut count = 0u32;
-    for (i, n) in nodes.iter().enumerate() {
-        if n.count == 0 {
-            id[i] = count;
-            count += 1;
-        }
-    }
-    let mut inner = Vec::with_capacity(count as usize);
-    for (i, n) in nodes.iter().enumerate() {
-        if n.count > 0 {
-            continue;
-        }
-        let kids = [i + 1, n.index as usize];
-        let c = kids.map(|k| &nodes[k]);
-        inner.push(Inner {
-            min: c.map(|k| k.bounds.min),
-            max: c.map(|k| k.bounds.max),
-            child: [0, 1].map(|s| {
-                if c[s].count > 0 {
-                    c[s].index
-                } else {
-                    id[kids[s]]
-                }
-            }),
-            count: c.map(|k| k.count),
-        });
-    }
-    (inner, (root.bounds, root.count))
+/// Where the last queries went down the tree, so that the next one can
+/// skip the levels that cannot matter to it.
+///
+/// `nodes[0]` is the root and `nodes[i + 1]` the only child that a query
+/// entered from `nodes[i]`; `clear[i]` is a lower bound, minus `shift`, on
+/// the distance from `anchor` (the last query point) to the boxes of
+/// `nodes[i]`'s other children. Moving the query by `δ` lowers each such
+/// distance by at most `δ`, so each move adds `δ` to `shift` instead of
+/// touching every level. A query whose search radius (`√best` plus the
+/// rounding slack) is below the distance to every sibling box above level
+/// `k` can find nothing nearer outside `nodes[k]`, and starts there: box
+/// containment makes the skip exact.
+#[derive(Clone, Debug, Default)]
+struct Path {
+    /// Identity of the tree the path belongs to (0: none).
+    tree: u64,
+    anchor: [f64; 3],
+    shift: f64,
+    nodes: Vec<u32>,
+    clear: Vec<f64>,
 }
 
-/// Reorders `order` (a range of triangles) into two non-empty halves and
-/// returns the size of the first: the binned SAH split over the three
-/// axes, or the middle when all centroids coincide.
-fn split(order: &mut [u32], boxes: &[Aabb], centroids: &[[f32; 3]]) -> usize {
-    let n = order.len();
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for &t in order.iter() {
-        let c = centroids[t as usize];
-        for k in 0..3 {
-            lo[k] = lo[k].min(c[k]);
-            hi[k] = hi[k].max(c[k]);
+impl Path {
+    /// Moves the anchor to `p` and returns the deepest level at which a
+    /// query with bound `best` may start.
+    #[inline]
+    fn entry(&mut self, tree: &Bvh, p: [f64; 3], best: f64, slack: f64) -> usize {
+        if self.tree != tree.id {
+            *self = Path {
+                tree: tree.id,
+                anchor: p,
+                nodes: vec![0],
+                ..Path::default()
+            };
+        }
+        let a = self.anchor;
+        let moved = ((p[0] - a[0]).powi(2) + (p[1] - a[1]).powi(2) + (p[2] - a[2]).powi(2)).sqrt();
+        self.anchor = p;
+        self.shift += moved * (1.0 + 1.0 / (1u64 << 40) as f64);
+        // The radius within which a nearer triangle could lie, rounded
+        // up; levels whose siblings all lie beyond it are skipped.
+        let reach = (best.sqrt() + slack) * (1.0 + 1.0 / (1u64 << 20) as f64)
+            + self.shift * (1.0 + 1.0 / (1u64 << 40) as f64);
+        let level = self.clear.iter().take_while(|&&c| c >= reach).count();
+        if level == 0 {
+            // Everything below is measured afresh from here.
+            self.shift = 0.0;
+        }
+        level
+    }
+
+    /// Records that the query went from `nodes[level]` into `child` only,
+    /// its other children lying at computed `f32` squared distance
+    /// `clearance` or more from the query.
+    #[inline]
+    fn descend(&mut self, level: usize, child: u32, clearance: f32, slack: f64) {
+        // A lower bound on the true distance from the query point: undo
+        // the `f32` rounding of the box distance (see `Bound`; an overflow
+        // to infinity still means at least `f32::MAX`) and of the query
+        // point (under `slack`).
+        let c = ((clearance.min(f32::MAX) as f64) * (1.0 - 1.0 / (1u64 << 19) as f64) - 1e-40)
+            .max(0.0)
+            .sqrt()
+            - slack;
+        self.clear.truncate(level);
+        self.clear.push(c + self.shift);
+        self.nodes.truncate(level + 1);
+        self.nodes.push(child);
+    }
+
+    /// Records that the query left the single path at `nodes[level]`.
+    #[inline]
+    fn stop(&mut self, level: usize) {
+        self.clear.truncate(level);
+        self.nodes.truncate(level + 1);
+    }
+}
+
+/// The search layout of a built binary tree: each node takes up to `W`
+/// of its descendants as children, opening the one with the largest
+/// surface (the likeliest to be entered) first; leaves and the leaf order
+/// stay as built; nodes in depth-first order. Empty when the root is a
+/// leaf.
+fn widen(nodes: &[Node]) -> Vec<Wide> {
+    let mut out: Vec<Wide> = Vec::with_capacity(nodes.len() / 3 + 1);
+    if nodes.first().is_none_or(|r| r.count > 0) {
+        return out;
+    }
+    let is_inner = |b: usize| nodes[b].count == 0;
+    // (binary node, (wide parent, lane) whose child index to fill in).
+    let mut todo: Vec<(usize, Option<(usize, usize)>)> = vec![(0, None)];
+    while let Some((b, patch)) = todo.pop() {
+        let me = out.len();
+        if let Some((parent, lane)) = patch {
+            out[parent].child[lane] = me as u32;
+        }
+        let mut kids = [0usize; W];
+        kids[0] = b + 1;
+        kids[1] = nodes[b].index as usize;
+        let mut len = 2;
+        while len < W {
+            let open = (0..len).filter(|&j| is_inner(kids[j])).max_by(|&x, &y| {
+                let (ax, ay) = (
+                    nodes[kids[x]].bounds.half_area(),
+                    nodes[kids[y]].bounds.half_area(),
+                );
+                // Ties: the first lane (max_by keeps the last).
+                ax.total_cmp(&ay).then(y.cmp(&x))
+            });
+            let Some(j) = open else { break };
+            let k = kids[j];
+            // Children stay in spatial (left-to-right) order.
+            kids.copy_within(j + 1..len, j + 2);
+            kids[j] = k + 1;
+            kids[j + 1] = nodes[k].index as usize;
+            len += 1;
+        }
+        let mut node = Wide {
+            lo: [[f32::INFINITY; W]; 3],
+            hi: [[f32::NEG_INFINITY; W]; 3],
+            child: [0; W],
+            leaf: [0; W],
+            lanes: (1u32 << len) - 1,
+            leaves: 0,
+        };
+        for (j, &k) in kids[..len].iter().enumerate() {
+            let c = &nodes[k];
+            for a in 0..3 {
+                node.lo[a][j] = c.bounds.min[a];
+                node.hi[a][j] = c.bounds.max[a];
+            }
+            if c.count > 0 {
+                node.child[j] = c.index;
+                node.leaf[j] = c.count as u8;
+                node.leaves |= 1 << j;
+            }
+        }
+        out.push(node);
+        // First child popped first: depth-first order.
+        for (j, &k) in kids[..len].iter().enumerate().rev() {
+            if is_inner(k) {
+                todo.push((k, Some((me, j))));
+            }
         }
     }
+    out
+}
+
+/// A triangle as the builder moves it around: its box, the centre of
+/// the box, and its index. Ranges of these are partitioned in place, so
+/// every pass of the build reads memory in order.
+#[derive(Clone, Copy, Debug)]
+struct Item {
+    bounds: Aabb,
+    centroid: [f32; 3],
+    id: u32,
+}
+
+/// A range of items still to be built into a subtree.
+#[derive(Clone, Copy, Debug)]
+struct Range {
+    /// The parent whose right-child index is this subtree's first node.
+    patch: Option<usize>,
+    first: usize,
+    end: usize,
+    /// The union of the items' boxes.
+    bounds: Aabb,
+    /// The box of the items' centroids.
+    centroids: Aabb,
+}
+
+/// One side of a split: its item count, box and centroids' box.
+#[derive(Clone, Copy, Debug)]
+struct Side {
+    count: usize,
+    bounds: Aabb,
+    centroids: Aabb,
+}
+
+/// The box of the items and the box of their centroids.
+fn bounds_of(items: &[Item]) -> (Aabb, Aabb) {
+    let mut bounds = Aabb::EMPTY;
+    let mut centroids = Aabb::EMPTY;
+    for it in items {
+        bounds.grow(&it.bounds);
+        centroids.grow_point(&it.centroid);
+    }
+    (bounds, centroids)
+}
+
+/// Reorders `items` (at least two) into two non-empty halves, the first
+/// first: the binned SAH split over the three axes, or the middle when
+/// all centroids coincide. `centroids` is the box of the items'
+/// centroids.
+fn split(items: &mut [Item], centroids: &Aabb) -> [Side; 2] {
+    let n = items.len();
+    let (lo, hi) = (centroids.min, centroids.max);
+    // Bin of a centroid coordinate; the same function sorts items into
+    // bins and then partitions them, so both agree exactly.
     let bin_of = |c: f32, k: usize| -> usize {
         let x = (c - lo[k]) as f64 / (hi[k] - lo[k]) as f64 * BINS as f64;
-        (x as usize).min(BINS - 1)
+        // `x` is in [0, BINS] (or NaN on a flat axis, never split): `u32`
+        // converts it as `usize` would, in fewer instructions.
+        (x as u32).min(BINS as u32 - 1) as usize
     };
     let axes: Vec<usize> = (0..3).filter(|&k| hi[k] > lo[k]).collect();
-    // One pass over the range bins it on every axis at once.
+    // One pass over the range bins it on every axis at once (a flat axis
+    // is binned too, all in bin 0, but never split).
     let mut count = [[0usize; BINS]; 3];
     let mut bounds = [[Aabb::EMPTY; BINS]; 3];
-    for &t in order.iter() {
-        let c = centroids[t as usize];
-        for &k in &axes {
-            let b = bin_of(c[k], k);
+    for it in items.iter() {
+        for k in 0..3 {
+            let b = bin_of(it.centroid[k], k);
             count[k][b] += 1;
-            bounds[k][b].grow(&boxes[t as usize]);
+            bounds[k][b].grow(&it.bounds);
         }
     }
     // (cost, axis, bins on the left)
@@ -391,20 +742,48 @@ fn split(order: &mut [u32], boxes: &[Aabb], centroids: &[[f32; 3]]) -> usize {
             }
         }
     }
-    match best {
-        Some((_, k, b)) => {
-            // In-place partition; deterministic for a given input order.
-            let mut i = 0;
-            for j in 0..n {
-                if bin_of(centroids[order[j] as usize][k], k) < b {
-                    order.swap(i, j);
-                    i += 1;
-                }
+    let Some((_, k, b)) = best else {
+        let (left, right) = items.split_at(n / 2);
+        return [left, right].map(|half| {
+            let (bounds, centroids) = bounds_of(half);
+            Side {
+                count: half.len(),
+                bounds,
+                centroids,
             }
-            i
-        }
-        None => n / 2,
+        });
+    };
+    // In-place partition (deterministic for a given input order); the
+    // sides' boxes are the unions of their bins', their centroids' boxes
+    // are gathered on the way.
+    let mut side = [Aabb::EMPTY; 2];
+    for (bin, bounds) in bounds[k].iter().enumerate() {
+        side[(bin >= b) as usize].grow(bounds);
     }
+    let (mut left, mut right) = (Aabb::EMPTY, Aabb::EMPTY);
+    let mut i = 0;
+    for j in 0..n {
+        let c = &items[j].centroid;
+        if bin_of(c[k], k) < b {
+            left.grow_point(c);
+            items.swap(i, j);
+            i += 1;
+        } else {
+            right.grow_point(c);
+        }
+    }
+    [
+        Side {
+            count: i,
+            bounds: side[0],
+            centroids: left,
+        },
+        Side {
+            count: n - i,
+            bounds: side[1],
+            centroids: right,
+        },
+    ]
 }
 
 #[cfg(test)]
@@ -440,10 +819,7 @@ mod tests {
                     r() as f64 * 1.4 - 0.2,
                     r() as f64 * 1.4 - 0.2,
                 ];
-                let brute = tris
-                    .iter()
-                    .map(|t| triangle_distance2(p, t))
-                    .fold(f64::INFINITY, f64::min);
+                let brute = brute(&tris, p);
                 // With and without a hint (any triangle, even a far one).
                 let a = bvh.nearest(p, None, &mut scratch).unwrap();
                 let b = bvh.nearest(p, hint, &mut scratch).unwrap();
@@ -452,6 +828,61 @@ mod tests {
                 assert_eq!(triangle_distance2(p, &tris[a.triangle as usize]), brute);
                 hint = Some((q * 7 % n) as u32);
             }
+        }
+    }
+
+    /// A bumpy height field of `2(k − 1)²` triangles over the unit square.
+    fn terrain(k: usize, phase: f32) -> Vec<Tri> {
+        let at = |i: usize, j: usize| {
+            let (x, y) = (i as f32 / (k - 1) as f32, j as f32 / (k - 1) as f32);
+            [x, y, 0.05 * (9.0 * x + phase).sin() * (7.0 * y).cos()]
+        };
+        let mut tris = Vec::new();
+        for i in 0..k - 1 {
+            for j in 0..k - 1 {
+                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        tris
+    }
+
+    fn brute(tris: &[Tri], p: [f64; 3]) -> f64 {
+        tris.iter()
+            .map(|t| triangle_distance2(p, t))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Queries that walk along the surface, as samples do, reuse the
+    /// remembered path; far jumps, points exactly on corners and one
+    /// scratch shared by two trees must not change any answer.
+    #[test]
+    fn warm_started_walks_equal_brute_force() {
+        let mut r = rng(0x0dd_ba11_cafe_f00d);
+        let trees = [terrain(60, 0.0), terrain(45, 1.0)];
+        let bvhs = trees.each_ref().map(|t| Bvh::new(t));
+        let mut scratch = Scratch::default();
+        let mut hints = [None, None];
+        let mut p = [0.5f64, 0.5, 0.0];
+        for step in 0..3000 {
+            let which = (step / 250) % 2;
+            let tris = &trees[which];
+            if step % 500 == 0 {
+                // A far jump, outside the surface's box.
+                p = [2.0 * r() as f64 - 0.5, 2.0 * r() as f64 - 0.5, r() as f64];
+            } else if step % 37 == 0 {
+                // Exactly on a corner: distance zero.
+                let t = &tris[(r() * tris.len() as f32) as usize % tris.len()];
+                p = t[step % 3].map(|c| c as f64);
+            } else {
+                for c in &mut p[..2] {
+                    *c = (*c + 0.01 * (r() as f64 - 0.5)).clamp(-0.1, 1.1);
+                }
+                p[2] = 0.02 * (r() as f64 - 0.5);
+            }
+            let hit = bvhs[which].nearest(p, hints[which], &mut scratch).unwrap();
+            assert_eq!(hit.distance2, brute(tris, p), "step {step}");
+            hints[which] = Some(hit.slot);
         }
     }
 

@@ -357,7 +357,7 @@ pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOpt
             let mut hint = None;
             let mut measure = |p: [f64; 3]| {
                 if let Some(hit) = to.bvh.nearest(p, hint, scratch) {
-                    hint = Some(hit.triangle);
+                    hint = Some(hit.slot);
                     sums.add(hit.distance2.sqrt());
                 }
             };

@@ -110,7 +110,7 @@ pub fn face_points(t: &Tri, n: u64, rng: &mut SplitMix, mut emit: impl FnMut([f6
             row += 1;
         }
         let s = m - row_start(row);
-        let (q, upright) = (s / 2, s % 2 == 0);
+        let (q, upright) = (s / 2, s.is_multiple_of(2));
         let (mut r1, mut r2) = (rng.unit(), rng.unit());
         if r1 + r2 > 1.0 {
             (r1, r2) = (1.0 - r1, 1.0 - r2);

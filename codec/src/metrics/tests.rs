@@ -76,6 +76,25 @@ fn one_raised_vertex_is_the_hausdorff_distance() {
     assert_eq!(d.hausdorff(), 0.75);
 }
 
+#[test]
+fn unreferenced_vertices_are_not_samples() {
+    // Distance is a property of the surfaces: a stray vertex that no face
+    // uses is neither a sample nor part of the reference's bounding box
+    // (MeshLab's filter, which samples every vertex of the list, differs
+    // here; tools/metro/compare.py removes such vertices before it runs).
+    let a = grid(4, 4);
+    let b = lifted(&a, 0.5);
+    let stray = |m: &TriMesh| {
+        let mut m = m.clone();
+        m.positions.push([2.0, 2.0, 100.0]);
+        m
+    };
+    let plain = distance(&a, &b, &DistanceOptions::default()).unwrap();
+    let with_strays = distance(&stray(&a), &stray(&b), &DistanceOptions::default()).unwrap();
+    assert_eq!(plain, with_strays);
+    assert!((with_strays.hausdorff() - 0.5).abs() < 1e-12);
+}
+
 /// Icosahedron inscribed in the unit sphere: its inradius is
 /// `√((5 + 2√5)/15)` times the circumradius, so the farthest point of a
 /// face from the sphere is its centre, `1 − inradius` away; the RMS over
