@@ -145,7 +145,9 @@ const SWING_V1_0_FNV1A64: u64 = 0x8249_F4EE_6BE4_5A0B;
 /// The golden swing file's input: an icosahedron subdivided three times
 /// with every vertex pushed onto the unit sphere (only `sqrt` and
 /// division, which IEEE 754 rounds exactly, so every platform builds the
-/// same `f32` positions).
+/// same `f32` positions). Written out here rather than taken from
+/// `corpus/gen`, whose generators may change: this input is frozen with
+/// the file.
 fn golden_sphere() -> TriMesh {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
     let mut p: Vec<[f64; 3]> = vec![

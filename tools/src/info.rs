@@ -121,21 +121,26 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
         s.file_bytes,
         v["bits_per_triangle"].as_f64().unwrap_or(0.0)
     );
-    for (tag, n) in &s.sections {
-        let bpt = 8.0 * *n as f64 / s.triangles.max(1) as f64;
+    print_sections_and_clers(&s.sections, s.triangles, s.clers);
+    Ok(())
+}
+
+/// Section sizes and the CLERS histogram, shared by both modes' output.
+fn print_sections_and_clers(sections: &[([u8; 4], usize)], triangles: u64, clers: [u64; 5]) {
+    for (tag, n) in sections {
+        let bpt = 8.0 * *n as f64 / triangles.max(1) as f64;
         say!(
             "    section {:<4}        {n} bytes, {bpt:.3} bits/triangle",
             String::from_utf8_lossy(tag)
         );
     }
-    let total: u64 = s.clers.iter().sum::<u64>().max(1);
+    let total: u64 = clers.iter().sum::<u64>().max(1);
     let hist: Vec<String> = ["C", "L", "E", "R", "S"]
         .iter()
-        .zip(s.clers)
+        .zip(clers)
         .map(|(l, n)| format!("{l} {n} ({:.1}%)", 100.0 * n as f64 / total as f64))
         .collect();
     say!("  CLERS                 {}", hist.join(", "));
-    Ok(())
 }
 
 /// The figures of a SwingWrapper file, as JSON.
@@ -181,20 +186,7 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
         s.geometry_bits_per_triangle,
         s.bits_per_angle
     );
-    for (tag, n) in &s.sections {
-        let bpt = 8.0 * *n as f64 / t;
-        say!(
-            "    section {:<4}        {n} bytes, {bpt:.3} bits/triangle",
-            String::from_utf8_lossy(tag)
-        );
-    }
-    let total: u64 = s.clers.iter().sum::<u64>().max(1);
-    let hist: Vec<String> = ["C", "L", "E", "R", "S"]
-        .iter()
-        .zip(s.clers)
-        .map(|(l, n)| format!("{l} {n} ({:.1}%)", 100.0 * n as f64 / total as f64))
-        .collect();
-    say!("  CLERS                 {}", hist.join(", "));
+    print_sections_and_clers(&s.sections, s.triangles, s.clers);
     say!("  C or R labels         {:.1}%", 100.0 * s.cr_share);
     say!("  valence-6 vertices    {:.1}%", 100.0 * s.valence6_share);
     Ok(())

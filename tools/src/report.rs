@@ -10,11 +10,9 @@ pub fn print_json(v: &Value) {
     );
 }
 
-/// The figures of a lossless-mode file.
-pub fn lossless_json(s: &swm::LosslessStats, qp: u8) -> Value {
-    let t = s.triangles.max(1) as f64;
-    let sections: Vec<Value> = s
-        .sections
+/// Each section's tag, bytes and bits per triangle (`t` triangles).
+fn sections_json(sections: &[([u8; 4], usize)], t: f64) -> Vec<Value> {
+    sections
         .iter()
         .map(|(tag, bytes)| {
             json!({
@@ -23,7 +21,13 @@ pub fn lossless_json(s: &swm::LosslessStats, qp: u8) -> Value {
                 "bits_per_triangle": 8.0 * *bytes as f64 / t,
             })
         })
-        .collect();
+        .collect()
+}
+
+/// The figures of a lossless-mode file.
+pub fn lossless_json(s: &swm::LosslessStats, qp: u8) -> Value {
+    let t = s.triangles.max(1) as f64;
+    let sections = sections_json(&s.sections, t);
     let [c, l, e, r, s_] = s.clers;
     json!({
         "mode": "lossless",
@@ -44,17 +48,7 @@ pub fn lossless_json(s: &swm::LosslessStats, qp: u8) -> Value {
 /// The figures of a SwingWrapper file.
 pub fn swing_json(s: &swm::SwingStats) -> Value {
     let t = s.triangles.max(1) as f64;
-    let sections: Vec<Value> = s
-        .sections
-        .iter()
-        .map(|(tag, bytes)| {
-            json!({
-                "tag": String::from_utf8_lossy(tag),
-                "bytes": bytes,
-                "bits_per_triangle": 8.0 * *bytes as f64 / t,
-            })
-        })
-        .collect();
+    let sections = sections_json(&s.sections, t);
     let [c, l, e, r, s_] = s.clers;
     json!({
         "mode": "swing",
