@@ -59,6 +59,10 @@ pub struct RetileOptions {
     /// The input vertex p1 grows from. Default (`None`): the vertex whose
     /// ring is flattest, so the first triangles never sit on a thin tip.
     pub start_vertex: Option<u32>,
+    /// With no `start_vertex`: take the `start_rank`-th flattest vertex
+    /// (0 = the flattest). A run that failed is an independent new trial
+    /// from another start. Default 0.
+    pub start_rank: u32,
 }
 
 pub use crate::error::RetileFailure as Failure;
@@ -106,7 +110,9 @@ pub fn retile(
         flood: region::Flood::default(),
         cap,
     };
-    let start = opt.start_vertex.unwrap_or_else(|| flattest_vertex(&r.s));
+    let start = opt
+        .start_vertex
+        .unwrap_or_else(|| flattest_vertex(&r.s, opt.start_rank));
     let (first_gate, first) = r.first_triangle(start)?;
     r.grow(first_gate)?;
     let uncovered = r.s.owner.iter().filter(|&&o| o == NONE).count();
@@ -678,26 +684,30 @@ impl Retiler {
 /// Placeholder sample of p3 until it is found.
 const NONE_PLACEHOLDER: u32 = NONE;
 
-/// The vertex whose face normals agree best (largest |mean normal|);
-/// lowest id on ties. Only vertices with a ring of at least five faces
-/// count, as a tip of three or four faces can be flat and still thin.
-fn flattest_vertex(s: &Surface) -> u32 {
-    let mut best = (f64::NEG_INFINITY, 0u32);
-    for x in 0..s.vertex_count() as u32 {
-        if s.corner_of[x as usize] == NONE {
-            continue;
-        }
-        let (mut sum, mut n) = (DVec3::ZERO, 0u32);
-        for k in s.fan(x) {
-            sum += s.normal[surface::face(k) as usize];
-            n += 1;
-        }
-        let flat = sum.length() / n as f64;
-        if n >= 5 && flat > best.0 {
-            best = (flat, x);
-        }
+/// The `rank`-th vertex (0 = first) by how well its face normals agree
+/// (largest |mean normal|), lowest id on ties. Only vertices with a ring
+/// of at least five faces count, as a tip of three or four faces can be
+/// flat and still thin.
+fn flattest_vertex(s: &Surface, rank: u32) -> u32 {
+    let mut scored: Vec<(f64, u32)> = (0..s.vertex_count() as u32)
+        .filter(|&x| s.corner_of[x as usize] != NONE)
+        .filter_map(|x| {
+            let (mut sum, mut n) = (DVec3::ZERO, 0u32);
+            for k in s.fan(x) {
+                sum += s.normal[surface::face(k) as usize];
+                n += 1;
+            }
+            (n >= 5).then(|| (sum.length() / n as f64, x))
+        })
+        .collect();
+    // Flattest first, lowest id on ties.
+    let order = |a: &(f64, u32), b: &(f64, u32)| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
+    let k = (rank as usize).min(scored.len().saturating_sub(1));
+    if scored.is_empty() {
+        return 0;
     }
-    best.1
+    scored.select_nth_unstable_by(k, order);
+    scored[k].1
 }
 
 /// The coordinate axis least parallel to `n` (lowest index on ties).

@@ -6,10 +6,11 @@
 //! goes as 1/L², each run rescales L by √(O/S) (O the size obtained), a
 //! secant step on log L against log size, bracketed by the best runs on
 //! either side of the target. A run that fails (some gate found no valid
-//! triangle) is retried at L nudged by a fraction of a percent: failures
-//! are not monotonic in L (measured on horse: runs fail and succeed
-//! alternately over a few percent of L), so they cannot bracket a binary
-//! search the way the thesis's "largest L that works" search assumed.
+//! triangle) is retried at the same L from the next flattest start
+//! vertex: failures are not monotonic in L (measured on horse: runs fail
+//! and succeed alternately over a few percent of L), so they cannot
+//! bracket a binary search the way the thesis's "largest L that works"
+//! search assumed; four failures in a row at one L step it down.
 //!
 //! The result is the run nearest the request among those within
 //! `max_bytes`; it lands within `TOLERANCE` of the request unless no run
@@ -62,11 +63,13 @@ fn run(
     table: &CornerTable,
     l: f64,
     bits: u8,
+    start_rank: u32,
 ) -> Result<Result<(Vec<u8>, SwingStats), Failure>, Error> {
     let opt = RetileOptions {
         edge_length: l,
         angle_bits: bits,
         start_vertex: None,
+        start_rank,
     };
     match retile(mesh, table, &opt) {
         Ok(r) => Ok(Ok(write(&r)?)),
@@ -78,58 +81,44 @@ fn write(r: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
     crate::swing::write(r)
 }
 
-/// Encodes at the given L; if it fails, at the largest L below it that
-/// works (found by small steps down, then bisection).
+/// Encodes at the given L; if four runs from different start vertices
+/// fail, at the first L below it, in steps of 2%, where one works.
 pub fn at_length(mesh: &TriMesh, table: &CornerTable, l: f64, bits: u8) -> Result<Chosen, Error> {
     let mut attempts = Vec::new();
-    let (mut good, mut bad): (Option<(f64, Vec<u8>, SwingStats)>, f64) = (None, f64::INFINITY);
     let mut next = l;
+    let mut fails = 0u32;
     for _ in 0..MAX_RUNS {
-        match run(mesh, table, next, bits)? {
+        match run(mesh, table, next, bits, fails % 4)? {
             Ok((bytes, stats)) => {
                 attempts.push(Attempt {
                     edge_length: next,
                     outcome: Ok(bytes.len() as u64),
                 });
-                let done = next == l;
-                good = Some((next, bytes, stats));
-                if done {
-                    break;
-                }
+                return Ok(Chosen {
+                    bytes,
+                    stats,
+                    report: RateReport {
+                        requested_bytes: None,
+                        edge_length: next,
+                        reduced: next != l,
+                        within_tolerance: true,
+                        attempts,
+                    },
+                });
             }
             Err(f) => {
                 attempts.push(Attempt {
                     edge_length: next,
                     outcome: Err(f),
                 });
-                bad = next;
+                fails += 1;
+                if fails % 4 == 0 {
+                    next *= 0.98;
+                }
             }
         }
-        // Bisect on log L between the largest success and the smallest
-        // failure; without a success yet, step down by 2% (whether a run
-        // fails changes abruptly with L, so a slightly smaller L usually
-        // works, while halving would give away most of the rate).
-        next = match &good {
-            Some((g, ..)) if bad / g < 1.02 => break,
-            Some((g, ..)) => (g * bad).sqrt(),
-            None => bad * 0.98,
-        };
-        if next < l / 2.0 {
-            break;
-        }
     }
-    let (edge_length, bytes, stats) = good.ok_or_else(|| infeasible(&attempts))?;
-    Ok(Chosen {
-        bytes,
-        stats,
-        report: RateReport {
-            requested_bytes: None,
-            edge_length,
-            reduced: edge_length != l,
-            within_tolerance: true,
-            attempts,
-        },
-    })
+    Err(infeasible(&attempts))
 }
 
 /// Encodes to about `target` bytes, never more than `max_bytes`.
@@ -166,17 +155,18 @@ pub fn at_size(
             (size as f64 / target as f64).ln().abs()
         }
     };
-    // `wanted` is the L the search asks for; after failures the run is
-    // made at `wanted` nudged by ±0.6%, ±1.2%, …: whether a run fails
-    // changes abruptly and unpredictably with L (one gate somewhere meets
-    // a pinched front), so failures say nothing about larger or smaller
-    // L and must not bracket the search.
-    let mut wanted = l;
+    // Whether a run fails changes abruptly and unpredictably with L and
+    // with the start vertex (one gate somewhere meets a pinched front), so
+    // failures say nothing about larger or smaller L and must not bracket
+    // the search: a failed run is retried at the same L from the next
+    // flattest start vertex, an independent trial.
     let mut fails = 0u32;
+    let mut failing_from: Option<f64> = None;
     for _ in 0..MAX_RUNS {
-        match run(mesh, table, l, bits)? {
+        match run(mesh, table, l, bits, fails)? {
             Ok((bytes, stats)) => {
                 fails = 0;
+                failing_from = None;
                 let size = bytes.len() as u64;
                 attempts.push(Attempt {
                     edge_length: l,
@@ -203,7 +193,6 @@ pub fn at_size(
                         next = (ls * ll).sqrt();
                     }
                 }
-                wanted = next;
                 l = next;
             }
             Err(f) => {
@@ -212,14 +201,18 @@ pub fn at_size(
                     outcome: Err(f),
                 });
                 fails += 1;
-                // Four failures in a row around one L: the shape is too
-                // thin for it (the thesis's failure case); look 10% lower.
+                // Four failures in a row at one L: move away from where
+                // the failures began, alternately down and up by growing
+                // steps (−5%, +5%, −10%, +10%, …): a thin part of the shape
+                // (the thesis's failure case) needs a smaller L, but a cap
+                // may forbid one.
+                let base = *failing_from.get_or_insert(l);
                 if fails % 4 == 0 {
-                    wanted *= 0.9;
+                    let n = fails / 4;
+                    let magnitude = 0.05 * f64::from(n.div_ceil(2));
+                    let sign = if n % 2 == 1 { -1.0 } else { 1.0 };
+                    l = base * (1.0 + sign * magnitude);
                 }
-                let k = f64::from(fails % 4);
-                let sign = if fails % 2 == 1 { -1.0 } else { 1.0 };
-                l = wanted * (1.0 + sign * 0.006 * k);
             }
         }
     }

@@ -36,6 +36,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             edge_length: l,
             angle_bits: 8,
             start_vertex: None,
+            start_rank: 0,
         },
     )
 }
@@ -156,6 +157,7 @@ fn probe() {
                 start_vertex: std::env::var("SWM_RETILE_START")
                     .ok()
                     .map(|s| s.parse().unwrap()),
+                start_rank: std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap()),
             },
         );
         let dt = t0.elapsed().as_secs_f64();
