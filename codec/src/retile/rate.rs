@@ -112,7 +112,7 @@ pub fn at_length(mesh: &TriMesh, table: &CornerTable, l: f64, bits: u8) -> Resul
                     outcome: Err(f),
                 });
                 fails += 1;
-                if fails % 4 == 0 {
+                if fails.is_multiple_of(4) {
                     next *= 0.98;
                 }
             }
@@ -207,7 +207,7 @@ pub fn at_size(
                 // (the thesis's failure case) needs a smaller L, but a cap
                 // may forbid one.
                 let base = *failing_from.get_or_insert(l);
-                if fails % 4 == 0 {
+                if fails.is_multiple_of(4) {
                     let n = fails / 4;
                     let magnitude = 0.05 * f64::from(n.div_ceil(2));
                     let sign = if n % 2 == 1 { -1.0 } else { 1.0 };

@@ -65,7 +65,7 @@ pub fn next(c: u32) -> u32 {
 
 #[inline]
 pub fn prev(c: u32) -> u32 {
-    if c % 3 == 0 {
+    if c.is_multiple_of(3) {
         c + 2
     } else {
         c - 1
