@@ -194,7 +194,7 @@ fn probe() {
                     let o = table.opposite(crate::CornerId(c));
                     let (t, u) = ((c / 3) as usize, o.face().idx());
                     if t < u && normal(t).dot(normal(u)) < -0.5 {
-                        let gate = c % 3 == 0 || o.0 % 3 == 0;
+                        let gate = c.is_multiple_of(3) || o.0.is_multiple_of(3);
                         *folds.entry((sym(t), sym(u), gate)).or_insert(0) += 1;
                     }
                 }
