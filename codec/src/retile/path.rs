@@ -6,7 +6,8 @@
 //!    from A in the direction of B, until a face holds B. It fails on an
 //!    owned face, a path edge, a vertex already on a path, or a walk
 //!    longer than 4|AB|.
-//! 2. Shortening: ten sweeps; each interior point slides along its edge
+//! 2. Shortening: up to ten sweeps (fewer once the points settle); each
+//!    interior point slides along its edge
 //!    to the minimum of |P_{i−1}X| + |XP_{i+1}| (unfold the two faces of
 //!    the edge into one plane, intersect, clamp).
 //! 3. Fallback when the walk fails: Dijkstra over the free faces of M,
@@ -34,6 +35,9 @@ pub enum Point {
 
 /// Sweeps of the shortening step (thesis: "a finite number (10)").
 const SWEEPS: usize = 10;
+/// A sweep that moves no point by more than this share of its edge ends
+/// the shortening.
+const SETTLED: f64 = 1e-3;
 /// Points closer than this share of the edge to an end snap to it.
 const END_SNAP: f64 = 1e-6;
 
@@ -142,8 +146,11 @@ fn best_t(pa: DVec3, pb: DVec3, p: DVec3, q: DVec3) -> f64 {
 
 fn shorten(s: &Surface, pts: &mut [Point]) {
     for _ in 0..SWEEPS {
+        // Stop early once a sweep moves no point by more than this share
+        // of its edge: further sweeps would not change the path's faces.
+        let mut moved = 0.0f64;
         for i in 1..pts.len().saturating_sub(1) {
-            if let Point::Edge { a, b, .. } = pts[i] {
+            if let Point::Edge { a, b, t: old } = pts[i] {
                 let (pa, pb) = (s.pos[a as usize], s.pos[b as usize]);
                 let p = point_pos(s, pts[i - 1]);
                 let q = point_pos(s, pts[i + 1]);
@@ -152,12 +159,13 @@ fn shorten(s: &Surface, pts: &mut [Point]) {
                 // the path must not touch another path or a sample.
                 let lo = if free(s, a) { 0.0 } else { END_SNAP };
                 let hi = if free(s, b) { 1.0 } else { 1.0 - END_SNAP };
-                pts[i] = Point::Edge {
-                    a,
-                    b,
-                    t: t.clamp(lo, hi),
-                };
+                let t = t.clamp(lo, hi);
+                moved = moved.max((t - old).abs());
+                pts[i] = Point::Edge { a, b, t };
             }
+        }
+        if moved < SETTLED {
+            break;
         }
     }
 }
