@@ -37,6 +37,22 @@ mod write;
 #[cfg(test)]
 mod tests;
 
+/// Rebuilds `bytes` with one section's payload replaced, keeping a valid
+/// frame and CRC: the mode tests use it to feed decoders lying sections.
+#[cfg(all(test, feature = "encoder"))]
+pub(crate) fn with_section(bytes: &[u8], tag: Tag, payload: &[u8]) -> Vec<u8> {
+    let file = parse_container(bytes, &crate::Limits::default()).unwrap();
+    let owned: Vec<(Tag, Vec<u8>)> = file
+        .sections()
+        .map(|s| {
+            let b = if s.tag == tag { payload } else { s.bytes };
+            (s.tag, b.to_vec())
+        })
+        .collect();
+    let refs: Vec<(Tag, &[u8])> = owned.iter().map(|(t, b)| (*t, b.as_slice())).collect();
+    write_container(&file.header, &refs).unwrap()
+}
+
 pub use crate::error::{UnsupportedError, UnsupportedFeature};
 pub use count::check_count_fits;
 pub use crc::{crc32, Crc32};

@@ -611,26 +611,6 @@ mod tests {
         assert!(decode_bytes(&b).is_err());
     }
 
-    /// Rebuilds `bytes` with one section's payload replaced (valid frame and CRC).
-    fn with_section(bytes: &[u8], tag: Tag, payload: &[u8]) -> Vec<u8> {
-        let file = parse_container(bytes, &Limits::default()).unwrap();
-        let owned: Vec<(Tag, Vec<u8>)> = file
-            .sections()
-            .map(|s| {
-                (
-                    s.tag,
-                    if s.tag == tag {
-                        payload.to_vec()
-                    } else {
-                        s.bytes.to_vec()
-                    },
-                )
-            })
-            .collect();
-        let refs: Vec<(Tag, &[u8])> = owned.iter().map(|(t, b)| (*t, b.as_slice())).collect();
-        write_container(&file.header, &refs).unwrap()
-    }
-
     #[test]
     fn hostile_sections_with_valid_frames_are_errors() {
         use crate::edgebreaker::tests_support::*;
@@ -644,7 +624,7 @@ mod tests {
         // CLRS with a word the encoder never wrote.
         let mut longer = clrs.clone();
         longer.extend_from_slice(&[0, 0, 0, 0]);
-        assert!(decode_bytes(&with_section(&bytes, Tag::CLRS, &longer)).is_err());
+        assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::CLRS, &longer)).is_err());
         // TOPO whose dummy gaps overflow 64 bits.
         let mut t = Vec::new();
         varint::put(&mut t, topo[0] as u64); // symbol count (one byte for this mesh)
@@ -652,14 +632,14 @@ mod tests {
         varint::put(&mut t, u64::MAX);
         varint::put(&mut t, u64::MAX);
         varint::put(&mut t, 0);
-        assert!(decode_bytes(&with_section(&bytes, Tag::TOPO, &t)).is_err());
+        assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::TOPO, &t)).is_err());
         // A grid that does not fit in f32: origin 3e38, range 1e38.
         let mut head = vec![12u8];
         for x in [3e38f32, 0.0, 0.0, 1e38] {
             head.extend_from_slice(&x.to_le_bytes());
         }
-        assert!(decode_bytes(&with_section(&bytes, Tag::HEAD, &head)).is_err());
+        assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::HEAD, &head)).is_err());
         // The unmodified frame still decodes (the helper itself is sound).
-        assert!(decode_bytes(&with_section(&bytes, Tag::CLRS, &clrs)).is_ok());
+        assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::CLRS, &clrs)).is_ok());
     }
 }

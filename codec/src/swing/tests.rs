@@ -467,27 +467,6 @@ fn random_overwrites_with_valid_crc_never_panic() {
     assert!(decoded > 0);
 }
 
-/// Rebuilds `bytes` with one section's payload replaced (valid frame and CRC).
-fn with_section(bytes: &[u8], tag: Tag, payload: &[u8]) -> Vec<u8> {
-    let limits = crate::Limits::default();
-    let file = crate::container::parse_container(bytes, &limits).unwrap();
-    let owned: Vec<(Tag, Vec<u8>)> = file
-        .sections()
-        .map(|s| {
-            (
-                s.tag,
-                if s.tag == tag {
-                    payload.to_vec()
-                } else {
-                    s.bytes.to_vec()
-                },
-            )
-        })
-        .collect();
-    let refs: Vec<(Tag, &[u8])> = owned.iter().map(|(t, b)| (*t, b.as_slice())).collect();
-    crate::container::write_container(&file.header, &refs).unwrap()
-}
-
 use crate::container::Tag;
 
 #[test]
@@ -501,7 +480,7 @@ fn hostile_sections_with_valid_frames_are_errors() {
     let with_head = |f: &dyn Fn(&mut Vec<u8>)| {
         let mut h = head.clone();
         f(&mut h);
-        decode_bytes(&with_section(&bytes, Tag::HEAD, &h))
+        decode_bytes(&crate::container::with_section(&bytes, Tag::HEAD, &h))
     };
     assert!(with_head(&|_| {}).is_ok(), "the helper itself is sound");
     assert!(with_head(&|h| h[0] = 3).is_err(), "K below 4");
@@ -542,13 +521,18 @@ fn hostile_sections_with_valid_frames_are_errors() {
     // GEOM: a word the encoder never wrote, a missing word, nothing.
     let mut longer = geom.clone();
     longer.extend_from_slice(&[0, 0, 0, 0]);
-    assert!(decode_bytes(&with_section(&bytes, Tag::GEOM, &longer)).is_err());
-    assert!(decode_bytes(&with_section(&bytes, Tag::GEOM, &geom[..geom.len() - 4])).is_err());
-    assert!(decode_bytes(&with_section(&bytes, Tag::GEOM, &[])).is_err());
+    assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::GEOM, &longer)).is_err());
+    assert!(decode_bytes(&crate::container::with_section(
+        &bytes,
+        Tag::GEOM,
+        &geom[..geom.len() - 4]
+    ))
+    .is_err());
+    assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::GEOM, &[])).is_err());
     // TOPO with a dummy vertex: not a SwingWrapper file.
     let mut t = vec![topo[0], 1, 0, 0];
     t.truncate(4);
-    assert!(decode_bytes(&with_section(&bytes, Tag::TOPO, &t)).is_err());
+    assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::TOPO, &t)).is_err());
     // Sections missing.
     for tag in [Tag::HEAD, Tag::TOPO, Tag::CLRS, Tag::GEOM] {
         let owned: Vec<(Tag, Vec<u8>)> = file
