@@ -152,7 +152,8 @@ impl AngleTable {
         AngleTable { bits, cos, sin }
     }
 
-    /// Angle bits K.
+    /// Angle bits K (the retiler quantizes with it).
+    #[cfg(any(test, feature = "encoder"))]
     pub fn bits(&self) -> u8 {
         self.bits
     }
