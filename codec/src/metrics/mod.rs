@@ -6,12 +6,12 @@
 //! the distance from `x` to the nearest point of `Y`; and the Hausdorff
 //! distance, the larger of the two one-sided maxima.
 //!
-//! * Samples ([`sample`]): every vertex, points along every edge, and
+//! * Samples (`sample`): every vertex, points along every edge, and
 //!   stratified points on the faces in proportion to area, seeded and
 //!   deterministic. Which kinds are taken, and how many face samples, is
 //!   set by [`DistanceOptions`]; the default is Metro's (all three kinds,
 //!   ten face samples per face of the larger mesh).
-//! * Nearest points ([`bvh`], [`triangle`]): exact point-to-triangle
+//! * Nearest points (`bvh`, `triangle`): exact point-to-triangle
 //!   distances through a bounding-volume hierarchy; no grid and no search
 //!   radius, so the maximum is the true maximum over the samples.
 //! * Relative values divide by the bounding-box diagonal of the
