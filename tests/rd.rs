@@ -42,7 +42,7 @@ fn notes(out: &Output, what: &str) -> Vec<String> {
 }
 
 /// On a closed genus-0 mesh a swing row is `ok` (a file within the
-/// budget, 8 angle bits), `infeasible` (no file fits) or `failed` (the
+/// budget, at 5 or 6 angle bits, whichever measured better), `infeasible` (no file fits) or `failed` (the
 /// retiler gave up, which `swm rd` says on stderr), never `n/a`. Which
 /// of the three is the retiler's business, not the harness's: the
 /// committed tables ratchet it.
@@ -53,7 +53,7 @@ fn check_swing_row(out: &Output, key: &str, status: &str, bytes: &str, budget: &
                 bytes.parse::<u64>().unwrap() <= budget.parse::<u64>().unwrap(),
                 "{key}: {bytes} bytes over {budget}"
             );
-            assert_eq!(qp, "8", "{key}");
+            assert!(qp == "5" || qp == "6", "{key}: angle bits {qp}");
         }
         "infeasible" => {}
         "failed" => {
