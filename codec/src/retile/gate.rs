@@ -78,10 +78,6 @@ impl Retiler {
                 .flatten()
                 .max_by(|a, b| a.0.distance_squared(t).total_cmp(&b.0.distance_squared(t))),
         };
-        // Candidates: border vertices of this gate's own loop. On a genus-0
-        // surface another loop bounds a separate free disk, reachable only
-        // across claimed triangloids (handles are the next issue's S*).
-        let lp = self.front.loop_of(gr);
         if let Some((v, f)) = tip_point {
             // Ears: a loop neighbour of the gate that makes a sharp angle
             // with it on the free side is closed at once (an R or an L).
@@ -94,7 +90,7 @@ impl Retiler {
                 }
             }
             if self.s.owner[f as usize] == NONE {
-                let near = self.snap(f, v, SNAP * self.l, lp, vl, vr, 1);
+                let near = self.snap(gr, f, v, SNAP * self.l, 1);
                 if let Some(&w) = near.first() {
                     if let Some(out) = self.try_snap((gr, tip), w, id, true) {
                         return Ok(out);
@@ -107,7 +103,7 @@ impl Retiler {
             // it (it lies in another free disk): the thesis's snap without
             // a limit, to the nearest border vertex that gives a valid
             // triangle.
-            for w in self.snap(f, v, FORCED_SNAP * self.l, lp, vl, vr, SNAP_TRIES) {
+            for w in self.snap(gr, f, v, FORCED_SNAP * self.l, SNAP_TRIES) {
                 if let Some(out) = self.try_snap((gr, tip), w, id, true) {
                     return Ok(out);
                 }
@@ -119,7 +115,7 @@ impl Retiler {
         // with the gate's loop neighbours (an L or an R always shortens
         // the loop where it is).
         if let Some((f, p)) = crossing {
-            for w in self.snap(f, p, FORCED_SNAP * self.l, lp, vl, vr, SNAP_TRIES) {
+            for w in self.snap(gr, f, p, FORCED_SNAP * self.l, SNAP_TRIES) {
                 if let Some(out) = self.try_snap((gr, tip), w, id, true) {
                     return Ok(out);
                 }
@@ -174,20 +170,18 @@ impl Retiler {
         best.map(|(_, w)| w)
     }
 
-    /// Up to `count` border vertices of loop `lp` within `limit` of V
-    /// along M, nearest first, other than the gate's.
-    #[allow(clippy::too_many_arguments)]
-    fn snap(
-        &mut self,
-        f: u32,
-        v: DVec3,
-        limit: f64,
-        lp: u32,
-        vl: u32,
-        vr: u32,
-        count: usize,
-    ) -> Vec<u32> {
+    /// Up to `count` border vertices of the loop of gate `gr` within
+    /// `limit` of point `v` of face `f` along M, nearest first, other than
+    /// the gate's own two. Only this loop: on a genus-0 surface another
+    /// loop bounds a separate free disk, reachable only across claimed
+    /// triangloids (handles are the next issue's S*).
+    fn snap(&mut self, gr: u32, f: u32, v: DVec3, limit: f64, count: usize) -> Vec<u32> {
         let front = &self.front;
+        let (lp, vl, vr) = (
+            front.loop_of(gr),
+            front.vertex(front.next(gr)),
+            front.vertex(gr),
+        );
         snap::nearest(&self.s, f, v, limit, count, &mut self.scratch, |m| {
             m != vl && m != vr && front.is_on(m, lp)
         })

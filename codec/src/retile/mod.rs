@@ -214,13 +214,24 @@ impl Retiler {
         self.adj.pop();
     }
 
-    /// The path of M′ edge a–b, from a to b.
-    fn chain(&self, a: u32, b: u32) -> Vec<u32> {
-        let mut c = self.paths[&(a.min(b), a.max(b))].clone();
-        if a > b {
-            c.reverse();
-        }
-        c
+    /// The path of M′ edge a–b as stored (from the lower id to the
+    /// higher), and whether that runs from b to a.
+    fn path(&self, a: u32, b: u32) -> (&[u32], bool) {
+        (&self.paths[&(a.min(b), a.max(b))], a > b)
+    }
+
+    /// The consecutive vertex pairs of the path of M′ edge a–b, in order
+    /// from a to b.
+    fn path_steps(&self, a: u32, b: u32) -> impl Iterator<Item = (u32, u32)> + '_ {
+        let (chain, reversed) = self.path(a, b);
+        let n = chain.len();
+        (1..n).map(move |i| {
+            if reversed {
+                (chain[n - i], chain[n - i - 1])
+            } else {
+                (chain[i - 1], chain[i])
+            }
+        })
     }
 
     /// Builds triangle `tri` = (tip, GL, GR) as M′ triangle `id`: traces
@@ -247,8 +258,7 @@ impl Retiler {
         if ok {
             let mut boundary = Vec::new();
             for (a, b) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
-                let c = self.chain(a, b);
-                boundary.extend_from_slice(&c[..c.len() - 1]);
+                boundary.extend(self.path_steps(a, b).map(|(x, _)| x));
             }
             let max_area = gate::MAX_REGION_AREA * self.l * self.l;
             match region::claim(&mut self.s, &boundary, id, max_area, &mut self.flood) {
@@ -354,16 +364,15 @@ impl Retiler {
         plane: Plane,
         centre: DVec3,
     ) -> ([Option<(DVec3, u32)>; 2], Option<(u32, DVec3)>) {
-        let chain = self.chain(a, b);
         let s = &self.s;
         // The path may cross the bisecting plane more than once; start
         // from the crossing nearest the circle's centre.
-        let crossing = chain
-            .windows(2)
-            .filter(|w| {
-                plane.positive(s.pos[w[0] as usize]) != plane.positive(s.pos[w[1] as usize])
+        let crossing = self
+            .path_steps(a, b)
+            .filter(|&(x, y)| {
+                plane.positive(s.pos[x as usize]) != plane.positive(s.pos[y as usize])
             })
-            .filter_map(|w| s.edge(w[0], w[1]))
+            .filter_map(|(x, y)| s.edge(x, y))
             .map(|c| (c, plane.crossing(s, c).1))
             .min_by(|a, b| {
                 a.1.distance_squared(centre)

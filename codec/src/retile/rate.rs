@@ -17,7 +17,7 @@
 //! could (reported, never silent).
 
 use super::{retile, Failure, RetileOptions};
-use crate::swing::{Retiled, SwingStats};
+use crate::swing::SwingStats;
 use crate::{CornerTable, Error, TriMesh};
 
 /// Relative size error accepted without further runs.
@@ -72,13 +72,9 @@ fn run(
         start_rank,
     };
     match retile(mesh, table, &opt) {
-        Ok(r) => Ok(Ok(write(&r)?)),
+        Ok(r) => Ok(Ok(crate::swing::write(&r)?)),
         Err(f) => Ok(Err(f)),
     }
-}
-
-fn write(r: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
-    crate::swing::write(r)
 }
 
 /// Encodes at the given L; if four runs from different start vertices
