@@ -37,6 +37,28 @@ mod write;
 #[cfg(test)]
 mod tests;
 
+/// Rewrites the trailing CRC so that a mutation reaches the decoder
+/// proper instead of stopping at the checksum (mode tests).
+#[cfg(all(test, feature = "encoder"))]
+pub(crate) fn fix_crc(b: &mut [u8]) {
+    let n = b.len() - 4;
+    let crc = crc32(&b[..n]);
+    b[n..].copy_from_slice(&crc.to_le_bytes());
+}
+
+/// A copy of `bytes` with one to four random bytes overwritten (never in
+/// the CRC) and the CRC fixed (mode tests).
+#[cfg(all(test, feature = "encoder"))]
+pub(crate) fn overwrite_randomly(bytes: &[u8], rng: &mut crate::mesh::test_rng::Rng) -> Vec<u8> {
+    let mut b = bytes.to_vec();
+    for _ in 0..1 + rng.next_u64() % 4 {
+        let at = (rng.next_u64() % (b.len() as u64 - 4)) as usize;
+        b[at] = rng.next_u64() as u8;
+    }
+    fix_crc(&mut b);
+    b
+}
+
 /// Rebuilds `bytes` with one section's payload replaced, keeping a valid
 /// frame and CRC: the mode tests use it to feed decoders lying sections.
 #[cfg(all(test, feature = "encoder"))]

@@ -551,33 +551,14 @@ mod tests {
         }
     }
 
-    /// Rewrites the trailing CRC so that a mutation reaches the decoder
-    /// proper instead of stopping at the checksum.
-    fn fix_crc(b: &mut [u8]) {
-        let n = b.len() - 4;
-        let crc = crate::container::crc32(&b[..n]);
-        b[n..].copy_from_slice(&crc.to_le_bytes());
-    }
-
     #[test]
     fn random_overwrites_with_valid_crc_never_panic() {
         use crate::edgebreaker::tests_support::*;
         let c = crate::clean(&torus(10, 6), &CleanOptions::default()).unwrap();
         let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rand = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut rng = crate::mesh::test_rng::Rng(0x9e37_79b9_7f4a_7c15);
         for _ in 0..4000 {
-            let mut b = bytes.clone();
-            for _ in 0..1 + rand() % 4 {
-                let at = (rand() % (b.len() as u64 - 4)) as usize;
-                b[at] = rand() as u8;
-            }
-            fix_crc(&mut b);
+            let b = crate::container::overwrite_randomly(&bytes, &mut rng);
             if let Ok(mesh) = decode_bytes(&b) {
                 mesh.validate().unwrap();
             }
@@ -599,7 +580,7 @@ mod tests {
         ] {
             let mut b = bytes.clone();
             b[at..at + 4].copy_from_slice(&value.to_le_bytes());
-            fix_crc(&mut b);
+            crate::container::fix_crc(&mut b);
             assert!(decode_bytes(&b).is_err(), "count {value} at {at} accepted");
         }
         // A TOPO section claiming 2^40 symbols: its first varu.
@@ -607,7 +588,7 @@ mod tests {
         let topo = file.find(Tag::TOPO).unwrap().offset;
         let mut b = bytes.clone();
         b[topo..topo + 6].copy_from_slice(&[0x80, 0x80, 0x80, 0x80, 0x80, 0x20]);
-        fix_crc(&mut b);
+        crate::container::fix_crc(&mut b);
         assert!(decode_bytes(&b).is_err());
     }
 

@@ -160,13 +160,8 @@ mod tests {
     fn matches_brute_force_on_random_points() {
         // The nearest point is no farther than a dense barycentric grid's
         // nearest point, and no nearer than it by more than the grid step.
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut r = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-        };
+        let mut rng = crate::mesh::test_rng::Rng(0x9e37_79b9_7f4a_7c15);
+        let mut r = move || rng.unit() * 4.0 - 2.0;
         for _ in 0..200 {
             let t: Tri = core::array::from_fn(|_| core::array::from_fn(|_| r() as f32));
             let p = [r(), r(), r()];

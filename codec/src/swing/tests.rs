@@ -215,13 +215,8 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// Some gates with their previous tips, in general position.
 fn gates() -> Vec<([f64; 3], [f64; 3], [f64; 3])> {
     let mut out = Vec::new();
-    let mut x = 0x2545_f491_4f6c_dd1du64;
-    let mut rand = move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
+    let mut rng = crate::mesh::test_rng::Rng(0x2545_f491_4f6c_dd1d);
+    let mut rand = move || rng.unit() * 2.0 - 1.0;
     for _ in 0..200 {
         let p: [[f64; 3]; 3] = core::array::from_fn(|_| [rand(), rand(), rand()].map(|c| 10.0 * c));
         out.push((p[0], p[1], p[2]));
@@ -411,14 +406,6 @@ fn the_writer_refuses_an_inconsistent_retiling() {
     assert!(matches!(write(&bad), Err(Error::Parameter(_))));
 }
 
-/// Rewrites the trailing CRC so that a mutation reaches the decoder
-/// proper instead of stopping at the checksum.
-fn fix_crc(b: &mut [u8]) {
-    let n = b.len() - 4;
-    let crc = crate::container::crc32(&b[..n]);
-    b[n..].copy_from_slice(&crc.to_le_bytes());
-}
-
 fn small_file() -> Vec<u8> {
     write(&emulate(&flat_icosahedron(1), 8)).unwrap().0
 }
@@ -442,21 +429,10 @@ fn truncated_and_flipped_files_are_errors() {
 #[test]
 fn random_overwrites_with_valid_crc_never_panic() {
     let bytes = small_file();
-    let mut x = 0x9e37_79b9_7f4a_7c15u64;
-    let mut rand = move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        x
-    };
+    let mut rng = crate::mesh::test_rng::Rng(0x9e37_79b9_7f4a_7c15);
     let mut decoded = 0;
     for _ in 0..6000 {
-        let mut b = bytes.clone();
-        for _ in 0..1 + rand() % 4 {
-            let at = (rand() % (b.len() as u64 - 4)) as usize;
-            b[at] = rand() as u8;
-        }
-        fix_crc(&mut b);
+        let b = crate::container::overwrite_randomly(&bytes, &mut rng);
         if let Ok(mesh) = decode_bytes(&b) {
             mesh.validate().unwrap();
             decoded += 1;
@@ -560,7 +536,7 @@ fn absurd_counts_are_refused_before_allocating() {
     ] {
         let mut b = bytes.clone();
         b[at..at + 4].copy_from_slice(&value.to_le_bytes());
-        fix_crc(&mut b);
+        crate::container::fix_crc(&mut b);
         assert!(decode_bytes(&b).is_err(), "count {value} at {at} accepted");
     }
 }
