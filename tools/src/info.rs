@@ -95,18 +95,13 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
         return print_swing(args, &info, swing);
     }
     let mut v = crate::report::lossless_json(&info.stats, info.qp);
-    v["version"] = format!("{}.{}", info.version.0, info.version.1).into();
+    v["version"] = version(&info).into();
     if args.json {
         crate::report::print_json(&v);
         return Ok(());
     }
     let s = &info.stats;
-    say!("{}", args.file.display());
-    say!(
-        "  format version        {}.{}",
-        info.version.0,
-        info.version.1
-    );
+    print_file_and_version(args, &info);
     say!(
         "  mode                  lossless, {} bits per coordinate",
         info.qp
@@ -146,8 +141,19 @@ fn print_sections_and_clers(sections: &[([u8; 4], usize)], triangles: u64, clers
 /// The figures of a SwingWrapper file, as JSON.
 pub fn swing_json(info: &swm::FileInfo, s: &swm::SwingStats) -> serde_json::Value {
     let mut v = crate::report::swing_json(s);
-    v["version"] = format!("{}.{}", info.version.0, info.version.1).into();
+    v["version"] = version(info).into();
     v
+}
+
+/// The file's format version, "major.minor".
+fn version(info: &swm::FileInfo) -> String {
+    format!("{}.{}", info.version.0, info.version.1)
+}
+
+/// The first two lines of `swm info` on a `.swm` file, for both modes.
+fn print_file_and_version(args: &Args, info: &swm::FileInfo) {
+    say!("{}", args.file.display());
+    say!("  format version        {}", version(info));
 }
 
 /// `swm info` of a SwingWrapper file.
@@ -157,12 +163,7 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
         return Ok(());
     }
     let t = s.triangles.max(1) as f64;
-    say!("{}", args.file.display());
-    say!(
-        "  format version        {}.{}",
-        info.version.0,
-        info.version.1
-    );
+    print_file_and_version(args, info);
     say!(
         "  mode                  SwingWrapper, edge length L = {}, {} angle bits",
         s.edge_length,
