@@ -245,8 +245,8 @@ fn max_size_is_never_exceeded() {
 }
 
 #[test]
-fn what_swing_does_not_take_is_a_clean_error() {
-    let dir = scratch("swing-refusals");
+fn swing_takes_holes_handles_and_components() {
+    let dir = scratch("swing-topology");
     let mut open = swm_corpus::icosphere(1.0, 3);
     open.triangles.truncate(open.triangles.len() - 3);
     let mut two = swm_corpus::icosphere(1.0, 2);
@@ -259,31 +259,36 @@ fn what_swing_does_not_take_is_a_clean_error() {
     let more: Vec<[u32; 3]> = two.triangles.iter().map(|t| t.map(|v| v + n)).collect();
     two.positions.extend(shifted);
     two.triangles.extend(more);
+    // (mesh, boundary loops, components, V − E + F) to keep.
     let meshes = [
-        ("open.obj", open),
-        ("torus.off", swm_corpus::torus(1.0, 0.35, 32, 12)),
-        ("two-spheres.ply", two),
+        ("open.obj", open, 1, 1, 1),
+        ("torus.off", swm_corpus::torus(1.0, 0.35, 96, 36), 0, 1, 0),
+        ("two-spheres.ply", two, 0, 2, 4),
     ];
-    for (name, mesh) in meshes {
+    for (name, mesh, loops, components, euler) in meshes {
         let input = dir.join(name);
         swm::io::write_mesh(&input, &mesh).unwrap();
         let output = dir.join("out.swm");
-        // Default mode, then explicitly.
-        for extra in [&[][..], &["--mode", "swing", "--bpv", "4"]] {
-            let mut args = vec!["encode", s(&input), "-o", s(&output)];
-            args.extend_from_slice(extra);
-            let err = one_line_error(&swm(&args), &input);
-            assert!(err.contains("closed genus-0"), "{name}: {err}");
-            assert!(
-                err.contains("lossless"),
-                "{name}: the error names the way out: {err}"
-            );
-            assert_no_output(&output);
-        }
-        // The way out works.
-        let out = swm(&["encode", s(&input), "-o", s(&output), "--mode", "lossless"]);
+        let decoded = dir.join("out.obj");
+        let out = swm(&[
+            "encode",
+            s(&input),
+            "-o",
+            s(&output),
+            "--edge-length",
+            "0.15",
+        ]);
         assert!(out.status.success(), "{name}: {out:?}");
-        std::fs::remove_file(&output).unwrap();
+        let out = swm(&["decode", s(&output), "-o", s(&decoded)]);
+        assert!(out.status.success(), "{name}: {out:?}");
+        let m = swm::io::read_mesh(&decoded).unwrap();
+        let table = swm::CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
+        assert_eq!(table.boundary_loops().len(), loops, "{name}");
+        assert_eq!(table.component_labels().1 as usize, components, "{name}");
+        let boundary = table.opposites().iter().filter(|o| o.is_none()).count() as i64;
+        let (v, f) = (m.vertex_count() as i64, m.face_count() as i64);
+        let e = (3 * f + boundary) / 2;
+        assert_eq!(v - e + f, euler, "{name}");
     }
 }
 

@@ -65,7 +65,7 @@ fn check_swing_row(out: &Output, key: &str, status: &str, bytes: &str, budget: &
 }
 
 /// A small table: a torus from a file and `generated:cube`, two rates,
-/// every configuration (`swing` does not take the torus).
+/// every configuration.
 fn small_table(name: &str) -> (PathBuf, PathBuf) {
     let (dir, csv, _) = small_table_run(name);
     (dir, csv)
@@ -88,13 +88,6 @@ fn small_table_run(name: &str) -> (PathBuf, PathBuf, Output) {
         s(&dir),
     ]);
     ok(&out);
-    // Why the torus has no swing rows, said once for its two rates.
-    let said = notes(&out, "does not apply");
-    assert_eq!(said.len(), 1, "{said:?}");
-    assert!(
-        said[0].contains("torus.obj: swing does not apply"),
-        "{said:?}"
-    );
     (dir.clone(), dir.join("rd.csv"), out)
 }
 
@@ -214,25 +207,28 @@ fn writes_csv_markdown_and_plots() {
     assert_eq!(at("torus.obj", "1", "lossless")["status"], "infeasible");
     assert_eq!(at("torus.obj", "1", "baseline")["status"], "ok");
     assert_eq!(at("torus.obj", "8", "lossless")["status"], "ok");
-    // SwingWrapper takes the cube (a closed genus-0 surface), not the
-    // torus.
+    // SwingWrapper takes the cube and, with its handle, the torus.
     for rate in ["1", "8"] {
-        assert_eq!(at("torus.obj", rate, "swing")["status"], "n/a");
-        let r = at("generated:cube", rate, "swing");
-        check_swing_row(
-            &out,
-            &format!("generated:cube {rate} bpv swing"),
-            &r["status"],
-            &r["bytes"],
-            &r["budget_bytes"],
-            &r["qp"],
-        );
+        for (mesh, key) in [
+            ("generated:cube", "generated:cube"),
+            ("torus.obj", "torus.obj"),
+        ] {
+            let r = at(mesh, rate, "swing");
+            check_swing_row(
+                &out,
+                &format!("{key} {rate} bpv swing"),
+                &r["status"],
+                &r["bytes"],
+                &r["budget_bytes"],
+                &r["qp"],
+            );
+        }
     }
 
     let md = std::fs::read_to_string(dir.join("rd.md")).unwrap();
     assert!(md.contains("## torus") && md.contains("## cube"), "{md}");
     assert!(md.contains("| baseline | L2 |"), "{md}");
-    assert!(md.contains("| swing | L2 | n/a | n/a |"), "{md}");
+    assert!(md.contains("| swing | L2 |"), "{md}");
     for mesh in ["torus", "cube"] {
         let svg = std::fs::read_to_string(dir.join(format!("rd-{mesh}.svg"))).unwrap();
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
@@ -265,8 +261,7 @@ fn json_prints_the_rows() {
     assert!(r["l2_rel"].as_f64().unwrap() > 0.0);
     assert!(r["qp"].as_u64().unwrap() >= 7 && r["qp"].as_u64().unwrap() <= 14);
 
-    // Swing: a row per mesh, `n/a` (with nulls) where it does not apply,
-    // and the reason on stderr.
+    // Swing: a row per mesh, handles included.
     let out = swm(&[
         "rd",
         "generated:icosphere",
@@ -299,17 +294,18 @@ fn json_prints_the_rows() {
     if sphere["status"] == "ok" {
         assert!(sphere["l2_rel"].as_f64().unwrap() > 0.0);
     }
-    assert_eq!(torus["status"], "n/a", "{torus}");
-    assert!(
-        torus["bytes"].is_null() && torus["l2_rel"].is_null(),
-        "{torus}"
+    // A handle is no obstacle: the torus is retiled with its S* events.
+    check_swing_row(
+        &out,
+        "generated:torus 2 bpv swing",
+        torus["status"].as_str().unwrap(),
+        &cell(&torus["bytes"]),
+        &cell(&torus["budget_bytes"]),
+        &cell(&torus["qp"]),
     );
-    let said = notes(&out, "does not apply");
-    assert_eq!(said.len(), 1, "{said:?}");
-    assert!(
-        said[0].starts_with("swm rd: generated:torus: swing does not apply: "),
-        "{said:?}"
-    );
+    if torus["status"] == "ok" {
+        assert!(torus["l2_rel"].as_f64().unwrap() > 0.0);
+    }
 }
 
 #[test]
@@ -348,19 +344,20 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     let err = one_line_error(&swm(&["rd", "--check", s(&tampered), "--only", "torus"]), 1);
     assert!(err.contains("bytes"), "{err}");
 
-    // A row that had a file and now has none regresses: claim that swing
-    // coded the torus at 8 bpv (with the lossless row's figures).
+    // A row that had a file and now has none regresses: claim that the
+    // lossless mode fitted the torus in 1 bpv (with the baseline's
+    // figures), where it is infeasible.
     let text = std::fs::read_to_string(&csv).unwrap();
-    let lossless = text
+    let baseline = text
         .lines()
-        .find(|l| l.starts_with(row))
+        .find(|l| l.starts_with("torus.obj,1,baseline,"))
         .unwrap()
-        .replace(",lossless,", ",swing,");
+        .replace(",baseline,", ",lossless,");
     let claimed: Vec<&str> = text
         .lines()
         .map(|l| {
-            if l.starts_with("torus.obj,8,swing,n/a,") {
-                lossless.as_str()
+            if l.starts_with("torus.obj,1,lossless,infeasible,") {
+                baseline.as_str()
             } else {
                 l
             }
@@ -369,7 +366,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     std::fs::write(&tampered, claimed.join("\n") + "\n").unwrap();
     let err = one_line_error(&swm(&["rd", "--check", s(&tampered), "--only", "torus"]), 1);
     assert!(
-        err.contains("torus.obj 8 bpv swing") && err.contains("status ok -> n/a"),
+        err.contains("torus.obj 1 bpv lossless") && err.contains("status ok -> infeasible"),
         "{err}"
     );
 

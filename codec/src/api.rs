@@ -11,6 +11,8 @@ pub use crate::lossless::LosslessStats;
 pub use crate::swing::SwingStats;
 
 #[cfg(feature = "encoder")]
+pub use crate::retile::compose::{PieceOutcome, PieceReport};
+#[cfg(feature = "encoder")]
 pub use crate::retile::rate::{Attempt, RateReport};
 
 #[cfg(feature = "encoder")]
@@ -85,6 +87,9 @@ pub struct EncodeStats {
     pub swing: Option<SwingStats>,
     /// How a SwingWrapper encoder chose its edge length.
     pub rate: Option<RateReport>,
+    /// What a SwingWrapper encoder did with each connected component of
+    /// the cleaned input, in order (empty in the lossless mode).
+    pub pieces: Vec<PieceReport>,
 }
 
 #[cfg(feature = "encoder")]
@@ -121,6 +126,7 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
                     lossless: Some(lossless),
                     swing: None,
                     rate: None,
+                    pieces: Vec::new(),
                 },
             })
         }
@@ -164,37 +170,19 @@ fn encode_swing(
         }
     };
     let cleaned = crate::clean(mesh, &options.clean)?;
-    let table = &cleaned.table;
-    let boundary_edges = table.opposites().iter().filter(|o| o.is_none()).count() as u64;
-    let components = table.component_labels().1;
-    let (v, f) = (table.vertex_count() as i64, table.face_count() as i64);
-    // V − E + F = 2c − 2g − b, with E = (3F + boundary edges) / 2.
-    let e = (3 * f + boundary_edges as i64) / 2;
-    let loops = table.boundary_loops().len() as i64;
-    let genus = (2 * components as i64 - loops - (v - e + f)) / 2;
-    if boundary_edges > 0 || components != 1 || genus != 0 {
-        return Err(crate::TopologyError::NotASphere {
-            boundary_edges,
-            components,
-            genus,
-        }
-        .into());
-    }
+    let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     let bytes_for = |bpv: f64| (bpv * mesh.vertex_count() as f64 / 8.0).round() as u64;
     let chosen = match target {
-        SwingTarget::EdgeLength(l) => rate::at_length(
-            &cleaned.mesh,
-            table,
-            positive("edge length", l)?,
-            angle_bits,
-        )?,
+        SwingTarget::EdgeLength(l) => {
+            rate::at_length(&pieces, positive("edge length", l)?, angle_bits)?
+        }
         SwingTarget::Bytes(b) => {
             let b = positive("size", b as f64)? as u64;
-            rate::at_size(&cleaned.mesh, table, b, max_bytes, angle_bits)?
+            rate::at_size(&pieces, b, max_bytes, angle_bits)?
         }
         SwingTarget::BitsPerVertex(bpv) => {
             let b = bytes_for(positive("bits per vertex", bpv)?).max(1);
-            rate::at_size(&cleaned.mesh, table, b, max_bytes, angle_bits)?
+            rate::at_size(&pieces, b, max_bytes, angle_bits)?
         }
     };
     if let Some(cap) = max_bytes {
@@ -220,6 +208,7 @@ fn encode_swing(
             lossless: None,
             swing: Some(chosen.stats),
             rate: Some(chosen.report),
+            pieces: chosen.pieces,
         },
     })
 }

@@ -398,9 +398,9 @@ pub enum TopologyError {
         /// Vertices whose faces form more than one fan.
         vertices: u64,
     },
-    /// The SwingWrapper mode retiles one closed genus-0 surface (holes,
-    /// handles and several components are not retiled yet; the lossless
-    /// mode takes them).
+    /// The SwingWrapper mode retiles genus-0 components only (holes and
+    /// several components are fine; handles are not retiled yet, and the
+    /// lossless mode takes such meshes).
     NotASphere {
         /// Boundary edges.
         boundary_edges: u64,
@@ -429,7 +429,7 @@ impl fmt::Display for TopologyError {
                 genus,
             } => write!(
                 f,
-                "SwingWrapper mode retiles one closed genus-0 surface for now; this mesh has {boundary_edges} boundary edges, {components} components, genus {genus} (the lossless mode takes it)"
+                "SwingWrapper mode cannot retile handles yet; this mesh has genus {genus} ({components} components, {boundary_edges} boundary edges; the lossless mode takes it)"
             ),
         }
     }

@@ -38,7 +38,8 @@ pub mod io;
 pub use api::{decode, inspect, DecodeOptions, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
-    encode, Attempt, EncodeMode, EncodeOptions, EncodeStats, Encoded, RateReport, SwingTarget,
+    encode, Attempt, EncodeMode, EncodeOptions, EncodeStats, Encoded, PieceOutcome, PieceReport,
+    RateReport, SwingTarget,
 };
 pub use container::Mode;
 pub use error::{

@@ -8,7 +8,8 @@ use std::time::Instant;
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeArg {
     /// SwingWrapper: retile into near-equilateral triangles, one dihedral
-    /// angle per vertex. Needs one closed genus-0 surface for now.
+    /// angle per vertex. Holes are masked and tiny parts kept losslessly;
+    /// handles (genus > 0) are not retiled yet.
     Swing,
     /// Keep the input's exact triangles; positions quantized to --qp bits.
     Lossless,
@@ -87,6 +88,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         if let Some(r) = &stats.rate {
             json["rate_control"] = crate::report::rate_json(r);
         }
+        if !stats.pieces.is_empty() {
+            json["components"] = stats.pieces.iter().map(piece_json).collect();
+        }
         crate::report::print_json(&json);
         return Ok(());
     }
@@ -119,5 +123,77 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             }
         );
     }
+    if !stats.clean.is_clean() {
+        say!("cleaning: {}", clean_summary(&stats.clean));
+    }
+    let plain = |p: &swm::PieceReport| {
+        p.holes == 0 && matches!(p.outcome, swm::PieceOutcome::Retiled { .. })
+    };
+    if stats.pieces.len() > 1 || !stats.pieces.iter().all(plain) {
+        for (k, p) in stats.pieces.iter().enumerate() {
+            say!("component {k}: {}", piece_line(p));
+        }
+    }
     Ok(())
+}
+
+/// What cleaning changed, as one line of the non-zero counts.
+fn clean_summary(r: &swm::CleanReport) -> String {
+    let counts = [
+        (r.merged_vertices, "coincident vertices merged"),
+        (r.unreferenced_vertices, "unreferenced vertices dropped"),
+        (r.degenerate_faces(), "degenerate faces dropped"),
+        (r.duplicate_faces, "duplicate faces dropped"),
+        (r.flipped_faces, "faces reoriented"),
+        (r.non_manifold_edges, "non-manifold edges cut"),
+        (r.non_manifold_vertices, "non-manifold vertices split"),
+    ];
+    let parts: Vec<String> = counts
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+    parts.join(", ")
+}
+
+/// One component's fate, for the text report.
+fn piece_line(p: &swm::PieceReport) -> String {
+    let shape = format!("{} faces, {} holes, genus {}", p.faces, p.holes, p.genus);
+    match &p.outcome {
+        swm::PieceOutcome::Retiled {
+            triangles,
+            masked,
+            lost_holes,
+        } => {
+            let lost = if *lost_holes > 0 {
+                format!(", {lost_holes} holes smaller than a triangle closed")
+            } else {
+                String::new()
+            };
+            format!("{shape}: retiled into {triangles} triangles ({masked} masked as holes){lost}")
+        }
+        swm::PieceOutcome::Lossless => {
+            format!("{shape}: too small for this edge length, kept by lossless coding")
+        }
+        _ => format!("{shape}"),
+    }
+}
+
+fn piece_json(p: &swm::PieceReport) -> serde_json::Value {
+    let mut v = serde_json::json!({"faces": p.faces, "holes": p.holes, "genus": p.genus});
+    match &p.outcome {
+        swm::PieceOutcome::Retiled {
+            triangles,
+            masked,
+            lost_holes,
+        } => {
+            v["outcome"] = "retiled".into();
+            v["triangles"] = (*triangles).into();
+            v["masked_triangles"] = (*masked).into();
+            v["lost_holes"] = (*lost_holes).into();
+        }
+        swm::PieceOutcome::Lossless => v["outcome"] = "lossless".into(),
+        _ => v["outcome"] = "other".into(),
+    }
+    v
 }

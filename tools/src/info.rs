@@ -187,6 +187,21 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
         s.geometry_bits_per_triangle,
         s.bits_per_angle
     );
+    if s.holes_masked_triangles > 0 || s.hole_bytes > 0 {
+        say!(
+            "  holes                 {} masked triangles, {} bytes ({:.1}% of the file)",
+            s.holes_masked_triangles,
+            s.hole_bytes,
+            100.0 * s.hole_bytes as f64 / s.file_bytes.max(1) as f64
+        );
+    }
+    if s.rest_bytes > 0 {
+        say!(
+            "  kept losslessly       {} triangles, {} bytes",
+            s.rest_triangles,
+            s.rest_bytes
+        );
+    }
     print_sections_and_clers(&s.sections, s.triangles, s.clers);
     say!("  C or R labels         {:.1}%", 100.0 * s.cr_share);
     say!("  valence-6 vertices    {:.1}%", 100.0 * s.valence6_share);

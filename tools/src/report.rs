@@ -67,6 +67,12 @@ pub fn swing_json(s: &swm::SwingStats) -> Value {
         "bits_per_angle": s.bits_per_angle,
         "cr_share": s.cr_share,
         "valence6_share": s.valence6_share,
+        "holes": {
+            "masked_triangles": s.holes_masked_triangles,
+            "bytes": s.hole_bytes,
+            "file_share": s.hole_bytes as f64 / s.file_bytes.max(1) as f64,
+        },
+        "rest": { "triangles": s.rest_triangles, "bytes": s.rest_bytes },
         "clers": { "C": c, "L": l, "E": e, "R": r, "S": s_ },
         "sections": sections,
     })

@@ -23,9 +23,14 @@ impl Tag {
     /// Critical. Entropy-coded geometry (angle symbols or coordinate
     /// residuals).
     pub const GEOM: Tag = Tag(*b"GEOM");
-    /// Ancillary. Hole mask; contents defined with the connectivity
-    /// page. A decoder that does not use it skips it.
-    pub const HOLE: Tag = Tag(*b"hole");
+    /// Critical. SwingWrapper hole mask: one bit per coded triangle, set
+    /// for the triangles the decoder drops (format-spec/05-swing.md). It
+    /// changes the decoded mesh, so a decoder may not skip it.
+    pub const HOLE: Tag = Tag(*b"HOLE");
+    /// Critical. SwingWrapper remainder: a complete lossless (mode 0)
+    /// file whose mesh is appended to the decoded one
+    /// (format-spec/05-swing.md).
+    pub const REST: Tag = Tag(*b"REST");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
 
@@ -63,10 +68,18 @@ impl Tag {
 
 /// Critical tags of format 1.0. A decoder rejects any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
-pub(crate) const KNOWN_CRITICAL: [Tag; 4] = [Tag::HEAD, Tag::CLRS, Tag::TOPO, Tag::GEOM];
+/// (At most 8: the parser keeps them in a `u8`.)
+pub(crate) const KNOWN_CRITICAL: [Tag; 6] = [
+    Tag::HEAD,
+    Tag::CLRS,
+    Tag::TOPO,
+    Tag::GEOM,
+    Tag::HOLE,
+    Tag::REST,
+];
 
 /// Ancillary tags of format 1.0. Other ancillary tags are skipped.
-pub(crate) const KNOWN_ANCILLARY: [Tag; 2] = [Tag::HOLE, Tag::META];
+pub(crate) const KNOWN_ANCILLARY: [Tag; 1] = [Tag::META];
 
 impl fmt::Display for Tag {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

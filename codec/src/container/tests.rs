@@ -129,7 +129,7 @@ fn require_names_the_missing_section() {
     let err = parse(&bytes).unwrap().require(Tag::HOLE).unwrap_err();
     assert!(matches!(
         err,
-        Error::Format(ref e) if e.what == Malformed::MissingSection { tag: *b"hole" }
+        Error::Format(ref e) if e.what == Malformed::MissingSection { tag: *b"HOLE" }
     ));
 }
 

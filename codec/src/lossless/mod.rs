@@ -234,6 +234,16 @@ pub(crate) fn read_connectivity(
     file: &Container<'_>,
     limits: &Limits,
 ) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
+    // Critical sections of the SwingWrapper mode mean nothing here.
+    for tag in [Tag::HOLE, Tag::REST] {
+        if file.find(tag).is_some() {
+            return Err(crate::FormatError::new(
+                "SWM",
+                crate::Malformed::BadSyntax("a lossless file has a HOLE or REST section"),
+            )
+            .into());
+        }
+    }
     let quantizer = read_head(file.require(Tag::HEAD)?.bytes)?;
     let (conn, dummies) = read_topology(file, limits)?;
     Ok((quantizer, conn, dummies))

@@ -46,8 +46,12 @@ pub struct Front {
 pub enum Place {
     /// On this loop: the label (L, R, E or S) and the tip's node.
     Loop(Symbol, u32),
-    /// On another loop (a handle): not supported by this retiler yet.
-    Other,
+    /// Not on this loop: on another one (the tip's node there), which
+    /// only a handle makes possible; the triangle is an S\* that merges
+    /// the two loops.
+    Other(u32),
+    /// On no active loop.
+    Nowhere,
 }
 
 impl Front {
@@ -131,7 +135,48 @@ impl Front {
             }
             n = self.next(n);
         }
-        Place::Other
+        let lp = self.loop_of(gr);
+        self.at
+            .get(w as usize)
+            .and_then(|ns| {
+                ns.iter()
+                    .copied()
+                    .find(|&k| self.nodes[k as usize].lp != lp)
+            })
+            .map_or(Place::Nowhere, Place::Other)
+    }
+
+    /// The M′ vertex is on some active loop.
+    pub fn is_active(&self, v: u32) -> bool {
+        self.at.get(v as usize).is_some_and(|ns| !ns.is_empty())
+    }
+
+    /// Applies an S\* with the tip's node `w` on another loop: the same
+    /// relinking as an S, which here joins the two loops into one
+    ///
+    /// ```text
+    ///   … → GR → GL → …   and   … → W → W⁺ → …
+    ///   become  … → GR → W' → W⁺ → … (the other loop) … → W → GL → …
+    /// ```
+    ///
+    /// Returns the gate to continue with (GR, right first, as Edgebreaker)
+    /// and the one to remember (W → GL).
+    pub fn apply_merge(&mut self, gr: u32, w: u32) -> (u32, u32) {
+        let gl = self.next(gr);
+        let lp = self.loop_of(gr);
+        let vertex = self.vertex(w);
+        let after = self.next(w);
+        let w2 = self.push(vertex, lp);
+        self.link(gr, w2);
+        self.link(w2, after);
+        self.link(w, gl);
+        // The other loop's nodes, now between W' and W, join this loop.
+        let mut n = after;
+        while n != gl {
+            self.nodes[n as usize].lp = lp;
+            n = self.next(n);
+        }
+        (gr, w)
     }
 
     /// Applies a C: inserts new vertex `x` into the gate; returns the next

@@ -172,9 +172,9 @@ impl Retiler {
 
     /// Up to `count` border vertices of the loop of gate `gr` within
     /// `limit` of point `v` of face `f` along M, nearest first, other than
-    /// the gate's own two. Only this loop: on a genus-0 surface another
-    /// loop bounds a separate free disk, reachable only across claimed
-    /// triangloids (handles are the next issue's S*).
+    /// the gate's own two. Only this loop on a genus-0 surface, where
+    /// another loop bounds a separate free disk reachable only across
+    /// claimed triangloids; any loop when M has handles (an S\*).
     fn snap(&mut self, gr: u32, f: u32, v: DVec3, limit: f64, count: usize) -> Vec<u32> {
         let front = &self.front;
         let (lp, vl, vr) = (
@@ -182,8 +182,9 @@ impl Retiler {
             front.vertex(front.next(gr)),
             front.vertex(gr),
         );
+        let handles = self.handles;
         snap::nearest(&self.s, f, v, limit, count, &mut self.scratch, |m| {
-            m != vl && m != vr && front.is_on(m, lp)
+            m != vl && m != vr && (front.is_on(m, lp) || (handles && front.is_active(m)))
         })
     }
 
@@ -198,13 +199,15 @@ impl Retiler {
     ) -> Option<(Option<Gate>, Option<Gate>)> {
         let gl = self.front.next(gr);
         let (vl, vr) = (self.front.vertex(gl), self.front.vertex(gr));
-        let Place::Loop(symbol, wn) = self.front.place(gr, w) else {
-            return None;
+        let (symbol, wn, merge) = match self.front.place(gr, w) {
+            Place::Loop(symbol, wn) => (symbol, wn, false),
+            Place::Other(wn) if self.handles => (Symbol::S, wn, true),
+            _ => return None,
         };
         // An S that leaves a pocket of one vertex (W two steps from the
         // gate along the loop) would close it at once with an E folded
         // back over the S: take that vertex first, as an R or an L.
-        if symbol == Symbol::S {
+        if symbol == Symbol::S && !merge {
             let (before, after) = (self.front.prev(gr), self.front.next(gl));
             let pocket = if self.front.prev(before) == wn {
                 Some(before)
@@ -257,7 +260,12 @@ impl Retiler {
         }
         self.push_triangle([w, vl, vr]);
         self.symbols.push(symbol);
-        let (next, push) = self.front.apply(gr, symbol, wn);
+        let (next, push) = if merge {
+            let (next, push) = self.front.apply_merge(gr, wn);
+            (Some(next), Some(push))
+        } else {
+            self.front.apply(gr, symbol, wn)
+        };
         // After L and S the gate keeps GR and its previous tip is GL;
         // after R it keeps GL and the previous tip is GR.
         let next = next.map(|n| (n, if symbol == Symbol::R { vr } else { vl }));

@@ -28,8 +28,11 @@
 //! `region`); there is no spatial index, so self-intersecting input
 //! cannot confuse them.
 
+pub mod compose;
+pub mod fill;
 mod front;
 mod gate;
+mod mask;
 mod path;
 pub mod rate;
 mod region;
@@ -37,6 +40,8 @@ mod snap;
 mod surface;
 mod walk;
 
+#[cfg(test)]
+mod pieces_tests;
 #[cfg(test)]
 mod tests;
 
@@ -75,6 +80,24 @@ pub fn retile(
     table: &CornerTable,
     opt: &RetileOptions,
 ) -> Result<Retiled, Failure> {
+    let (v, f) = (mesh.vertex_count() as i64, mesh.face_count() as i64);
+    let handles = v - f / 2 < 2;
+    retile_piece(mesh, table, None, opt, None, handles).map(|(r, _)| r)
+}
+
+/// Retiles one closed piece. `patch` labels the faces that close a hole
+/// (`fill`); `fixed` is the L of an earlier component of the same file,
+/// which this one must use as it is (the decoder has one radius per
+/// file); `handles`: M has genus > 0. Returns the piece as a one-component [`Retiled`] without mask,
+/// and per triangle the hole patch that covers most of its triangloid.
+fn retile_piece(
+    mesh: &TriMesh,
+    table: &CornerTable,
+    patch: Option<&[u32]>,
+    opt: &RetileOptions,
+    fixed: Option<f64>,
+    handles: bool,
+) -> Result<(Retiled, Vec<mask::Cover>), Failure> {
     if mesh.face_count() == 0
         || !(opt.edge_length.is_finite() && opt.edge_length > 0.0)
         || opt
@@ -89,15 +112,21 @@ pub fn retile(
         .map(|p| p.map(f64::from).into())
         .collect();
     let opposites: Vec<u32> = table.opposites().iter().map(|c| c.0).collect();
-    let s = Surface::new(&positions, &mesh.triangles, &opposites);
+    let mut s = Surface::new(&positions, &mesh.triangles, &opposites);
+    if let Some(p) = patch {
+        s.patch.copy_from_slice(p);
+    }
+    let l = fixed.unwrap_or(opt.edge_length);
     let area = mesh.area();
-    let tri_area = opt.edge_length * opt.edge_length * 3f64.sqrt() / 4.0;
+    let tri_area = l * l * 3f64.sqrt() / 4.0;
     let cap = (8.0 * area / tri_area) as usize + 64;
     let mut r = Retiler {
         s,
         table: AngleTable::new(opt.angle_bits),
-        l: opt.edge_length,
-        radius: 0.0,
+        l,
+        fixed: fixed.is_some(),
+        handles,
+        radius: tip_radius(l),
         xhat: Vec::new(),
         msample: Vec::new(),
         adj: Vec::new(),
@@ -122,15 +151,19 @@ pub fn retile(
             faces: uncovered as u32,
         });
     }
-    Ok(Retiled {
+    let cover = r.cover();
+    let retiled = Retiled {
         angle_bits: opt.angle_bits,
-        first,
+        first: vec![first],
         triangles: r.triangles,
         positions: r.xhat.iter().map(|p| p.to_array()).collect(),
         symbols: r.symbols,
         codes: r.codes,
         edge_length: r.l,
-    })
+        hole_mask: Vec::new(),
+        rest: None,
+    };
+    Ok((retiled, cover))
 }
 
 fn f32_exact(p: DVec3) -> DVec3 {
@@ -144,6 +177,10 @@ struct Retiler {
     s: Surface,
     table: AngleTable,
     l: f64,
+    /// `l` is an earlier component's and must not change.
+    fixed: bool,
+    /// M has handles: a tip may snap to another loop (an S\*).
+    handles: bool,
     radius: f64,
     /// Per M′ vertex: decoded position.
     xhat: Vec<DVec3>,
@@ -201,6 +238,43 @@ impl Retiler {
                     n.dot(m) < -0.5 * n.length() * m.length()
                 })
         })
+    }
+
+    /// Per M′ triangle: the hole patch holding most of its triangloid's
+    /// area, and that share of the area.
+    fn cover(&self) -> Vec<mask::Cover> {
+        let s = &self.s;
+        let n = self.triangles.len();
+        let mut total = vec![0.0f64; n];
+        let mut on: HashMap<(u32, u32), f64> = HashMap::new();
+        for f in 0..s.face_count() as u32 {
+            let o = s.owner[f as usize];
+            if o == NONE {
+                continue;
+            }
+            let [a, b, c] = Surface::corners(f).map(|k| s.p(k));
+            let area = 0.5 * (b - a).cross(c - a).length();
+            total[o as usize] += area;
+            let h = s.patch[f as usize];
+            if h != NONE {
+                *on.entry((o, h)).or_default() += area;
+            }
+        }
+        let mut cover = vec![(NONE, 0.0); n];
+        let mut best: Vec<((u32, u32), f64)> = on.into_iter().collect();
+        // Deterministic: by triangle, then hole.
+        best.sort_unstable_by_key(|&(k, _)| k);
+        for ((o, h), area) in best {
+            let share = if total[o as usize] > 0.0 {
+                area / total[o as usize]
+            } else {
+                0.0
+            };
+            if share > cover[o as usize].1 {
+                cover[o as usize] = (h, share);
+            }
+        }
+        cover
     }
 
     /// Undoes the last `add_vertex`.
@@ -300,9 +374,11 @@ impl Retiler {
         let (p2, f2) =
             walk_to_radius(&mut w, c1, c1, self.l, 4.0 * self.l).ok_or(Failure::NoSecondVertex)?;
         let (x1, x2) = (f32_exact(c1), f32_exact(p2));
-        // The decoder's L: the distance of the explicit p1 and p2.
-        self.l = first_edge_length(&[x1.to_array(), DVec3::ZERO.to_array(), x2.to_array()]);
-        self.radius = tip_radius(self.l);
+        if !self.fixed {
+            // The decoder's L: the distance of the explicit p1 and p2.
+            self.l = first_edge_length(&[x1.to_array(), DVec3::ZERO.to_array(), x2.to_array()]);
+            self.radius = tip_radius(self.l);
+        }
         let snap = 1e-9 * self.l;
         let m2 = self
             .s
@@ -391,8 +467,13 @@ impl Retiler {
     }
 
     /// Processes gates in Edgebreaker order until every loop closed.
+    ///
+    /// Remembered gates are kept with their two vertices: after an S\*
+    /// the merged loop can consume a remembered gate before it is popped,
+    /// and Edgebreaker then skips it (its triangle is visited), which is
+    /// where the decoder needs the handle event.
     fn grow(&mut self, first: Gate) -> Result<(), Failure> {
-        let mut stack: Vec<Gate> = Vec::new();
+        let mut stack: Vec<(Gate, [u32; 2])> = Vec::new();
         let mut gate = Some(first);
         while let Some((gr, tip)) = gate {
             if self.triangles.len() > self.cap {
@@ -400,9 +481,22 @@ impl Retiler {
             }
             let (next, push) = self.step(gr, tip)?;
             if let Some(g) = push {
-                stack.push(g);
+                let ends = [
+                    self.front.vertex(g.0),
+                    self.front.vertex(self.front.next(g.0)),
+                ];
+                stack.push((g, ends));
             }
-            gate = next.or_else(|| stack.pop());
+            gate = next;
+            while gate.is_none() {
+                let Some((g, [w, gl])) = stack.pop() else {
+                    break;
+                };
+                // Consumed: the triangle on its free side holds GL → W.
+                if !self.half_edges.contains_key(&(gl, w)) {
+                    gate = Some(g);
+                }
+            }
         }
         Ok(())
     }

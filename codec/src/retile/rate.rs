@@ -16,9 +16,11 @@
 //! `max_bytes`; it lands within `TOLERANCE` of the request unless no run
 //! could (reported, never silent).
 
-use super::{retile, Failure, RetileOptions};
+use super::compose::{retile_pieces, PieceReport};
+use super::fill::Piece;
+use super::{Failure, RetileOptions};
 use crate::swing::SwingStats;
-use crate::{CornerTable, Error, TriMesh};
+use crate::Error;
 
 /// Relative size error accepted without further runs.
 pub const TOLERANCE: f64 = 0.03;
@@ -56,36 +58,38 @@ pub struct Chosen {
     pub bytes: Vec<u8>,
     pub stats: SwingStats,
     pub report: RateReport,
+    /// What happened to each component.
+    pub pieces: Vec<PieceReport>,
 }
 
-fn run(
-    mesh: &TriMesh,
-    table: &CornerTable,
-    l: f64,
-    bits: u8,
-    start_rank: u32,
-) -> Result<Result<(Vec<u8>, SwingStats), Failure>, Error> {
+/// One written file: bytes, figures, and each component's fate.
+type Run = (Vec<u8>, SwingStats, Vec<PieceReport>);
+
+fn run(pieces: &[Piece], l: f64, bits: u8, start_rank: u32) -> Result<Result<Run, Failure>, Error> {
     let opt = RetileOptions {
         edge_length: l,
         angle_bits: bits,
         start_vertex: None,
         start_rank,
     };
-    match retile(mesh, table, &opt) {
-        Ok(r) => Ok(Ok(crate::swing::write(&r)?)),
+    match retile_pieces(pieces, &opt) {
+        Ok(c) => {
+            let (bytes, stats) = crate::swing::write(&c.retiled)?;
+            Ok(Ok((bytes, stats, c.report)))
+        }
         Err(f) => Ok(Err(f)),
     }
 }
 
 /// Encodes at the given L; if four runs from different start vertices
 /// fail, at the first L below it, in steps of 2%, where one works.
-pub fn at_length(mesh: &TriMesh, table: &CornerTable, l: f64, bits: u8) -> Result<Chosen, Error> {
+pub fn at_length(pieces: &[Piece], l: f64, bits: u8) -> Result<Chosen, Error> {
     let mut attempts = Vec::new();
     let mut next = l;
     let mut fails = 0u32;
     for _ in 0..MAX_RUNS {
-        match run(mesh, table, next, bits, fails % 4)? {
-            Ok((bytes, stats)) => {
+        match run(pieces, next, bits, fails % 4)? {
+            Ok((bytes, stats, report)) => {
                 attempts.push(Attempt {
                     edge_length: next,
                     outcome: Ok(bytes.len() as u64),
@@ -93,6 +97,7 @@ pub fn at_length(mesh: &TriMesh, table: &CornerTable, l: f64, bits: u8) -> Resul
                 return Ok(Chosen {
                     bytes,
                     stats,
+                    pieces: report,
                     report: RateReport {
                         requested_bytes: None,
                         edge_length: next,
@@ -119,15 +124,14 @@ pub fn at_length(mesh: &TriMesh, table: &CornerTable, l: f64, bits: u8) -> Resul
 
 /// Encodes to about `target` bytes, never more than `max_bytes`.
 pub fn at_size(
-    mesh: &TriMesh,
-    table: &CornerTable,
+    pieces: &[Piece],
     target: u64,
     max_bytes: Option<u64>,
     bits: u8,
 ) -> Result<Chosen, Error> {
     // A cap below the target is the real target.
     let target = max_bytes.map_or(target, |cap| target.min(cap));
-    let area = mesh.area();
+    let area: f64 = pieces.iter().map(|p| p.area).sum();
     let s_bits = 8.0 * target as f64;
     let mut l = (16.0 * area / (3f64.sqrt() * s_bits)).sqrt();
     let cap = max_bytes.unwrap_or(u64::MAX);
@@ -143,7 +147,7 @@ pub fn at_size(
     // and above the aim in size.
     let mut small: Option<(f64, u64)> = None; // size < aim: L too large
     let mut large: Option<(f64, u64)> = None; // size > aim: L too small
-    let mut best: Option<(f64, Vec<u8>, SwingStats)> = None;
+    let mut best: Option<(f64, Run)> = None;
     let score = |size: u64| {
         if size > cap {
             f64::INFINITY
@@ -159,20 +163,20 @@ pub fn at_size(
     let mut fails = 0u32;
     let mut failing_from: Option<f64> = None;
     for _ in 0..MAX_RUNS {
-        match run(mesh, table, l, bits, fails)? {
-            Ok((bytes, stats)) => {
+        match run(pieces, l, bits, fails)? {
+            Ok(done) => {
                 fails = 0;
                 failing_from = None;
-                let size = bytes.len() as u64;
+                let size = done.0.len() as u64;
                 attempts.push(Attempt {
                     edge_length: l,
                     outcome: Ok(size),
                 });
                 let better = best
                     .as_ref()
-                    .is_none_or(|(_, b, _)| score(size) < score(b.len() as u64));
+                    .is_none_or(|(_, b)| score(size) < score(b.0.len() as u64));
                 if better {
-                    best = Some((l, bytes, stats));
+                    best = Some((l, done));
                 }
                 if (size as f64 - target as f64).abs() <= TOLERANCE * target as f64 && size <= cap {
                     break;
@@ -212,8 +216,8 @@ pub fn at_size(
             }
         }
     }
-    let (edge_length, bytes, stats) = best
-        .filter(|(_, b, _)| b.len() as u64 <= cap)
+    let (edge_length, (bytes, stats, pieces)) = best
+        .filter(|(_, b)| b.0.len() as u64 <= cap)
         .ok_or_else(|| infeasible(&attempts))?;
     let size = bytes.len() as f64;
     let first_failed = attempts.first().is_some_and(|a| a.outcome.is_err());
@@ -227,6 +231,7 @@ pub fn at_size(
         },
         bytes,
         stats,
+        pieces,
     })
 }
 

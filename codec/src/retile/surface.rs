@@ -21,7 +21,7 @@
 //! Invariants kept by every operation (checked by `check` in tests):
 //! * `opp` is an involution without fixed points, and opposite corners
 //!   face the same two vertices in reverse order (closed and oriented);
-//! * new faces inherit their parent's unit normal and owner, so slivers
+//! * new faces inherit their parent's unit normal, owner and patch, so slivers
 //!   made by splits never need a normal of their own (thesis §7.3);
 //! * a path flag is set on both corners facing an edge or on neither, and
 //!   `on_path[v]` counts the path edges at `v`.
@@ -44,6 +44,9 @@ pub struct Surface {
     pub normal: Vec<DVec3>,
     /// Per face: the M′ triangle whose triangloid holds it, or `NONE`.
     pub owner: Vec<u32>,
+    /// Per face: the filled hole it patches, or `NONE` for the input's
+    /// own surface; inherited through splits.
+    pub patch: Vec<u32>,
     /// Per corner: the edge it faces lies on a triangloid boundary path.
     pub path: Vec<bool>,
     /// Per vertex: one corner at it.
@@ -102,6 +105,7 @@ impl Surface {
             opp: opposites.to_vec(),
             normal,
             owner: vec![NONE; triangles.len()],
+            patch: vec![NONE; triangles.len()],
             path: vec![false; v.len()],
             v,
             corner_of,
@@ -183,6 +187,7 @@ impl Surface {
         self.path.extend_from_slice(&[false; 3]);
         self.normal.push(self.normal[parent as usize]);
         self.owner.push(self.owner[parent as usize]);
+        self.patch.push(self.patch[parent as usize]);
         f
     }
 

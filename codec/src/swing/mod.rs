@@ -8,18 +8,25 @@
 //!   of its first triangle as `f32 ×9`;
 //! * `TOPO`, `CLRS`: as in the lossless mode (no dummy vertices);
 //! * `GEOM`: the angle residuals `(q − q_pred) mod 2^K`, range coded
-//!   ([`residual`]).
+//!   ([`residual`]);
+//! * `HOLE` (only when some triangle is masked): one bit per triangle,
+//!   set for those that cover a hole of the input ([`hole`]);
+//! * `REST` (only when some component was too small to retile): a whole
+//!   lossless (mode 0) file, whose mesh follows the retiled one.
 //!
 //! The decoder rebuilds the corner table, then every vertex in one pass
 //! over the triangles ([`rebuild_positions`]); the encoder runs the same
 //! pass on the retiler's output before writing, so the file decodes to
-//! exactly the retiler's positions.
+//! exactly the retiler's positions. Then masked triangles and the
+//! vertices only they used are dropped, and `REST`'s mesh appended.
 //!
 //! One concern per file: `angle` (the exact arithmetic of a tip),
-//! `residual` (the GEOM stream), `write` (the encoder side), `read` (the
-//! decoder side and `inspect`).
+//! `residual` (the GEOM stream), `hole` (the HOLE stream and the
+//! dropping rule), `write` (the encoder side), `read` (the decoder side
+//! and `inspect`).
 
 mod angle;
+mod hole;
 mod read;
 mod residual;
 #[cfg(feature = "encoder")]
@@ -37,34 +44,45 @@ pub(crate) use read::{decode, inspect};
 pub(crate) use write::write;
 
 use crate::edgebreaker::Symbol;
+#[cfg(feature = "encoder")]
+use crate::TriMesh;
 
 /// What the retiler hands to the writer: the retiled mesh M′ in creation
 /// order, with the decoded positions the file must reproduce.
 ///
 /// Conventions (format-spec/02-connectivity.md, "Decoded numbering"):
-/// triangle 0 is (p1, p3, p2) = vertices (0, 1, 2); every later triangle
-/// t is (tip, GL, GR), so that Edgebreaker run on M′ from corner 0 of
-/// triangle 0 visits the triangles in this order, each through corner
-/// 3t, reproduces `symbols`, and numbers the vertices 0, 1, 2, … as
-/// given (each C tip takes the next number).
+/// components follow each other; a component's first triangle is
+/// (p1, p3, p2) and takes the next three vertex numbers; every later
+/// triangle t is (tip, GL, GR), so that Edgebreaker run on M′ (each
+/// component from corner 0 of its first triangle) visits the triangles in
+/// this order, each through corner 3t, reproduces `symbols`, and numbers
+/// the vertices 0, 1, 2, … as given (each C tip takes the next number).
 #[cfg(feature = "encoder")]
 #[derive(Clone, Debug, PartialEq)]
 pub struct Retiled {
     /// Angle bits K, [`MIN_ANGLE_BITS`]`..=`[`MAX_ANGLE_BITS`].
     pub angle_bits: u8,
-    /// p1, p3, p2: vertices 0, 1, 2, already binary32 values.
-    pub first: [[f64; 3]; 3],
+    /// Per component, in order: p1, p3, p2 of its first triangle, already
+    /// binary32 values. Component 0's are vertices 0, 1, 2.
+    pub first: Vec<[[f64; 3]; 3]>,
     /// Triangles in creation order, as above.
     pub triangles: Vec<[u32; 3]>,
     /// The decoded position X̂ of every vertex, by vertex number: what
     /// the decoder computes, bit for bit.
     pub positions: Vec<[f64; 3]>,
-    /// One CLERS symbol per triangle after the first.
+    /// One CLERS symbol per triangle except each component's first.
     pub symbols: Vec<Symbol>,
     /// The angle code q of each C tip, in order.
     pub codes: Vec<u32>,
-    /// L = |first[0] − first[2]| ([`first_edge_length`]).
+    /// L = |first[0][0] − first[0][2]| ([`first_edge_length`]); every
+    /// component's tips use its radius.
     pub edge_length: f64,
+    /// Per triangle: it covers a filled hole of the input and the decoder
+    /// drops it. Empty when the input had no boundary.
+    pub hole_mask: Vec<bool>,
+    /// Components too small to retile at this L, kept exactly by the
+    /// lossless mode at `qp` bits and appended after the retiled mesh.
+    pub rest: Option<(TriMesh, u8)>,
 }
 
 /// The figures of one SwingWrapper file (what `swm info` shows).
@@ -76,11 +94,12 @@ pub struct SwingStats {
     pub angle_bits: u8,
     /// The predicted angle code stored in `HEAD`.
     pub predicted_code: u32,
-    /// Vertices of the retiled mesh.
+    /// Vertices of the retiled mesh as coded (holes covered, before the
+    /// hole mask; without `REST`): the header's count.
     pub vertices: u64,
-    /// Triangles of the retiled mesh.
+    /// Triangles of the retiled mesh as coded: the header's count.
     pub triangles: u64,
-    /// Connected components.
+    /// Connected components of the retiled mesh as coded.
     pub components: u64,
     /// Handle events (two per handle).
     pub handle_events: u64,
@@ -100,18 +119,29 @@ pub struct SwingStats {
     pub sections: Vec<([u8; 4], usize)>,
     /// Bytes of the whole file.
     pub file_bytes: usize,
+    /// Bytes of the hole mask (`HOLE`; 0 without holes).
+    pub hole_bytes: u64,
+    /// Triangles of the retiled mesh that the hole mask drops.
+    pub holes_masked_triangles: u64,
+    /// Bytes of the lossless remainder (`REST`, a whole mode-0 file; 0
+    /// without one).
+    pub rest_bytes: u64,
+    /// Triangles of the lossless remainder, appended to the decoded mesh.
+    pub rest_triangles: u64,
 }
 
 impl SwingStats {
     /// The figures of a file: its header fields, decoded corner table,
-    /// symbols and sections. The writer and `inspect` both build them
-    /// here.
+    /// symbols, sections, masked triangles and triangles of `REST`. The
+    /// writer and `inspect` both build them here.
     pub(crate) fn new(
         head: &read::Head,
         table: &crate::CornerTable,
         conn: &crate::edgebreaker::Connectivity,
         sections: Vec<([u8; 4], usize)>,
         file_bytes: usize,
+        masked: u64,
+        rest_triangles: u64,
     ) -> Self {
         let mut clers = [0u64; 5];
         for &s in &conn.symbols {
@@ -133,6 +163,8 @@ impl SwingStats {
         };
         let per_triangle = |bytes: usize| 8.0 * bytes as f64 / triangles.max(1) as f64;
         let geom = bytes_of(&[b"GEOM"]);
+        let hole_bytes = bytes_of(&[&crate::container::Tag::HOLE.0]) as u64;
+        let rest_bytes = bytes_of(&[&crate::container::Tag::REST.0]) as u64;
         SwingStats {
             edge_length: head.first.first().map_or(0.0, first_edge_length),
             angle_bits: head.bits,
@@ -149,6 +181,10 @@ impl SwingStats {
             bits_per_angle: 8.0 * geom as f64 / (clers[Symbol::C as usize].max(1)) as f64,
             sections,
             file_bytes,
+            hole_bytes,
+            holes_masked_triangles: masked,
+            rest_bytes,
+            rest_triangles,
         }
     }
 }

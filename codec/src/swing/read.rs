@@ -1,13 +1,14 @@
 //! Decoding a SwingWrapper file: `HEAD`, then the connectivity (`TOPO`,
 //! `CLRS`, shared with the lossless mode), then the angle codes (`GEOM`)
-//! and the one pass that rebuilds the vertices. Every count is checked
-//! before anything sized by it is allocated.
+//! and the one pass that rebuilds the vertices; then the hole mask
+//! (`HOLE`) drops triangles and the lossless remainder (`REST`) adds
+//! some. Every count is checked before anything sized by it is allocated.
 
-use super::{angle, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
-use crate::container::{check_count_fits, Container, Tag};
+use super::{angle, hole, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+use crate::container::{check_count_fits, parse_container, Container, Mode, Section, Tag};
 use crate::edgebreaker::{self, Connectivity, Symbol};
 use crate::varint::Reader;
-use crate::{CornerTable, Error, FormatError, Limits, Malformed, TriMesh};
+use crate::{CornerTable, Error, FormatError, Limits, Location, Malformed, TriMesh};
 
 /// Bytes of `HEAD` before the first triangles: `K` and `q_pred`.
 const HEAD_FIXED_LEN: usize = 3;
@@ -114,9 +115,60 @@ fn read_connectivity(
     Ok((head, conn, table))
 }
 
+/// Locates an error found inside a section whose payload starts at file
+/// offset `offset`: an offset within the payload (the file nested in
+/// `REST` counts from its own start) moves by `offset`, an unlocated
+/// error is put at the payload's start.
+fn in_section(offset: usize) -> impl Fn(Error) -> Error {
+    move |e| match e {
+        Error::Format(mut f) => {
+            let inner = match f.at {
+                Some(Location::Byte(b)) => b,
+                _ => 0,
+            };
+            f.at = Some(Location::Byte(inner.saturating_add(offset as u64)));
+            Error::Format(f)
+        }
+        other => other,
+    }
+}
+
+/// Parses `REST`: a complete lossless (mode 0) file, checked down to its
+/// section table (no recursion: a nested SwingWrapper file, or a nested
+/// file with its own `HOLE` or `REST`, is malformed). Allocates nothing.
+fn read_rest<'a>(section: Section<'a>, limits: &Limits) -> Result<Container<'a>, Error> {
+    let check = |rest: Container<'a>| {
+        if rest.header.mode != Mode::Lossless {
+            return Err(bad("REST does not hold a lossless (mode 0) file"));
+        }
+        if rest.find(Tag::HOLE).is_some() || rest.find(Tag::REST).is_some() {
+            return Err(bad("the file in REST has a HOLE or REST section"));
+        }
+        Ok(rest)
+    };
+    parse_container(section.bytes, limits)
+        .and_then(check)
+        .map_err(in_section(section.offset))
+}
+
 /// Decodes a SwingWrapper file whose container was parsed.
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
     let (head, conn, table) = read_connectivity(file, limits)?;
+    // REST's frame first: the whole output must fit the limits before
+    // anything is decoded.
+    let rest = match file.find(Tag::REST) {
+        Some(s) => Some((read_rest(s, limits)?, s.offset)),
+        None => None,
+    };
+    if let Some((rest, _)) = &rest {
+        let (h, r) = (&file.header, &rest.header);
+        let vertices = u64::from(h.vertex_count) + u64::from(r.vertex_count);
+        limits.check_vertices(vertices)?;
+        limits.check_faces(u64::from(h.triangle_count) + u64::from(r.triangle_count))?;
+        if vertices > u64::from(u32::MAX) {
+            return Err(bad("more than 2^32 - 1 vertices with REST's"));
+        }
+    }
     let geom = file.require(Tag::GEOM)?.bytes;
     let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
     // A length costs more than K/2^16 bits: its model has K + 1 symbols.
@@ -127,8 +179,10 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
         u64::from(head.bits),
         1 << crate::entropy::PRECISION,
     )?;
-    // f64 and f32 positions, a length per vertex, a code per C tip.
-    limits.check_alloc((table.vertex_count() as u64).saturating_mul(41))?;
+    // f64 and f32 positions, a length per vertex, a code per C tip; a
+    // mask bit per triangle and a new number per vertex.
+    let (v, t) = (table.vertex_count() as u64, table.face_count() as u64);
+    limits.check_alloc(v.saturating_mul(45).saturating_add(t.saturating_mul(13)))?;
     let codes = residual::decode(&table, geom, count, head.bits, head.predicted)?;
     let x = super::rebuild_positions(&table, &head.first, head.bits, &codes)?;
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
@@ -136,20 +190,55 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     if triangles.len() != file.header.triangle_count as usize {
         return Err(bad("triangle count differs from the header"));
     }
-    Ok(TriMesh {
+    let mut mesh = TriMesh {
         positions,
         triangles,
-    })
+    };
+    if let Some(s) = file.find(Tag::HOLE) {
+        let mask = hole::decode(&table, s.bytes).map_err(in_section(s.offset))?;
+        mesh = hole::drop_masked(mesh, &mask)?;
+    }
+    if let Some((rest, offset)) = &rest {
+        let kept = crate::lossless::decode(rest, limits).map_err(in_section(*offset))?;
+        // Checked against the limits above: both counts are below 2^32.
+        let first = mesh.positions.len() as u32;
+        mesh.positions.extend_from_slice(&kept.positions);
+        mesh.triangles
+            .extend(kept.triangles.iter().map(|t| t.map(|v| v + first)));
+    }
+    Ok(mesh)
 }
 
-/// The figures of a SwingWrapper file, read without decoding geometry.
+/// The figures of a SwingWrapper file, read without decoding geometry:
+/// the hole mask is decoded (it needs only the corner table), `REST` is
+/// parsed down to its section table.
 pub(crate) fn inspect(
     file: &Container<'_>,
     limits: &Limits,
     file_bytes: usize,
 ) -> Result<(Connectivity, SwingStats), Error> {
     let (head, conn, table) = read_connectivity(file, limits)?;
+    let masked = match file.find(Tag::HOLE) {
+        Some(s) => hole::decode(&table, s.bytes)
+            .map_err(in_section(s.offset))?
+            .iter()
+            .filter(|&&m| m)
+            .count() as u64,
+        None => 0,
+    };
+    let rest_triangles = match file.find(Tag::REST) {
+        Some(s) => u64::from(read_rest(s, limits)?.header.triangle_count),
+        None => 0,
+    };
     let sections = file.sections().map(|s| (s.tag.0, s.bytes.len())).collect();
-    let stats = SwingStats::new(&head, &table, &conn, sections, file_bytes);
+    let stats = SwingStats::new(
+        &head,
+        &table,
+        &conn,
+        sections,
+        file_bytes,
+        masked,
+        rest_triangles,
+    );
     Ok((conn, stats))
 }

@@ -22,9 +22,11 @@ fn sphere(levels: u32, radius: impl Fn([f64; 3]) -> f64) -> TriMesh {
 }
 
 /// What the retiler would hand over for `mesh`: M′ = `mesh` in
-/// Edgebreaker order, the first three vertices rounded to f32, and every
-/// C tip replaced by the point of its quantized angle, built on the
-/// already replaced positions (so errors do not accumulate).
+/// Edgebreaker order (one component after another), each component's
+/// first three vertices rounded to f32, and every C tip replaced by the
+/// point of its quantized angle, built on the already replaced positions
+/// (so errors do not accumulate). Every component's tips use the radius
+/// of component 0's first edge, as the decoder does.
 pub(super) fn emulate(mesh: &TriMesh, bits: u8) -> Retiled {
     let table = CornerTable::new(&mesh.triangles, mesh.vertex_count()).unwrap();
     let eb = crate::edgebreaker::encode(&table).unwrap();
@@ -43,14 +45,19 @@ pub(super) fn emulate(mesh: &TriMesh, bits: u8) -> Retiled {
         .map(|v| mesh.positions[v.idx()].map(f64::from))
         .collect();
     let ordered = CornerTable::new(&triangles, truth.len()).unwrap();
-    let first = [truth[0], truth[1], truth[2]];
-    let edge_length = first_edge_length(&first);
+    let edge_length = first_edge_length(&[truth[0], truth[1], truth[2]]);
     let r = tip_radius(edge_length);
     let angles = AngleTable::new(bits);
-    let mut positions = first.to_vec();
-    let mut codes = Vec::new();
-    for (t, tri) in triangles.iter().enumerate().skip(1) {
-        if tri[0] as usize != positions.len() {
+    let (mut positions, mut first, mut codes) = (Vec::new(), Vec::new(), Vec::new());
+    for (t, tri) in triangles.iter().enumerate() {
+        let next = positions.len();
+        if tri[1] as usize >= next {
+            let f = tri.map(|v| truth[v as usize]);
+            first.push(f);
+            positions.extend_from_slice(&f);
+            continue;
+        }
+        if tri[0] as usize != next {
             continue;
         }
         let prev = ordered.vertex(ordered.opposite(crate::CornerId(3 * t as u32)));
@@ -68,6 +75,8 @@ pub(super) fn emulate(mesh: &TriMesh, bits: u8) -> Retiled {
         symbols: eb.connectivity.symbols,
         codes,
         edge_length,
+        hole_mask: Vec::new(),
+        rest: None,
     }
 }
 
@@ -377,8 +386,8 @@ fn the_writer_refuses_an_inconsistent_retiling() {
     bad.positions[7][1] += 1e-9;
     assert!(write(&bad).is_err(), "moved vertex");
     let mut bad = good.clone();
-    bad.first[0][0] += 1e-12;
-    bad.positions[0] = bad.first[0];
+    bad.first[0][0][0] += 1e-12;
+    bad.positions[0] = bad.first[0][0];
     assert!(write(&bad).is_err(), "first vertex is not binary32");
     let mut bad = good.clone();
     bad.edge_length *= 1.0 + f64::EPSILON;
@@ -658,4 +667,552 @@ fn the_empty_mesh_is_a_valid_file() {
     let bytes = write_container(&Header::new(Mode::Swing, 0, 0, 0), &sections).unwrap();
     let mesh = decode_bytes(&bytes).unwrap();
     assert_eq!((mesh.vertex_count(), mesh.face_count()), (0, 0));
+}
+
+// --- Several components, the hole mask, the lossless remainder ---
+
+/// `a` and `b` side by side in one mesh, `b` moved by `shift` along x.
+fn concat(a: &TriMesh, b: &TriMesh, shift: f32) -> TriMesh {
+    let n = a.vertex_count() as u32;
+    let mut positions = a.positions.clone();
+    positions.extend(b.positions.iter().map(|p| [p[0] + shift, p[1], p[2]]));
+    let mut triangles = a.triangles.clone();
+    triangles.extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    TriMesh::new(positions, triangles)
+}
+
+/// Masks the triangles of `r` whose centroid's direction from the origin
+/// is within `degrees` of `axis`: a disk on a sphere.
+fn disk_mask(r: &Retiled, axis: [f64; 3], degrees: f64) -> Vec<bool> {
+    let a = axis.map(|c| c / norm(axis));
+    let cos = degrees.to_radians().cos();
+    r.triangles
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| r.positions[v as usize]);
+            let c: [f64; 3] = core::array::from_fn(|k| p[0][k] + p[1][k] + p[2][k]);
+            dot3(c, a) / norm(c) >= cos
+        })
+        .collect()
+}
+
+/// Masks the `n` triangles of `r` whose centroids' directions are
+/// nearest `axis`: a disk of `n` triangles.
+fn disk_of(r: &Retiled, axis: [f64; 3], n: usize) -> Vec<bool> {
+    let a = axis.map(|c| c / norm(axis));
+    let cos: Vec<f64> = r
+        .triangles
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| r.positions[v as usize]);
+            let c: [f64; 3] = core::array::from_fn(|k| p[0][k] + p[1][k] + p[2][k]);
+            dot3(c, a) / norm(c)
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..cos.len()).collect();
+    order.sort_by(|&x, &y| cos[y].total_cmp(&cos[x]));
+    let mut mask = vec![false; cos.len()];
+    for &t in &order[..n] {
+        mask[t] = true;
+    }
+    mask
+}
+
+/// Boundary loops of a mesh: `None` unless every boundary vertex has
+/// exactly one outgoing and one incoming boundary edge.
+fn boundary_loops(mesh: &TriMesh) -> Option<usize> {
+    use std::collections::{HashMap, HashSet};
+    let edges: HashSet<(u32, u32)> = mesh
+        .triangles
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    let mut next = HashMap::new();
+    let mut incoming = HashSet::new();
+    for &(a, b) in &edges {
+        if !edges.contains(&(b, a)) && (next.insert(a, b).is_some() || !incoming.insert(b)) {
+            return None;
+        }
+    }
+    let mut seen = HashSet::new();
+    let mut loops = 0;
+    for &start in next.keys() {
+        if seen.insert(start) {
+            loops += 1;
+            let mut v = next[&start];
+            while v != start {
+                seen.insert(v);
+                v = *next.get(&v)?;
+            }
+        }
+    }
+    Some(loops)
+}
+
+/// What the decoder must output for `r` with its mask: the unmasked
+/// triangles in order, the vertices they use renumbered in order, as f32.
+fn expected_kept(r: &Retiled) -> TriMesh {
+    let kept: Vec<[u32; 3]> = r
+        .triangles
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| !r.hole_mask.get(*t).copied().unwrap_or(false))
+        .map(|(_, t)| *t)
+        .collect();
+    let used: std::collections::BTreeSet<u32> = kept.iter().flatten().copied().collect();
+    let new: std::collections::HashMap<u32, u32> = used
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| (v, k as u32))
+        .collect();
+    TriMesh {
+        positions: used
+            .iter()
+            .map(|&v| r.positions[v as usize].map(|c| c as f32))
+            .collect(),
+        triangles: kept.iter().map(|t| t.map(|v| new[&v])).collect(),
+    }
+}
+
+fn assert_same_bits(got: &TriMesh, want: &TriMesh, what: &str) {
+    assert_eq!(got.triangles, want.triangles, "{what}: triangles differ");
+    assert_eq!(
+        got.positions.len(),
+        want.positions.len(),
+        "{what}: vertices"
+    );
+    for (k, (p, q)) in got.positions.iter().zip(&want.positions).enumerate() {
+        assert_eq!(
+            p.map(f32::to_bits),
+            q.map(f32::to_bits),
+            "{what}: vertex {k}"
+        );
+    }
+}
+
+/// Encodes `r`, checks that decoding and `inspect` agree with the writer,
+/// returns the bytes, the stats and the decoded mesh.
+fn roundtrip(r: &Retiled) -> (Vec<u8>, SwingStats, TriMesh) {
+    let (bytes, stats) = write(r).unwrap();
+    assert_eq!(write(r).unwrap().0, bytes, "not deterministic");
+    let out = decode_bytes(&bytes).unwrap();
+    out.validate().unwrap();
+    let info = crate::inspect(&bytes, &crate::Limits::default()).unwrap();
+    assert_eq!(info.swing.as_ref(), Some(&stats), "inspect differs");
+    (bytes, stats, out)
+}
+
+#[test]
+fn two_components_roundtrip_bit_for_bit() {
+    let mesh = concat(&sphere(3, |_| 1.0), &bumpy(2), 3.0);
+    for bits in [4, 8, 12] {
+        let r = emulate(&mesh, bits);
+        assert_eq!(r.first.len(), 2);
+        let (bytes, stats, out) = roundtrip(&r);
+        assert_same_bits(&out, &expected_kept(&r), "two spheres");
+        assert_eq!(stats.components, 2);
+        assert_eq!(stats.edge_length, first_edge_length(&r.first[0]));
+        assert_eq!((stats.hole_bytes, stats.rest_bytes), (0, 0));
+        let file = crate::container::parse_container(&bytes, &crate::Limits::default()).unwrap();
+        assert_eq!(file.header.component_count, 2);
+        assert_eq!(file.section(Tag::HEAD).unwrap().len(), 3 + 36 * 2);
+        assert_eq!(file.sections().count(), 4, "no HOLE or REST");
+    }
+    // The writer checks the second component's first vertices too.
+    let good = emulate(&mesh, 8);
+    let mut bad = good.clone();
+    bad.first[1][2][1] = f64::from(bad.first[1][2][1] as f32 + 0.5);
+    assert!(write(&bad).is_err(), "second first triangle moved");
+    let mut bad = good.clone();
+    bad.first.pop();
+    assert!(write(&bad).is_err(), "one first triangle missing");
+    let mut bad = good.clone();
+    bad.first.push(bad.first[1]);
+    assert!(write(&bad).is_err(), "one first triangle too many");
+}
+
+#[test]
+fn a_masked_disk_is_dropped_by_the_decoder() {
+    let mut r = emulate(&sphere(4, |_| 1.0), 8);
+    r.hole_mask = disk_mask(&r, [0.3, -0.5, 0.8], 25.0);
+    let masked = r.hole_mask.iter().filter(|&&m| m).count();
+    assert!(masked > 100 && masked < r.triangles.len() / 4, "{masked}");
+    let (bytes, stats, out) = roundtrip(&r);
+    let want = expected_kept(&r);
+    assert_same_bits(&out, &want, "masked sphere");
+    assert_eq!(out.face_count(), r.triangles.len() - masked);
+    assert!(out.vertex_count() < r.positions.len());
+    assert_eq!(boundary_loops(&out), Some(1), "one boundary loop");
+    // A sphere minus a disk is a disk: V − E + F = 1.
+    let edges = (3 * out.face_count() + stats_boundary_edges(&out)) / 2;
+    assert_eq!(out.vertex_count() + out.face_count(), edges + 1);
+    assert_eq!(stats.holes_masked_triangles, masked as u64);
+    let file = crate::container::parse_container(&bytes, &crate::Limits::default()).unwrap();
+    assert_eq!(
+        stats.hole_bytes,
+        file.section(Tag::HOLE).unwrap().len() as u64
+    );
+    assert!(file.find(Tag::HOLE).unwrap().tag.is_critical());
+    // The header keeps the coded (closed) mesh's counts.
+    assert_eq!(file.header.triangle_count as usize, r.triangles.len());
+    // An all-false mask writes no HOLE: the same bytes as no mask at all.
+    let mut none = r.clone();
+    none.hole_mask = vec![false; r.triangles.len()];
+    let plain = write(&emulate(&sphere(4, |_| 1.0), 8)).unwrap().0;
+    assert_eq!(write(&none).unwrap().0, plain);
+    // A mask of the wrong length is the retiler's bug.
+    none.hole_mask.pop();
+    assert!(write(&none).is_err());
+}
+
+fn stats_boundary_edges(mesh: &TriMesh) -> usize {
+    let edges: std::collections::HashSet<(u32, u32)> = mesh
+        .triangles
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    edges
+        .iter()
+        .filter(|&&(a, b)| !edges.contains(&(b, a)))
+        .count()
+}
+
+/// Edges between a masked and an unmasked triangle.
+fn rim_edges(r: &Retiled) -> usize {
+    let table = CornerTable::new(&r.triangles, r.positions.len()).unwrap();
+    (0..3 * r.triangles.len())
+        .filter(|&c| {
+            let o = table.opposite(crate::CornerId(c as u32));
+            r.hole_mask[c / 3] != r.hole_mask[o.idx() / 3]
+        })
+        .count()
+        / 2
+}
+
+#[test]
+fn a_small_hole_costs_little_and_nothing_away_from_its_rim() {
+    // The same small disk (about 60 triangles) on spheres of 5,120 and
+    // 81,920 triangles: the rim costs a few bits per edge, the 77,000
+    // triangles away from it almost nothing. (A stream is whole 32-bit
+    // words, so small masks cost in steps of 32 bits.)
+    let mut costs = Vec::new();
+    for levels in [4u32, 6] {
+        let mut r = emulate(&sphere(levels, |_| 1.0), 8);
+        r.hole_mask = disk_of(&r, [0.3, -0.5, 0.8], 60);
+        let masked = r.hole_mask.iter().filter(|&&m| m).count();
+        let rim = rim_edges(&r);
+        let (bytes, stats, _) = roundtrip(&r);
+        let bits = 8 * stats.hole_bytes;
+        println!(
+            "{} triangles, {masked} masked, {rim} rim edges: HOLE {} bytes, \
+             {:.2} bits per rim edge, {:.4} bits per triangle, {:.2}% of {} bytes",
+            r.triangles.len(),
+            stats.hole_bytes,
+            bits as f64 / rim as f64,
+            bits as f64 / r.triangles.len() as f64,
+            100.0 * stats.hole_bytes as f64 / bytes.len() as f64,
+            bytes.len()
+        );
+        // At most 64 bits of coder termination and 6 bits per rim edge
+        // (which include each context's first 16 symbols, coded before
+        // its model adapts).
+        assert!(
+            bits <= 64 + 6 * rim as u64,
+            "{bits} bits for {rim} rim edges"
+        );
+        costs.push((r.triangles.len(), bits));
+    }
+    let extra = (costs[1].0 - costs[0].0) as f64;
+    let per = (costs[1].1 as f64 - costs[0].1 as f64) / extra;
+    println!("away from the rim: {per:.5} bits per triangle");
+    assert!(per < 0.002, "{per} bits per triangle away from the rim");
+}
+
+/// The lossless remainder of the tests: a closed torus and an open grid.
+fn rest_mesh() -> TriMesh {
+    use crate::edgebreaker::tests_support::{grid, torus};
+    concat(&torus(8, 5), &grid(3, 2), 9.0)
+}
+
+#[test]
+fn the_lossless_rest_follows_the_retiled_mesh() {
+    let rest = rest_mesh();
+    let mut r = emulate(&sphere(3, |_| 1.0), 8);
+    r.hole_mask = disk_mask(&r, [1.0, 0.0, 0.0], 30.0);
+    r.rest = Some((rest.clone(), 12));
+    let (bytes, stats, out) = roundtrip(&r);
+    let kept = expected_kept(&r);
+    let (nv, nt) = (kept.vertex_count(), kept.face_count());
+    assert_eq!(out.vertex_count(), nv + rest.vertex_count());
+    assert_eq!(out.face_count(), nt + rest.face_count());
+    let head = TriMesh {
+        positions: out.positions[..nv].to_vec(),
+        triangles: out.triangles[..nt].to_vec(),
+    };
+    assert_same_bits(&head, &kept, "retiled part");
+    // REST's mesh is the lossless decoding: decoded vertex k is input
+    // vertex source[k], within the quantization error.
+    let table = CornerTable::new(&rest.triangles, rest.vertex_count()).unwrap();
+    let (_, _, source) = crate::lossless::encode(&table, &rest, 12).unwrap();
+    let step = rest.bbox_diagonal() / 4096.0;
+    for (k, &s) in source.iter().enumerate() {
+        let (p, q) = (out.positions[nv + k], rest.positions[s as usize]);
+        let d = norm(core::array::from_fn(|a| f64::from(p[a]) - f64::from(q[a])));
+        assert!(d <= step, "rest vertex {k}: {d} > {step}");
+    }
+    let canon = |t: [u32; 3]| {
+        let k = (0..3).min_by_key(|&k| t[k]).unwrap();
+        [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+    };
+    let mut got: Vec<[u32; 3]> = out.triangles[nt..]
+        .iter()
+        .map(|t| canon(t.map(|v| source[(v as usize) - nv])))
+        .collect();
+    let mut want: Vec<[u32; 3]> = rest.triangles.iter().map(|&t| canon(t)).collect();
+    got.sort();
+    want.sort();
+    assert_eq!(got, want, "REST's triangles");
+    assert_eq!(stats.rest_triangles, rest.face_count() as u64);
+    let file = crate::container::parse_container(&bytes, &crate::Limits::default()).unwrap();
+    assert_eq!(
+        stats.rest_bytes,
+        file.section(Tag::REST).unwrap().len() as u64
+    );
+    // An empty rest mesh writes no REST.
+    let mut r0 = r.clone();
+    r0.rest = Some((TriMesh::default(), 12));
+    r.rest = None;
+    assert_eq!(write(&r0).unwrap().0, write(&r).unwrap().0);
+}
+
+#[test]
+fn a_file_may_be_all_rest() {
+    let r = Retiled {
+        angle_bits: 8,
+        first: Vec::new(),
+        triangles: Vec::new(),
+        positions: Vec::new(),
+        symbols: Vec::new(),
+        codes: Vec::new(),
+        edge_length: 0.0,
+        hole_mask: Vec::new(),
+        rest: Some((rest_mesh(), 10)),
+    };
+    let (_, stats, out) = roundtrip(&r);
+    assert_eq!(out.face_count(), rest_mesh().face_count());
+    assert_eq!((stats.components, stats.triangles), (0, 0));
+}
+
+/// A small file with both new sections: a masked disk and a tetrahedron
+/// kept losslessly.
+fn file_with_hole_and_rest() -> Vec<u8> {
+    let mut r = emulate(&flat_icosahedron(1), 8);
+    r.hole_mask = disk_mask(&r, [0.0, 0.0, 1.0], 40.0);
+    assert!(r.hole_mask.contains(&true));
+    r.rest = Some((crate::edgebreaker::tests_support::tetra(), 8));
+    write(&r).unwrap().0
+}
+
+#[test]
+fn hostile_hole_and_rest_sections_are_errors() {
+    let bytes = file_with_hole_and_rest();
+    let limits = crate::Limits::default();
+    assert!(decode_bytes(&bytes).is_ok());
+    let file = crate::container::parse_container(&bytes, &limits).unwrap();
+    let hole = file.section(Tag::HOLE).unwrap().to_vec();
+    let rest = file.section(Tag::REST).unwrap().to_vec();
+    let with = |tag: Tag, payload: &[u8]| {
+        let b = crate::container::with_section(&bytes, tag, payload);
+        let _ = crate::inspect(&b, &limits);
+        decode_bytes(&b)
+    };
+    let is = |r: Result<TriMesh, Error>, what: Malformed| matches!(r, Err(Error::Format(FormatError { what: ref w, .. })) if *w == what);
+    // HOLE: a word short, a word or a byte too many, nothing.
+    assert!(with(Tag::HOLE, &hole[..hole.len() - 4]).is_err());
+    let mut longer = hole.clone();
+    longer.extend_from_slice(&[0, 0, 0, 0]);
+    assert!(is(with(Tag::HOLE, &longer), Malformed::TrailingData));
+    longer.truncate(hole.len() + 1);
+    assert!(with(Tag::HOLE, &longer).is_err(), "not whole words");
+    assert!(matches!(
+        with(Tag::HOLE, &[]),
+        Err(Error::Format(FormatError {
+            what: Malformed::CountTooLarge { .. },
+            ..
+        }))
+    ));
+    // REST: a SwingWrapper file, garbage, nothing, a cut file.
+    let nested_swing = Malformed::BadSyntax("REST does not hold a lossless (mode 0) file");
+    assert!(is(with(Tag::REST, &small_file()), nested_swing));
+    assert!(with(Tag::REST, &bytes).is_err(), "nested mode 1 with REST");
+    assert!(with(Tag::REST, b"SWM\0garbage, not a file").is_err());
+    assert!(with(Tag::REST, &[0x55; 64]).is_err());
+    assert!(with(Tag::REST, &[]).is_err());
+    // A damaged nested file is located in the outer one.
+    let rest_at = file.find(Tag::REST).unwrap().offset as u64;
+    match with(Tag::REST, &rest[..rest.len() - 1]) {
+        Err(Error::Format(FormatError {
+            what: Malformed::ChecksumMismatch { .. },
+            at: Some(crate::Location::Byte(b)),
+            ..
+        })) => assert!(b >= rest_at, "located at {b}, before REST at {rest_at}"),
+        other => panic!("cut REST: {other:?}"),
+    }
+    // A lossless file with a HOLE or REST section of its own.
+    let nested = crate::container::parse_container(&rest, &limits).unwrap();
+    for extra in [Tag::HOLE, Tag::REST] {
+        let mut owned: Vec<(Tag, Vec<u8>)> = nested
+            .sections()
+            .map(|s| (s.tag, s.bytes.to_vec()))
+            .collect();
+        owned.push((extra, Vec::new()));
+        let refs: Vec<(Tag, &[u8])> = owned.iter().map(|(t, b)| (*t, b.as_slice())).collect();
+        let inner = crate::container::write_container(&nested.header, &refs).unwrap();
+        let why = Malformed::BadSyntax("the file in REST has a HOLE or REST section");
+        assert!(is(with(Tag::REST, &inner), why), "REST with {extra}");
+    }
+    // The whole output must fit the limits, REST's mesh included.
+    let h = file.header;
+    let tight = crate::Limits {
+        max_faces: u64::from(h.triangle_count) + 3,
+        ..limits
+    };
+    let options = crate::DecodeOptions { limits: tight };
+    assert!(matches!(
+        crate::decode(&bytes, &options),
+        Err(Error::LimitExceeded(_))
+    ));
+}
+
+#[test]
+fn a_file_with_hole_and_rest_survives_damage() {
+    let bytes = file_with_hole_and_rest();
+    for cut in 0..bytes.len() {
+        assert!(decode_bytes(&bytes[..cut]).is_err(), "prefix {cut} decoded");
+    }
+    let mut rng = crate::mesh::test_rng::Rng(0x51ed_2701_9e37_79b9);
+    let mut decoded = 0;
+    for _ in 0..6000 {
+        let b = crate::container::overwrite_randomly(&bytes, &mut rng);
+        if let Ok(mesh) = decode_bytes(&b) {
+            mesh.validate().unwrap();
+            decoded += 1;
+        }
+        let _ = crate::inspect(&b, &crate::Limits::default());
+    }
+    assert!(decoded > 0);
+}
+
+/// Bits of the hole mask under other contexts than the format's, on
+/// masked disks (run with --ignored --nocapture): the figures the docs
+/// of `hole` cite.
+#[test]
+#[ignore]
+fn measure_hole_contexts() {
+    use crate::entropy::{ContextModel, Encoder};
+    type Ctx = fn(&CornerTable, usize, &[bool]) -> (usize, usize);
+    // (context, number of contexts) from the bits of earlier triangles.
+    fn across(table: &CornerTable, t: usize, k: usize) -> Option<usize> {
+        let f = table.opposite(crate::CornerId((3 * t + k) as u32)).idx() / 3;
+        (f < t).then_some(f)
+    }
+    fn parent_only(table: &CornerTable, t: usize, m: &[bool]) -> (usize, usize) {
+        (across(table, t, 0).map_or(2, |p| usize::from(m[p])), 3)
+    }
+    fn format(table: &CornerTable, t: usize, m: &[bool]) -> (usize, usize) {
+        let side = |k| across(table, t, k).is_some_and(|f| m[f]);
+        let c = across(table, t, 0).map_or(4, |p| {
+            2 * usize::from(m[p]) + usize::from(side(1) || side(2))
+        });
+        (c, 5)
+    }
+    fn sideways_count(table: &CornerTable, t: usize, m: &[bool]) -> (usize, usize) {
+        let side = |k| usize::from(across(table, t, k).is_some_and(|f| m[f]));
+        let c = across(table, t, 0).map_or(6, |p| 3 * usize::from(m[p]) + side(1) + side(2));
+        (c, 7)
+    }
+    fn sideways_known(table: &CornerTable, t: usize, m: &[bool]) -> (usize, usize) {
+        // Sideways neighbours: masked / unmasked / not yet decoded, for
+        // the parent's bit.
+        let side = |k| across(table, t, k).map_or(0, |f| 1 + usize::from(m[f]));
+        let s = side(1).max(side(2));
+        let c = across(table, t, 0).map_or(6, |p| 3 * usize::from(m[p]) + s);
+        (c, 7)
+    }
+    let schemes: [(&str, Ctx); 4] = [
+        ("parent", parent_only),
+        ("format", format),
+        ("sideways count", sideways_count),
+        ("sideways known", sideways_known),
+    ];
+    let mut cases = Vec::new();
+    for (levels, degrees) in [(4u32, 10.0), (4, 25.0), (5, 15.0), (6, 2.5), (6, 30.0)] {
+        let mut r = emulate(&sphere(levels, |_| 1.0), 8);
+        r.hole_mask = disk_mask(&r, [0.3, -0.5, 0.8], degrees);
+        cases.push((format!("sphere-{levels} disk {degrees}°"), r));
+    }
+    let mut r = emulate(&bumpy(5), 8);
+    let a = disk_mask(&r, [1.0, 0.0, 0.0], 20.0);
+    let b = disk_mask(&r, [-0.2, 1.0, 0.3], 12.0);
+    r.hole_mask = a.iter().zip(&b).map(|(x, y)| x | y).collect();
+    cases.push(("bumpy-5 two disks".to_string(), r));
+    for (name, r) in &cases {
+        let table = crate::edgebreaker::decode(
+            &crate::edgebreaker::encode(
+                &CornerTable::new(&r.triangles, r.positions.len()).unwrap(),
+            )
+            .unwrap()
+            .connectivity,
+        )
+        .unwrap();
+        let rim = rim_edges(r);
+        let line: Vec<String> = schemes
+            .iter()
+            .map(|(scheme, ctx)| {
+                let mut models = ContextModel::new(ctx(&table, 0, &[]).1, 2);
+                let mut enc = Encoder::new();
+                for (t, &bit) in r.hole_mask.iter().enumerate() {
+                    let (c, _) = ctx(&table, t, &r.hole_mask[..t]);
+                    enc.encode(models.get(c), u32::from(bit));
+                }
+                let bits = 8 * enc.finish().len();
+                format!(
+                    "{scheme} {bits} bits ({:.2}/rim edge)",
+                    bits as f64 / rim as f64
+                )
+            })
+            .collect();
+        println!(
+            "{name}: {} triangles, {rim} rim edges: {}",
+            r.triangles.len(),
+            line.join(" | ")
+        );
+    }
+}
+
+#[test]
+fn first_triangles_are_exactly_those_without_an_earlier_parent() {
+    // The HOLE contexts rely on it (format-spec/05-swing.md, "Contexts"):
+    // f(O[3t]) < t for every triangle but the first of each component,
+    // handles and several components included.
+    use crate::edgebreaker::tests_support::torus;
+    let two = concat(&torus(8, 5), &sphere(2, |_| 1.0), 9.0);
+    for (name, mesh) in [("sphere", sphere(3, |_| 1.0)), ("torus + sphere", two)] {
+        let table = CornerTable::new(&mesh.triangles, mesh.vertex_count()).unwrap();
+        let conn = crate::edgebreaker::encode(&table).unwrap().connectivity;
+        let decoded = crate::edgebreaker::decode(&conn).unwrap();
+        let v = decoded.vertices();
+        let mut next = 0;
+        for t in 0..decoded.face_count() {
+            let parent = decoded.opposite(crate::CornerId(3 * t as u32)).idx() / 3;
+            let first = v[3 * t + 1].idx() >= next;
+            assert_eq!(parent >= t, first, "{name}: triangle {t}");
+            next += if first {
+                3
+            } else {
+                usize::from(v[3 * t].idx() == next)
+            };
+        }
+        assert_eq!(next, decoded.vertex_count());
+    }
 }

@@ -7,7 +7,7 @@
 //! retiler, reported as an error rather than a panic.
 
 use super::read::{write_head, Head};
-use super::{angle, residual, Retiled, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+use super::{angle, hole, residual, Retiled, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
 use crate::container::{write_container, Header, Mode, Tag};
 use crate::edgebreaker;
 use crate::lossless::{write_clers, write_topo};
@@ -26,15 +26,40 @@ fn same_bits(a: &[[f64; 3]], b: &[[f64; 3]]) -> bool {
             .all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
+/// The triangles that start a component: those whose corners 3t+1 and
+/// 3t+2 take new vertex numbers (format-spec/02-connectivity.md,
+/// "Decoded numbering").
+fn component_starts(triangles: &[[u32; 3]]) -> Vec<usize> {
+    let (mut next, mut starts) = (0u64, Vec::new());
+    for (t, tri) in triangles.iter().enumerate() {
+        if u64::from(tri[1]) >= next {
+            starts.push(t);
+            next += 3;
+        } else if u64::from(tri[0]) == next {
+            next += 1;
+        }
+    }
+    starts
+}
+
 /// Encodes a retiled mesh as a SwingWrapper (mode 1) file.
 ///
 /// Fails with [`Error::Parameter`] for angle bits out of range, and with
 /// a format error naming the "retiled mesh" when `retiled` is
-/// inconsistent: triangles that are not one closed manifold in
-/// Edgebreaker creation order with the given symbols and numbering,
-/// first vertices that are not binary32 values or not `positions[0..3]`,
-/// an edge length other than [`first_edge_length`](super::first_edge_length),
-/// or positions other than those the decoder rebuilds from the codes.
+/// inconsistent: triangles that are not closed manifold components in
+/// Edgebreaker creation order with the given symbols and numbering, a
+/// component count other than `first.len()`, first vertices that are not
+/// binary32 values or not the positions of their component's first
+/// triangle, an edge length other than
+/// [`first_edge_length`](super::first_edge_length)`(&first[0])` (any edge
+/// length passes when there is no component), positions other than those
+/// the decoder rebuilds from the codes, or a hole mask that is neither
+/// empty nor one entry per triangle. Errors of the lossless encoder on
+/// the `rest` mesh are passed on.
+///
+/// `HOLE` is written only when some mask entry is set, `REST` only when
+/// the rest mesh has a triangle: without them the file is what this
+/// writer made before either existed, byte for byte.
 pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
     let bits = retiled.angle_bits;
     if !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(&bits) {
@@ -46,38 +71,52 @@ pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
         }
         .into());
     }
-    let (triangles, positions) = (&retiled.triangles, &retiled.positions);
+    let (triangles, positions, first) = (&retiled.triangles, &retiled.positions, &retiled.first);
     let nv = positions.len();
     if nv > u32::MAX as usize || triangles.len() > u32::MAX as usize {
         return Err(internal("too many vertices or triangles"));
     }
-    if triangles.len() != retiled.symbols.len() + 1 {
-        return Err(internal("not one symbol per triangle after the first"));
+    if triangles.len() != retiled.symbols.len() + first.len() {
+        return Err(internal(
+            "not one symbol per triangle but each component's first",
+        ));
     }
     if triangles.iter().flatten().any(|&v| v as usize >= nv) {
         return Err(internal("a triangle names a vertex without a position"));
     }
-    let first = retiled.first;
     let exact = first
         .iter()
         .flatten()
+        .flatten()
         .all(|&x| f64::from(x as f32).to_bits() == x.to_bits());
-    if !exact || !same_bits(&first, positions.get(..3).unwrap_or(&[])) {
+    let starts = component_starts(triangles);
+    let placed = starts.len() == first.len()
+        && starts.iter().zip(first).all(|(&t, f)| {
+            let corners = triangles[t].map(|v| positions[v as usize]);
+            same_bits(f, &corners)
+        });
+    if !exact || !placed {
         return Err(internal(
-            "first vertices are not binary32 values or not vertices 0, 1, 2",
+            "first vertices are not binary32 values or not their components' first vertices",
         ));
     }
-    if angle::first_edge_length(&first).to_bits() != retiled.edge_length.to_bits() {
-        return Err(internal("edge length is not |first[0] - first[2]|"));
+    if let Some(f) = first.first() {
+        if angle::first_edge_length(f).to_bits() != retiled.edge_length.to_bits() {
+            return Err(internal("edge length is not |first[0][0] - first[0][2]|"));
+        }
+    }
+    let mask = &retiled.hole_mask;
+    if !mask.is_empty() && mask.len() != triangles.len() {
+        return Err(internal("the hole mask is not one entry per triangle"));
     }
 
     // Edgebreaker on M' must retrace the retiler's steps exactly.
     let table = CornerTable::new(triangles, nv)?;
     let eb = edgebreaker::encode(&table)?;
     let conn = eb.connectivity;
-    if conn.symbols != retiled.symbols || conn.components != 1 {
+    if conn.symbols != retiled.symbols || conn.components as usize != first.len() {
         return Err(internal(
-            "the symbols differ from Edgebreaker's on the retiled mesh",
+            "the symbols or components differ from Edgebreaker's on the retiled mesh",
         ));
     }
     let in_order = eb
@@ -102,7 +141,7 @@ pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
             "the decoded triangles differ from the retiled ones",
         ));
     }
-    let rebuilt = super::rebuild_positions(&decoded, &[first], bits, &retiled.codes)
+    let rebuilt = super::rebuild_positions(&decoded, first, bits, &retiled.codes)
         .map_err(|_| internal("the angle codes do not rebuild the vertices"))?;
     if !same_bits(&rebuilt, positions) {
         return Err(internal("positions differ from the decoder's"));
@@ -112,21 +151,50 @@ pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
     let head = Head {
         bits,
         predicted: residual::predict(&retiled.codes, &angles),
-        first: vec![first],
+        first: first.clone(),
     };
     let head_bytes = write_head(&head);
     let topo = write_topo(&conn, &[]);
     let clrs = write_clers(&conn.symbols);
     let geom = residual::encode(&decoded, &retiled.codes, bits, head.predicted)?;
-    let header = Header::new(Mode::Swing, nv as u32, triangles.len() as u32, 1);
-    let sections: [(Tag, &[u8]); 4] = [
+    let masked = mask.iter().filter(|&&m| m).count() as u64;
+    let hole_bytes = (masked > 0).then(|| hole::encode(&decoded, mask));
+    let (rest_bytes, rest_triangles) = match &retiled.rest {
+        Some((mesh, qp)) if mesh.face_count() > 0 => {
+            let table = CornerTable::new(&mesh.triangles, mesh.vertex_count())?;
+            let (bytes, _, _) = crate::lossless::encode(&table, mesh, *qp)?;
+            (Some(bytes), mesh.face_count() as u64)
+        }
+        _ => (None, 0),
+    };
+    let header = Header::new(
+        Mode::Swing,
+        nv as u32,
+        triangles.len() as u32,
+        first.len() as u32,
+    );
+    let mut sections: Vec<(Tag, &[u8])> = vec![
         (Tag::HEAD, &head_bytes),
         (Tag::TOPO, &topo),
         (Tag::CLRS, &clrs),
         (Tag::GEOM, &geom),
     ];
+    if let Some(b) = &hole_bytes {
+        sections.push((Tag::HOLE, b));
+    }
+    if let Some(b) = &rest_bytes {
+        sections.push((Tag::REST, b));
+    }
     let bytes = write_container(&header, &sections)?;
     let tags = sections.iter().map(|(t, b)| (t.0, b.len())).collect();
-    let stats = SwingStats::new(&head, &decoded, &conn, tags, bytes.len());
+    let stats = SwingStats::new(
+        &head,
+        &decoded,
+        &conn,
+        tags,
+        bytes.len(),
+        masked,
+        rest_triangles,
+    );
     Ok((bytes, stats))
 }

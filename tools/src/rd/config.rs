@@ -25,7 +25,7 @@ pub enum Config {
     /// that fits.
     Baseline,
     /// SwingWrapper at the default 8 angle bits, asked for the budget and
-    /// capped at it. Takes one closed genus-0 surface for now.
+    /// capped at it.
     Swing,
 }
 

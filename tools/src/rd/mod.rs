@@ -91,7 +91,7 @@ Configurations:
   baseline  quadric simplification (meshoptimizer), then the lossless mode,
             at the face count and qp (7..14) with the lowest L2 that fits
   swing     SwingWrapper (swm encode's default mode) with 8 angle bits, asked
-            for the budget and capped at it; one closed genus-0 surface only
+            for the budget and capped at it
 A configuration that cannot fit a budget gives a row with status infeasible;
 one whose encoder gives up, failed; one that does not take the mesh (swing
 on a mesh with holes, handles or several components), n/a. The reasons are

@@ -1,0 +1,182 @@
+//! One file from several pieces: each closed component (`fill`) is
+//! retiled on its own with the edge length of the first one retiled, and
+//! the results are concatenated in component order, which is the order
+//! Edgebreaker visits them (each component starts at its lowest-numbered
+//! face, here its first triangle). The hole mask of each piece is grown
+//! on its own retiled mesh (`mask`).
+//!
+//! A component too small to hold a few triangloids at this L is not
+//! retiled: it is kept by the lossless mode (the file's `REST`), so no
+//! part of the input disappears. Every component's fate is reported.
+
+use super::fill::Piece;
+use super::{mask, retile_piece, Failure, RetileOptions};
+use crate::swing::Retiled;
+use crate::{CornerTable, TriMesh};
+
+/// A component whose area is under this many equilateral triangles of
+/// edge L is kept losslessly without trying to retile it.
+const TINY_TRIANGLES: f64 = 8.0;
+/// A component under this many triangles' area whose retiling fails is
+/// kept losslessly; a larger one fails the run (a smaller L may work).
+const SMALL_TRIANGLES: f64 = 64.0;
+/// The lossless quantization step of kept components, in units of L.
+const REST_STEP: f64 = 1.0 / 64.0;
+
+/// What happened to one component of the input.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct PieceReport {
+    /// Faces of the component in the cleaned input.
+    pub faces: u64,
+    /// Its boundary loops.
+    pub holes: u32,
+    /// Its genus (holes closed).
+    pub genus: i64,
+    /// What the encoder did with it.
+    pub outcome: PieceOutcome,
+}
+
+/// How a component was coded.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum PieceOutcome {
+    /// Retiled: `triangles` retiled triangles of which `masked` cover its
+    /// holes; `lost_holes` holes were too small for any triangle and are
+    /// closed in the output.
+    Retiled {
+        /// Retiled triangles, masked ones included.
+        triangles: u64,
+        /// Triangles the decoder drops (hole mask).
+        masked: u64,
+        /// Holes that closed.
+        lost_holes: u32,
+    },
+    /// Too small to retile at this L: kept by the lossless mode.
+    Lossless,
+}
+
+/// The retiled file contents and the report per component.
+pub struct Composed {
+    pub retiled: Retiled,
+    pub report: Vec<PieceReport>,
+}
+
+/// Retiles every piece at `opt.edge_length` (the first retiled piece
+/// fixes the exact L, as in a one-piece file).
+pub fn retile_pieces(pieces: &[Piece], opt: &RetileOptions) -> Result<Composed, Failure> {
+    let mut out = Retiled {
+        angle_bits: opt.angle_bits,
+        first: Vec::new(),
+        triangles: Vec::new(),
+        positions: Vec::new(),
+        symbols: Vec::new(),
+        codes: Vec::new(),
+        edge_length: opt.edge_length,
+        hole_mask: Vec::new(),
+        rest: None,
+    };
+    let mut fixed: Option<f64> = None;
+    let mut report = Vec::with_capacity(pieces.len());
+    let mut rest: Vec<&TriMesh> = Vec::new();
+    for p in pieces {
+        let l = fixed.unwrap_or(opt.edge_length);
+        let tri_area = l * l * 3f64.sqrt() / 4.0;
+        let mut outcome = PieceOutcome::Lossless;
+        if p.area >= TINY_TRIANGLES * tri_area {
+            match retile_piece(&p.mesh, &p.table, Some(&p.patch), opt, fixed, p.genus > 0) {
+                Ok((r, cover)) => {
+                    let (mask, lost) = piece_mask(&r, &cover, p.holes)?;
+                    outcome = PieceOutcome::Retiled {
+                        triangles: r.triangles.len() as u64,
+                        masked: mask.iter().filter(|&&m| m).count() as u64,
+                        lost_holes: lost,
+                    };
+                    fixed.get_or_insert(r.edge_length);
+                    append(&mut out, r, mask);
+                }
+                Err(f) if p.area >= SMALL_TRIANGLES * tri_area => return Err(f),
+                Err(_) => {}
+            }
+        }
+        if outcome == PieceOutcome::Lossless {
+            rest.push(&p.original);
+        }
+        report.push(PieceReport {
+            faces: p.original.face_count() as u64,
+            holes: p.holes,
+            genus: p.genus,
+            outcome,
+        });
+    }
+    let Some(l) = fixed else {
+        // Nothing retiled: a SwingWrapper file needs one component for L.
+        return Err(Failure::BadInput);
+    };
+    out.edge_length = l;
+    if out.hole_mask.iter().all(|&m| !m) {
+        out.hole_mask.clear();
+    }
+    if !rest.is_empty() {
+        let merged = merge(&rest);
+        let qp = rest_bits(&merged, l);
+        out.rest = Some((merged, qp));
+    }
+    Ok(Composed {
+        retiled: out,
+        report,
+    })
+}
+
+/// The hole mask of one retiled piece.
+fn piece_mask(r: &Retiled, cover: &[mask::Cover], holes: u32) -> Result<(Vec<bool>, u32), Failure> {
+    if holes == 0 {
+        return Ok((vec![false; r.triangles.len()], 0));
+    }
+    // The retiler closes every loop, so M′ is a closed manifold.
+    let table = CornerTable::new(&r.triangles, r.positions.len()).map_err(|_| Failure::BadInput)?;
+    Ok(mask::grow(&table, cover, holes))
+}
+
+/// Appends a one-component retiling to the file's.
+fn append(out: &mut Retiled, r: Retiled, mask: Vec<bool>) {
+    let base = out.positions.len() as u32;
+    out.first.extend(r.first);
+    out.triangles
+        .extend(r.triangles.iter().map(|t| t.map(|v| v + base)));
+    out.positions.extend(r.positions);
+    out.symbols.extend(r.symbols);
+    out.codes.extend(r.codes);
+    out.hole_mask.extend(mask);
+}
+
+/// The kept components as one mesh.
+fn merge(parts: &[&TriMesh]) -> TriMesh {
+    let mut m = TriMesh::new(Vec::new(), Vec::new());
+    for p in parts {
+        let base = m.positions.len() as u32;
+        m.positions.extend_from_slice(&p.positions);
+        m.triangles
+            .extend(p.triangles.iter().map(|t| t.map(|v| v + base)));
+    }
+    m
+}
+
+/// Bits per coordinate that make the lossless step about `REST_STEP`·L
+/// over the kept components' bounding box.
+fn rest_bits(m: &TriMesh, l: f64) -> u8 {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for p in &m.positions {
+        for a in 0..3 {
+            lo[a] = lo[a].min(f64::from(p[a]));
+            hi[a] = hi[a].max(f64::from(p[a]));
+        }
+    }
+    let extent = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+    let steps = (extent / (REST_STEP * l)).max(1.0);
+    let bits = steps.log2().ceil() as i64;
+    bits.clamp(
+        i64::from(crate::geometry::MIN_BITS),
+        i64::from(crate::geometry::MAX_BITS),
+    ) as u8
+}

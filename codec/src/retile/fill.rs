@@ -1,0 +1,203 @@
+//! Splitting the cleaned input into the closed surfaces the retiler works
+//! on (design notes §6, ambiguity iii).
+//!
+//! The retiler needs a closed manifold: it grows M′ until every face of M
+//! is claimed. Each connected component is therefore retiled on its own,
+//! and each boundary loop of a component is first closed by a temporary
+//! **patch**: a membrane of rings spanning the loop, relaxed towards a
+//! discrete harmonic surface with the loop held fixed, so the retiler
+//! meets a smooth cap rather than a cone. Patch faces carry their hole's
+//! number; the retiled triangles that land mostly on a patch become the
+//! hole mask (`mask`), and the decoder drops them again.
+//!
+//! ```text
+//!   loop a_0 … a_{n−1} (edges a_i → a_{i+1} belong to the input)
+//!
+//!   ring 0 (the loop)   a_i ───────── a_{i+1}
+//!                        │  ╲           │        quad split into
+//!   ring 1              P_1,i ─────── P_1,i+1    [O_{i+1}, O_i, I_i]
+//!                        …                       [O_{i+1}, I_i, I_{i+1}]
+//!   ring R              the centre g (one vertex, a fan)
+//! ```
+//!
+//! Invariants: every patch edge has exactly one partner (the result is a
+//! closed oriented manifold when the component was an oriented manifold
+//! with boundary); the input's own faces come first, in their order, so
+//! face numbers of the component are unchanged.
+
+use crate::{CornerTable, TopologyError, TriMesh};
+use glam::DVec3;
+
+use super::surface::NONE;
+
+/// Rings of a patch at most (the centre included).
+const MAX_RINGS: usize = 24;
+/// Relaxation sweeps over the patch's inner vertices.
+const SWEEPS: usize = 60;
+/// Height of the patch's dome over its membrane, in loop radii. A flat
+/// membrane over a planar loop would lie on the surface it closes (a
+/// plane patch would become a zero-thickness pillow); the dome keeps
+/// the two sheets apart and caps a hole in a round shape roughly as
+/// the missing part would.
+const DOME: f64 = 0.4;
+
+/// One connected component, closed.
+#[derive(Clone, Debug)]
+pub struct Piece {
+    /// The component's faces, then its patches.
+    pub mesh: TriMesh,
+    /// The closed corner table of `mesh`.
+    pub table: CornerTable,
+    /// Per face of `mesh`: the hole it patches (numbered within the
+    /// piece), or `NONE`.
+    pub patch: Vec<u32>,
+    /// Boundary loops the component had.
+    pub holes: u32,
+    /// Genus of the closed surface.
+    pub genus: i64,
+    /// The component as the input had it (open), for the lossless
+    /// fallback.
+    pub original: TriMesh,
+    /// Area of `mesh` (patches included).
+    pub area: f64,
+}
+
+/// Splits a clean mesh into its components and closes each one.
+pub fn pieces(mesh: &TriMesh, table: &CornerTable) -> Result<Vec<Piece>, TopologyError> {
+    let (label, count) = table.component_labels();
+    let mut faces: Vec<Vec<u32>> = vec![Vec::new(); count as usize];
+    for (f, &k) in label.iter().enumerate() {
+        faces[k as usize].push(f as u32);
+    }
+    faces.iter().map(|fs| piece(mesh, fs)).collect()
+}
+
+fn piece(mesh: &TriMesh, faces: &[u32]) -> Result<Piece, TopologyError> {
+    // The component alone, its vertices in their input order (a mesh of
+    // one component keeps its numbering, so its start vertex too).
+    let mut used: Vec<u32> = faces
+        .iter()
+        .flat_map(|&f| mesh.triangles[f as usize])
+        .collect();
+    used.sort_unstable();
+    used.dedup();
+    let remap: std::collections::HashMap<u32, u32> = used
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| (v, k as u32))
+        .collect();
+    let positions = used.iter().map(|&v| mesh.positions[v as usize]).collect();
+    let triangles: Vec<[u32; 3]> = faces
+        .iter()
+        .map(|&f| mesh.triangles[f as usize].map(|v| remap[&v]))
+        .collect();
+    let original = TriMesh::new(positions, triangles);
+    let open = CornerTable::new(&original.triangles, original.vertex_count())?;
+    let loops = open.boundary_loops();
+    let mut closed = original.clone();
+    let mut patch = vec![NONE; closed.face_count()];
+    for (h, lp) in loops.iter().enumerate() {
+        // Corner c faces the input edge V[n(c)] → V[p(c)]; consecutive
+        // corners of a loop chain these edges head to tail.
+        let ring: Vec<u32> = lp.iter().map(|&c| open.vertex(c.next()).0).collect();
+        let before = closed.face_count();
+        add_patch(&mut closed, &ring);
+        patch.resize(closed.face_count(), NONE);
+        patch[before..].iter_mut().for_each(|p| *p = h as u32);
+    }
+    let table = CornerTable::new(&closed.triangles, closed.vertex_count())?;
+    if table.opposites().iter().any(|o| o.is_none()) {
+        let edges = table.opposites().iter().filter(|o| o.is_none()).count() as u64;
+        return Err(TopologyError::NonManifold { edges, vertices: 0 });
+    }
+    let (v, f) = (closed.vertex_count() as i64, closed.face_count() as i64);
+    let genus = (2 - (v - 3 * f / 2 + f)) / 2;
+    let area = closed.area();
+    Ok(Piece {
+        mesh: closed,
+        table,
+        patch,
+        holes: loops.len() as u32,
+        genus,
+        original,
+        area,
+    })
+}
+
+/// Appends to `mesh` a patch closing the loop `ring` (the input's edges
+/// run ring[i] → ring[i+1]).
+fn add_patch(mesh: &mut TriMesh, ring: &[u32]) {
+    let n = ring.len();
+    let at = |v: u32, m: &TriMesh| DVec3::from(m.positions[v as usize].map(f64::from));
+    let outer: Vec<DVec3> = ring.iter().map(|&v| at(v, mesh)).collect();
+    let centre = outer.iter().sum::<DVec3>() / n as f64;
+    let edge = (0..n)
+        .map(|i| outer[i].distance(outer[(i + 1) % n]))
+        .sum::<f64>()
+        / n as f64;
+    let radius = outer.iter().map(|p| p.distance(centre)).sum::<f64>() / n as f64;
+    let rings = if edge > 0.0 {
+        ((radius / edge).ceil() as usize).clamp(1, MAX_RINGS)
+    } else {
+        1
+    };
+    // grid[k][i]: ring k (0 = the loop), i around; ring `rings` is the
+    // centre alone.
+    let mut grid: Vec<Vec<DVec3>> = (0..rings)
+        .map(|k| {
+            let s = k as f64 / rings as f64;
+            outer.iter().map(|&p| p + (centre - p) * s).collect()
+        })
+        .collect();
+    let mut g = centre;
+    for _ in 0..SWEEPS {
+        for k in 1..rings {
+            for i in 0..n {
+                let inner = if k + 1 == rings { g } else { grid[k + 1][i] };
+                grid[k][i] =
+                    (grid[k - 1][i] + inner + grid[k][(i + n - 1) % n] + grid[k][(i + 1) % n])
+                        / 4.0;
+            }
+        }
+        g = grid[rings - 1].iter().sum::<DVec3>() / n as f64;
+    }
+    // The dome rises against the loop's vector area: the input's edges
+    // run with the surface on their left, so that area points away from
+    // the missing part.
+    let area: DVec3 = (0..n).map(|i| outer[i].cross(outer[(i + 1) % n])).sum();
+    let up = -area.normalize_or_zero() * (DOME * radius);
+    let lift = |k: usize| {
+        let s = (std::f64::consts::FRAC_PI_2 * k as f64 / rings as f64).sin();
+        up * (s * s)
+    };
+    for (k, row) in grid.iter_mut().enumerate().skip(1) {
+        row.iter_mut().for_each(|p| *p += lift(k));
+    }
+    let g = g + lift(rings);
+    let mut ids: Vec<Vec<u32>> = vec![ring.to_vec()];
+    for row in grid.iter().skip(1) {
+        ids.push(
+            row.iter()
+                .map(|p| {
+                    mesh.positions.push(p.as_vec3().to_array());
+                    mesh.positions.len() as u32 - 1
+                })
+                .collect(),
+        );
+    }
+    mesh.positions.push(g.as_vec3().to_array());
+    let centre_id = mesh.positions.len() as u32 - 1;
+    for k in 0..rings {
+        let (o, last) = (&ids[k], k + 1 == rings);
+        for i in 0..n {
+            let j = (i + 1) % n;
+            if last {
+                mesh.triangles.push([o[j], o[i], centre_id]);
+            } else {
+                let inn = &ids[k + 1];
+                mesh.triangles.push([o[j], o[i], inn[i]]);
+                mesh.triangles.push([o[j], inn[i], inn[j]]);
+            }
+        }
+    }
+}
