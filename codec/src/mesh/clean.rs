@@ -130,7 +130,11 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
         .count() as u64;
 
     let mut triangles = drop_degenerate(mesh, &remap, &mut report);
-    let positions = compact_vertices(&mesh.positions, &mut triangles, &mut report);
+    // Step 3: drop the vertices no face uses, keeping the others' order.
+    let positions = super::compact_vertices(&mesh.positions, &mut triangles);
+    // Merged-away vertices are unreferenced too; count only the others.
+    report.unreferenced_vertices =
+        (mesh.positions.len() - positions.len()) as u64 - report.merged_vertices;
     let distinct_vertices = report.input_vertices - report.merged_vertices;
     if triangles.is_empty() {
         return Err(TopologyError::NoTriangles.into());
@@ -319,35 +323,6 @@ fn duplicate_faces(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<bool> {
         }
     }
     drop
-}
-
-/// Step 3: removes vertices no face uses, keeping the others' order.
-fn compact_vertices(
-    positions: &[[f32; 3]],
-    triangles: &mut [[u32; 3]],
-    report: &mut CleanReport,
-) -> Vec<[f32; 3]> {
-    let mut new_id = vec![u32::MAX; positions.len()];
-    for t in triangles.iter() {
-        for &v in t {
-            new_id[v as usize] = 0;
-        }
-    }
-    let mut out = Vec::new();
-    for (v, id) in new_id.iter_mut().enumerate() {
-        if *id == 0 {
-            *id = out.len() as u32;
-            out.push(positions[v]);
-        }
-    }
-    for t in triangles.iter_mut() {
-        for v in t.iter_mut() {
-            *v = new_id[*v as usize];
-        }
-    }
-    // Merged-away vertices are unreferenced too; count only the others.
-    report.unreferenced_vertices = (positions.len() - out.len()) as u64 - report.merged_vertices;
-    out
 }
 
 /// Counts components of faces joined through any shared edge.

@@ -135,3 +135,30 @@ impl TriMesh {
         Ok(())
     }
 }
+
+/// The positions `triangles` use, in their order, with `triangles`
+/// renumbered to them: what is left of a mesh once the vertices no
+/// triangle uses are dropped. An index out of range becomes `u32::MAX`
+/// (which `TriMesh::validate` rejects) instead of panicking.
+pub(crate) fn compact_vertices(
+    positions: &[[f32; 3]],
+    triangles: &mut [[u32; 3]],
+) -> Vec<[f32; 3]> {
+    let mut new_id = vec![u32::MAX; positions.len()];
+    for &v in triangles.iter().flatten() {
+        if let Some(id) = new_id.get_mut(v as usize) {
+            *id = 0;
+        }
+    }
+    let mut out = Vec::new();
+    for (id, p) in new_id.iter_mut().zip(positions) {
+        if *id == 0 {
+            *id = out.len() as u32;
+            out.push(*p);
+        }
+    }
+    for v in triangles.iter_mut().flatten() {
+        *v = new_id.get(*v as usize).copied().unwrap_or(u32::MAX);
+    }
+    out
+}

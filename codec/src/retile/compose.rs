@@ -165,14 +165,7 @@ fn merge(parts: &[&TriMesh]) -> TriMesh {
 /// Bits per coordinate that make the lossless step about `REST_STEP`·L
 /// over the kept components' bounding box.
 fn rest_bits(m: &TriMesh, l: f64) -> u8 {
-    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-    for p in &m.positions {
-        for a in 0..3 {
-            lo[a] = lo[a].min(f64::from(p[a]));
-            hi[a] = hi[a].max(f64::from(p[a]));
-        }
-    }
-    let extent = (0..3).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+    let extent = m.bbox().map_or(0.0, |(lo, hi)| (hi - lo).max_element());
     let steps = (extent / (REST_STEP * l)).max(1.0);
     let bits = steps.log2().ceil() as i64;
     bits.clamp(

@@ -73,18 +73,6 @@ pub struct RetileOptions {
 
 pub use crate::error::RetileFailure as Failure;
 
-/// Retiles a closed, oriented manifold (a `clean` result whose table has
-/// no boundary). Deterministic: same input, same output.
-pub fn retile(
-    mesh: &TriMesh,
-    table: &CornerTable,
-    opt: &RetileOptions,
-) -> Result<Retiled, Failure> {
-    let (v, f) = (mesh.vertex_count() as i64, mesh.face_count() as i64);
-    let handles = v - f / 2 < 2;
-    retile_piece(mesh, table, None, opt, None, handles).map(|(r, _)| r)
-}
-
 /// Retiles one closed piece. `patch` labels the faces that close a hole
 /// (`fill`); `fixed` is the L of an earlier component of the same file,
 /// which this one must use as it is (the decoder has one radius per
@@ -252,8 +240,7 @@ impl Retiler {
             if o == NONE {
                 continue;
             }
-            let [a, b, c] = Surface::corners(f).map(|k| s.p(k));
-            let area = 0.5 * (b - a).cross(c - a).length();
+            let area = 0.5 * s.double_area(f);
             total[o as usize] += area;
             let h = s.patch[f as usize];
             if h != NONE {

@@ -75,9 +75,7 @@ pub fn claim(
     let mut area2 = 0.0;
     while let Some(f) = fl.stack.pop() {
         fl.faces.push(f);
-        let [c0, c1, c2] = Surface::corners(f);
-        let (a, b, c) = (s.p(c0), s.p(c1), s.p(c2));
-        area2 += (b - a).cross(c - a).length();
+        area2 += s.double_area(f);
         if area2 > 2.0 * max_area {
             return Err(Invalid::TooLarge);
         }

@@ -133,6 +133,13 @@ impl Surface {
         self.pos[self.v[c as usize] as usize]
     }
 
+    /// Twice the area of face `f`.
+    #[inline]
+    pub fn double_area(&self, f: u32) -> f64 {
+        let [a, b, c] = Self::corners(f).map(|k| self.p(k));
+        (b - a).cross(c - a).length()
+    }
+
     /// The next corner at the same vertex, turning across the edge from
     /// `v(c)` to `v(prev(c))`.
     #[inline]

@@ -27,6 +27,14 @@ fn ellipsoid(levels: u32) -> TriMesh {
     m
 }
 
+/// Retiles one closed, oriented manifold on its own: a one-piece file
+/// without patches.
+fn retile(mesh: &TriMesh, table: &CornerTable, opt: &RetileOptions) -> Result<Retiled, Failure> {
+    let (v, f) = (mesh.vertex_count() as i64, mesh.face_count() as i64);
+    let handles = v - f / 2 < 2;
+    retile_piece(mesh, table, None, opt, None, handles).map(|(r, _)| r)
+}
+
 fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
     let table = CornerTable::new(&mesh.triangles, mesh.vertex_count()).unwrap();
     retile(

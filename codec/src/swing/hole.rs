@@ -121,32 +121,14 @@ pub(crate) fn drop_masked(mesh: TriMesh, mask: &[bool]) -> Result<TriMesh, Error
             Malformed::BadSyntax("the hole mask does not have one bit per triangle"),
         )));
     }
-    let kept: Vec<[u32; 3]> = mesh
+    let mut triangles: Vec<[u32; 3]> = mesh
         .triangles
         .iter()
         .zip(mask)
         .filter(|(_, &m)| !m)
         .map(|(t, _)| *t)
         .collect();
-    let mut rank = vec![u32::MAX; mesh.positions.len()];
-    for &v in kept.iter().flatten() {
-        if let Some(r) = rank.get_mut(v as usize) {
-            *r = 0;
-        }
-    }
-    let mut positions = Vec::new();
-    for (r, p) in rank.iter_mut().zip(&mesh.positions) {
-        if *r == 0 {
-            *r = positions.len() as u32;
-            positions.push(*p);
-        }
-    }
-    // Every index was in range (the mesh is the decoder's own); a vertex
-    // outside the table would map to u32::MAX and fail validation.
-    let triangles = kept
-        .iter()
-        .map(|t| t.map(|v| rank.get(v as usize).copied().unwrap_or(u32::MAX)))
-        .collect();
+    let positions = crate::mesh::compact_vertices(&mesh.positions, &mut triangles);
     Ok(TriMesh {
         positions,
         triangles,
