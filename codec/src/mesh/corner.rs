@@ -70,6 +70,7 @@ pub(crate) fn corners_by_vertex(v: &[VertexId], vertex_count: usize) -> (Vec<u32
 }
 
 /// Result of matching half-edges, before any manifold check.
+#[derive(Clone)]
 pub(crate) struct Pairing {
     /// Opposite corner per corner; NONE for boundaries and cut edges.
     pub o: Vec<CornerId>,

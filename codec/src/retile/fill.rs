@@ -35,10 +35,11 @@ const MAX_RINGS: usize = 24;
 /// Relaxation sweeps over the patch's inner vertices.
 const SWEEPS: usize = 60;
 /// Height of the patch's dome over its membrane, in loop radii. A flat
-/// membrane over a planar loop would lie on the surface it closes (a
-/// plane patch would become a zero-thickness pillow); the dome keeps
-/// the two sheets apart and caps a hole in a round shape roughly as
-/// the missing part would.
+/// membrane can lie on the surface it closes; the dome keeps the two
+/// sheets apart and caps a hole in a round shape roughly as the missing
+/// part would. Its profile is a quarter circle, steep at the loop: a
+/// profile flat at the loop (sin², tried first) leaves the patch at a
+/// knife edge along the loop, where the retiler found no tips.
 const DOME: f64 = 0.4;
 
 /// One connected component, closed.
@@ -101,7 +102,10 @@ fn piece(mesh: &TriMesh, faces: &[u32]) -> Result<Piece, TopologyError> {
         // corners of a loop chain these edges head to tail.
         let ring: Vec<u32> = lp.iter().map(|&c| open.vertex(c.next()).0).collect();
         let before = closed.face_count();
-        add_patch(&mut closed, &ring);
+        match flat_disk(&original, loops.len()) {
+            Some(normal) => add_shell(&mut closed, &ring, normal),
+            None => add_patch(&mut closed, &ring),
+        }
         patch.resize(closed.face_count(), NONE);
         patch[before..].iter_mut().for_each(|p| *p = h as u32);
     }
@@ -122,6 +126,102 @@ fn piece(mesh: &TriMesh, faces: &[u32]) -> Result<Piece, TopologyError> {
         original,
         area,
     })
+}
+
+/// The unit normal of a component that is one flat disk (a single
+/// boundary loop, every vertex within `FLAT`·(its extent) of one plane),
+/// facing the side its faces face; `None` otherwise.
+fn flat_disk(m: &TriMesh, loops: usize) -> Option<DVec3> {
+    if loops != 1 {
+        return None;
+    }
+    let cross: DVec3 = (0..m.face_count() as u32)
+        .map(|f| m.face_cross(crate::FaceId(f)))
+        .sum();
+    let n = cross.normalize_or_zero();
+    let (lo, hi) = m.bbox()?;
+    let extent = (hi - lo).length();
+    let heights = m
+        .positions
+        .iter()
+        .map(|p| DVec3::from(p.map(f64::from)).dot(n));
+    let (min, max) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), h| {
+        (a.min(h), b.max(h))
+    });
+    (n != DVec3::ZERO && max - min <= FLAT * extent).then_some(n)
+}
+
+/// A disk flatter than this (height range over bounding-box diagonal) is
+/// closed by a shell rather than a membrane.
+const FLAT: f64 = 0.02;
+/// Thickness of a flat disk's shell, in loop radii.
+const SHELL: f64 = 0.25;
+
+/// Appends to `mesh` (one flat disk facing `normal`) a shell closing its
+/// loop `ring`: a wall down from the loop and a mirror copy of the disk
+/// at its foot, faces reversed. A membrane spanning a flat disk's loop
+/// would lie on the disk itself, and for a loop that is not convex the
+/// membrane folds over itself; the copy of the disk is the one closing
+/// surface that never folds, and the wall keeps the two sheets
+/// `SHELL` radii apart.
+///
+/// ```text
+///   a_i ──── a_{i+1}      the disk (input)
+///    │ ╲       │          wall rows of about one loop edge each,
+///   a'_i ─── a'_{i+1}     quads split [a_{i+1}, a_i, a'_i], [a_{i+1}, a'_i, a'_{i+1}]
+///                         the copy at the foot, reversed
+/// ```
+fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
+    let n = ring.len();
+    let at = |v: u32, m: &TriMesh| DVec3::from(m.positions[v as usize].map(f64::from));
+    let outer: Vec<DVec3> = ring.iter().map(|&v| at(v, mesh)).collect();
+    let centre = outer.iter().sum::<DVec3>() / n as f64;
+    let radius = outer.iter().map(|p| p.distance(centre)).sum::<f64>() / n as f64;
+    let edge = (0..n)
+        .map(|i| outer[i].distance(outer[(i + 1) % n]))
+        .sum::<f64>()
+        / n as f64;
+    let depth = SHELL * radius;
+    let rows = if edge > 0.0 {
+        ((depth / edge).ceil() as usize).clamp(1, 4 * MAX_RINGS)
+    } else {
+        1
+    };
+    let disk_vertices = mesh.vertex_count() as u32;
+    let disk_faces = mesh.face_count();
+    // The copy: vertex v becomes v + disk_vertices.
+    for v in 0..disk_vertices {
+        let p = at(v, mesh) - normal * depth;
+        mesh.positions.push(p.as_vec3().to_array());
+    }
+    for f in 0..disk_faces {
+        let [a, b, c] = mesh.triangles[f];
+        mesh.triangles
+            .push([a + disk_vertices, c + disk_vertices, b + disk_vertices]);
+    }
+    // Wall rows: row 0 is the loop, row `rows` the copy's loop.
+    let mut ids: Vec<Vec<u32>> = vec![ring.to_vec()];
+    for k in 1..rows {
+        let drop = normal * (depth * k as f64 / rows as f64);
+        ids.push(
+            outer
+                .iter()
+                .map(|&p| {
+                    mesh.positions.push((p - drop).as_vec3().to_array());
+                    mesh.positions.len() as u32 - 1
+                })
+                .collect(),
+        );
+    }
+    ids.push(ring.iter().map(|&v| v + disk_vertices).collect());
+    for k in 0..rows {
+        let (o, inn) = (&ids[k], &ids[k + 1]);
+        for i in 0..n {
+            let j = (i + 1) % n;
+            mesh.triangles.push([o[j], o[i], inn[i]]);
+            mesh.triangles.push([o[j], inn[i], inn[j]]);
+        }
+    }
 }
 
 /// Appends to `mesh` a patch closing the loop `ring` (the input's edges
@@ -167,8 +267,8 @@ fn add_patch(mesh: &mut TriMesh, ring: &[u32]) {
     let area: DVec3 = (0..n).map(|i| outer[i].cross(outer[(i + 1) % n])).sum();
     let up = -area.normalize_or_zero() * (DOME * radius);
     let lift = |k: usize| {
-        let s = (std::f64::consts::FRAC_PI_2 * k as f64 / rings as f64).sin();
-        up * (s * s)
+        let s = 1.0 - k as f64 / rings as f64;
+        up * (1.0 - s * s).sqrt()
     };
     for (k, row) in grid.iter_mut().enumerate().skip(1) {
         row.iter_mut().for_each(|p| *p += lift(k));

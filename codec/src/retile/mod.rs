@@ -52,7 +52,7 @@ use crate::{CornerTable, TriMesh};
 use front::Front;
 use glam::DVec3;
 use std::collections::HashMap;
-use surface::{Surface, NONE};
+use surface::{next, Surface, NONE};
 use walk::{leave_vertex, walk_to_radius, Plane, Walker};
 
 /// Options of one retiling run.
@@ -346,20 +346,26 @@ impl Retiler {
         let s = &self.s;
         let c1 = s.pos[p1 as usize];
         let n1 = s.vertex_normal(p1);
-        let tangent = least_parallel_axis(n1);
-        let tangent = (tangent - n1 * tangent.dot(n1)).normalize_or_zero();
-        let plane = Plane {
-            origin: c1,
-            normal: n1.cross(tangent),
-        };
-        let (k, _) = leave_vertex(s, &plane, p1)
+        let axis = least_parallel_axis(n1);
+        let axis = (axis - n1 * axis.dot(n1)).normalize_or_zero();
+        // The plane through p1 along the first direction may close in a
+        // loop shorter than L (near a rim, across a thin part); the next
+        // directions turn by 90° each.
+        let (p2, f2) = [axis, n1.cross(axis), -axis, -n1.cross(axis)]
             .into_iter()
-            .filter(|&(_, x)| (x - c1).dot(tangent) > 0.0)
-            .max_by(|a, b| (a.1 - c1).dot(tangent).total_cmp(&(b.1 - c1).dot(tangent)))
+            .find_map(|tangent| {
+                let plane = Plane {
+                    origin: c1,
+                    normal: n1.cross(tangent),
+                };
+                let (k, _) = leave_vertex(s, &plane, p1)
+                    .into_iter()
+                    .filter(|&(_, x)| (x - c1).dot(tangent) > 0.0)
+                    .max_by(|a, b| (a.1 - c1).dot(tangent).total_cmp(&(b.1 - c1).dot(tangent)))?;
+                let mut w = Walker::across(s, plane, k, s.face_count());
+                walk_to_radius(&mut w, c1, c1, self.l, 4.0 * self.l)
+            })
             .ok_or(Failure::NoSecondVertex)?;
-        let mut w = Walker::across(s, plane, k, s.face_count());
-        let (p2, f2) =
-            walk_to_radius(&mut w, c1, c1, self.l, 4.0 * self.l).ok_or(Failure::NoSecondVertex)?;
         let (x1, x2) = (f32_exact(c1), f32_exact(p2));
         if !self.fixed {
             // The decoder's L: the distance of the explicit p1 and p2.
@@ -495,10 +501,16 @@ const NONE_PLACEHOLDER: u32 = NONE;
 /// The `rank`-th vertex (0 = first) by how well its face normals agree
 /// (largest |mean normal|), lowest id on ties. Only vertices with a ring
 /// of at least five faces count, as a tip of three or four faces can be
-/// flat and still thin.
+/// flat and still thin; and only vertices at least `RIM_HOPS` edges from a
+/// hole patch (or as far as any vertex gets), as a patch is smooth by
+/// construction but not the input, and a start near the rim can find the
+/// plane through it closing in a loop shorter than L (a flat input's
+/// every vertex ties on flatness).
 fn flattest_vertex(s: &Surface, rank: u32) -> u32 {
+    let hops = patch_hops(s);
+    let far = hops.iter().copied().max().unwrap_or(0).min(RIM_HOPS);
     let mut scored: Vec<(f64, u32)> = (0..s.vertex_count() as u32)
-        .filter(|&x| s.corner_of[x as usize] != NONE)
+        .filter(|&x| s.corner_of[x as usize] != NONE && hops[x as usize] >= far)
         .filter_map(|x| {
             let (mut sum, mut n) = (DVec3::ZERO, 0u32);
             for k in s.fan(x) {
@@ -516,6 +528,39 @@ fn flattest_vertex(s: &Surface, rank: u32) -> u32 {
     }
     scored.select_nth_unstable_by(k, order);
     scored[k].1
+}
+
+/// How far (in edges) a start vertex should keep from a hole patch.
+const RIM_HOPS: u32 = 8;
+
+/// Per vertex: edges to the nearest vertex of a patch face (breadth
+/// first), `u32::MAX` without patches or when unreachable.
+fn patch_hops(s: &Surface) -> Vec<u32> {
+    let mut hops = vec![u32::MAX; s.vertex_count()];
+    let mut queue = std::collections::VecDeque::new();
+    for (f, &p) in s.patch.iter().enumerate() {
+        if p == NONE {
+            continue;
+        }
+        for c in Surface::corners(f as u32) {
+            let v = s.v[c as usize];
+            if hops[v as usize] != 0 {
+                hops[v as usize] = 0;
+                queue.push_back(v);
+            }
+        }
+    }
+    while let Some(x) = queue.pop_front() {
+        let d = hops[x as usize] + 1;
+        for k in s.fan(x) {
+            let y = s.v[next(k) as usize];
+            if hops[y as usize] > d {
+                hops[y as usize] = d;
+                queue.push_back(y);
+            }
+        }
+    }
+    hops
 }
 
 /// The coordinate axis least parallel to `n` (lowest index on ties).

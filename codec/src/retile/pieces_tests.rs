@@ -294,3 +294,44 @@ fn a_slab_with_two_holes_keeps_genus_two() {
     let d = encode_decode(&s, 0.3);
     assert_eq!(euler(&d), -2, "genus 2 after decoding");
 }
+
+/// Manual probe of every piece of a real mesh: `SWM_PIECES=path:L[,L...]`
+/// (L relative to the diagonal), e.g. `SWM_PIECES=../shared/corpus/woody.obj:0.02
+/// cargo test -p swm --release --lib retile::pieces_tests::probe -- --ignored --nocapture`.
+/// Prints each piece's faces, holes, genus and the retiler's outcome.
+#[test]
+#[ignore]
+#[cfg(feature = "io")]
+fn probe() {
+    let Ok(spec) = std::env::var("SWM_PIECES") else {
+        return;
+    };
+    let (path, ls) = spec.rsplit_once(':').unwrap();
+    let mesh = crate::io::read_mesh(std::path::Path::new(path)).unwrap();
+    let ps = prepared(&mesh);
+    let diag = mesh.bbox_diagonal();
+    let rank = std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap());
+    for l in ls.split(',') {
+        let l: f64 = l.parse::<f64>().unwrap() * diag;
+        for (i, p) in ps.iter().enumerate() {
+            let patch = p
+                .patch
+                .iter()
+                .filter(|&&x| x != super::surface::NONE)
+                .count();
+            let opt = RetileOptions {
+                start_rank: rank,
+                ..options(l)
+            };
+            let r = super::retile_piece(&p.mesh, &p.table, Some(&p.patch), &opt, None, p.genus > 0);
+            println!(
+                "L {l:.4e} piece {i}: {} faces ({patch} patch), {} holes, genus {}, area {:.1} tri: {:?}",
+                p.mesh.face_count(),
+                p.holes,
+                p.genus,
+                p.area / (l * l * 3f64.sqrt() / 4.0),
+                r.map(|(r, _)| r.triangles.len())
+            );
+        }
+    }
+}
