@@ -85,3 +85,46 @@ fn fandisk_is_regular_and_on_size_at_1_and_4_bpv() {
     check("fandisk.obj", 1.0, None);
     check("fandisk.obj", 4.0, None);
 }
+
+/// Issue 6: the decoded mesh keeps the input's boundary loops (bunny's
+/// five holes in its base; alligator and woody are flat disks, one loop
+/// each), is manifold, and lands within 3% of the request. 4 b/v is the
+/// rate all three reach today (woody's 1 and 2 b/v budgets, 87 and 173
+/// bytes, are at or under the container's fixed cost plus its smallest
+/// retiling).
+#[test]
+fn boundary_loops_survive_on_bunny_alligator_and_woody() {
+    let Some(dir) = common::shared_corpus() else {
+        return;
+    };
+    for (name, loops) in [
+        ("stanford-bunny.obj", 5),
+        ("alligator.obj", 1),
+        ("woody.obj", 1),
+    ] {
+        let (encoded, input) = encode(&dir.join(name), 4.0);
+        let input_loops = swm::clean(&input, &Default::default())
+            .unwrap()
+            .table
+            .stats(&input)
+            .boundary_loops;
+        assert_eq!(input_loops, loops, "{name}: input loops");
+        let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
+        let table = swm::CornerTable::new(&decoded.triangles, decoded.vertex_count())
+            .unwrap_or_else(|e| panic!("{name}: decoded mesh not manifold: {e}"));
+        let stats = table.stats(&decoded);
+        println!(
+            "{name}: {} bytes, {} triangles decoded, {} loops",
+            encoded.bytes.len(),
+            decoded.face_count(),
+            stats.boundary_loops
+        );
+        assert_eq!(stats.boundary_loops, loops, "{name}: decoded loops");
+        let requested = (4.0 * input.vertex_count() as f64 / 8.0).round();
+        let size = encoded.bytes.len() as f64;
+        assert!(
+            (size - requested).abs() <= 0.03 * requested,
+            "{name}: {size} bytes for {requested}"
+        );
+    }
+}
