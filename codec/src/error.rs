@@ -398,9 +398,9 @@ pub enum TopologyError {
         /// Vertices whose faces form more than one fan.
         vertices: u64,
     },
-    /// The SwingWrapper mode retiles genus-0 components only (holes and
-    /// several components are fine; handles are not retiled yet, and the
-    /// lossless mode takes such meshes).
+    /// Not produced any more (the SwingWrapper mode takes holes,
+    /// handles and several components since format 1.0's HOLE and REST
+    /// sections); kept so that code matching on it still compiles.
     NotASphere {
         /// Boundary edges.
         boundary_edges: u64,

@@ -8,8 +8,8 @@ use std::time::Instant;
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeArg {
     /// SwingWrapper: retile into near-equilateral triangles, one dihedral
-    /// angle per vertex. Holes are masked and tiny parts kept losslessly;
-    /// handles (genus > 0) are not retiled yet.
+    /// angle per vertex. Holes are masked, handles kept while L is below
+    /// their thickness, and parts too small for L kept losslessly.
     Swing,
     /// Keep the input's exact triangles; positions quantized to --qp bits.
     Lossless,
