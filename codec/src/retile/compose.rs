@@ -84,7 +84,7 @@ pub fn retile_pieces(pieces: &[Piece], opt: &RetileOptions) -> Result<Composed, 
         let tri_area = l * l * 3f64.sqrt() / 4.0;
         let mut outcome = PieceOutcome::Lossless;
         if p.area >= TINY_TRIANGLES * tri_area {
-            match retile_piece(&p.mesh, &p.table, Some(&p.patch), opt, fixed, p.genus > 0) {
+            match retile_tries(p, opt, fixed) {
                 Ok((r, cover)) => {
                     let (mask, lost) = piece_mask(&r, &cover, p.holes)?;
                     outcome = PieceOutcome::Retiled {
@@ -126,6 +126,31 @@ pub fn retile_pieces(pieces: &[Piece], opt: &RetileOptions) -> Result<Composed, 
         retiled: out,
         report,
     })
+}
+
+/// Start vertices tried on a piece before its failure fails the run.
+const PIECE_TRIES: u32 = 3;
+
+/// Retiles one piece, from the next start vertices when a start fails:
+/// a file of several pieces fails when any of them does, so each piece
+/// gets its own retries rather than the whole run.
+fn retile_tries(
+    p: &Piece,
+    opt: &RetileOptions,
+    fixed: Option<f64>,
+) -> Result<(Retiled, Vec<mask::Cover>), Failure> {
+    let mut result = Err(Failure::BadInput);
+    for k in 0..PIECE_TRIES {
+        let o = RetileOptions {
+            start_rank: opt.start_rank + k,
+            ..opt.clone()
+        };
+        result = retile_piece(&p.mesh, &p.table, Some(&p.patch), &o, fixed, p.genus > 0);
+        if result.is_ok() || opt.start_vertex.is_some() {
+            break;
+        }
+    }
+    result
 }
 
 /// The hole mask of one retiled piece.

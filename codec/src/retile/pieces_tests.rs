@@ -314,6 +314,9 @@ fn probe() {
     for l in ls.split(',') {
         let l: f64 = l.parse::<f64>().unwrap() * diag;
         for (i, p) in ps.iter().enumerate() {
+            if std::env::var("SWM_PIECE").is_ok_and(|k| k != i.to_string()) {
+                continue;
+            }
             let patch = p
                 .patch
                 .iter()
