@@ -134,7 +134,7 @@ fn tamper(csv: &Path, row: &str, column: &str, f: impl Fn(&str) -> String) -> St
 fn writes_csv_markdown_and_plots() {
     let (dir, csv, out) = small_table_run("rd-files");
     let rows = read_csv(&csv);
-    // 2 meshes x 2 rates x 3 configurations, sorted by mesh (as given),
+    // 2 meshes x 2 rates x 5 configurations, sorted by mesh (as given),
     // rate, configuration.
     let order: Vec<(String, String, String)> = rows
         .iter()
@@ -150,9 +150,15 @@ fn writes_csv_markdown_and_plots() {
         .iter()
         .flat_map(|m| {
             ["1", "8"].iter().flat_map(move |r| {
-                ["lossless", "baseline", "swing"]
-                    .iter()
-                    .map(move |c| (m.to_string(), r.to_string(), c.to_string()))
+                [
+                    "lossless",
+                    "baseline",
+                    "swing",
+                    "swing+sharpen",
+                    "swing+sharpen+bend",
+                ]
+                .iter()
+                .map(move |c| (m.to_string(), r.to_string(), c.to_string()))
             })
         })
         .collect();
@@ -318,7 +324,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
         .lines()
         .filter(|l| !l.contains("rows checked"))
         .collect();
-    assert_eq!(verdicts.len(), 12, "{text}");
+    assert_eq!(verdicts.len(), 20, "{text}");
     assert!(verdicts.iter().all(|l| l.starts_with("same ")), "{text}");
 
     // Halve the L2 of the torus's 8 bpv lossless row.
@@ -374,7 +380,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     let out = swm(&["rd", "--check", s(&csv), "--only", "cube", "--json"]);
     let v = json(&out);
     let rows = v.as_array().unwrap();
-    assert_eq!(rows.len(), 6);
+    assert_eq!(rows.len(), 10);
     assert!(rows
         .iter()
         .all(|r| r["mesh"] == "generated:cube" && r["verdict"] == "pass"));

@@ -70,8 +70,17 @@ pub struct EncodeOptions {
 /// Options for [`decode`].
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DecodeOptions {
-    /// Caps on what the file may make the decoder allocate.
+    /// Caps on what the file may make the decoder allocate (Bender's
+    /// output included).
     pub limits: Limits,
+    /// Run EdgeSharpener on the decoded mesh: restore the sharp edges and
+    /// corners that retiling chamfered (thesis §8.3; no bits in the
+    /// file). Default `false`.
+    pub sharpen: bool,
+    /// Bender steps after that (crease-preserving butterfly subdivision,
+    /// thesis §8.4); each multiplies the triangles by four. Without
+    /// `sharpen`, no edge is kept sharp. Default 0.
+    pub bend_steps: u32,
 }
 
 #[cfg(feature = "encoder")]
@@ -218,10 +227,29 @@ fn encode_swing(
 /// is allocated.
 pub fn decode(bytes: &[u8], options: &DecodeOptions) -> Result<TriMesh, Error> {
     let file = parse_container(bytes, &options.limits)?;
-    match file.header.mode {
-        Mode::Lossless => crate::lossless::decode(&file, &options.limits),
-        Mode::Swing => crate::swing::decode(&file, &options.limits),
+    let mesh = match file.header.mode {
+        Mode::Lossless => crate::lossless::decode(&file, &options.limits)?,
+        Mode::Swing => crate::swing::decode(&file, &options.limits)?,
+    };
+    sharpen_and_bend(mesh, options)
+}
+
+/// The decoder's optional post-processing: EdgeSharpener, then Bender
+/// with the edges it tagged.
+fn sharpen_and_bend(mesh: TriMesh, options: &DecodeOptions) -> Result<TriMesh, Error> {
+    if !options.sharpen && options.bend_steps == 0 {
+        return Ok(mesh);
     }
+    let (mesh, sharp) = if options.sharpen {
+        let s = crate::post::sharpen::sharpen(&mesh, &Default::default())?;
+        (s.mesh, s.sharp)
+    } else {
+        (mesh, crate::post::SharpEdges::default())
+    };
+    if options.bend_steps == 0 {
+        return Ok(mesh);
+    }
+    Ok(crate::post::bend::bend(&mesh, &sharp, options.bend_steps, &options.limits)?.mesh)
 }
 
 /// What `swm info` shows of a `.swm` file, read without decoding geometry.

@@ -1,9 +1,9 @@
 //! # swm — lossy mesh compression by SwingWrapper remeshing
 //!
 //! The library behind the `swm` tool: a triangle-mesh model with a corner
-//! table, mesh I/O and cleaning, and (in later modules) the Edgebreaker
-//! connectivity codec, the SwingWrapper retiler, the `.swm` container and
-//! the Sharpen&Bend post-processing of M. Attene's thesis *Surface
+//! table, mesh I/O and cleaning, the Edgebreaker connectivity codec, the
+//! SwingWrapper retiler, the `.swm` container and the Sharpen&Bend
+//! post-processing ([`sharpen`], [`bend`]) of M. Attene's thesis *Surface
 //! Remeshing and Applications* (2004), chapters 7 and 8.
 //!
 //! Features: `std` (default), `io` (file readers and writers), `encoder`
@@ -27,6 +27,7 @@ mod lossless;
 pub mod mesh;
 #[cfg(feature = "metrics")]
 pub mod metrics;
+pub mod post;
 #[cfg(feature = "encoder")]
 mod retile;
 mod swing;
@@ -48,6 +49,9 @@ pub use error::{
 };
 pub use limits::Limits;
 pub use mesh::{CornerId, CornerTable, FaceId, MeshStats, TriMesh, VertexId};
+pub use post::bend::{bend, Bent};
+pub use post::sharpen::{sharpen, SharpenOptions, SharpenReport, Sharpened, Unmoved};
+pub use post::SharpEdges;
 
 #[cfg(feature = "encoder")]
 pub use mesh::clean::{clean, CleanOptions, CleanReport, Cleaned};

@@ -1,4 +1,4 @@
-//! `swm decode IN.swm -o OUT.(obj|ply|off|stl) [--json]`.
+//! `swm decode IN.swm -o OUT.(obj|ply|off|stl) [--sharpen] [--bend N] [--json]`.
 
 use crate::CliError;
 use std::path::PathBuf;
@@ -11,6 +11,13 @@ pub struct Args {
     /// The mesh file to write; its extension picks the format.
     #[arg(short, long)]
     output: PathBuf,
+    /// Restore sharp edges and corners after decoding (EdgeSharpener).
+    #[arg(long)]
+    sharpen: bool,
+    /// Bender steps after that: crease-preserving butterfly subdivision,
+    /// four times the triangles per step.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    bend: u32,
     /// Print statistics as JSON.
     #[arg(long)]
     json: bool,
@@ -20,7 +27,11 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // Refuse an unknown output format before doing any work.
     swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::new(&args.output, e))?;
     let bytes = std::fs::read(&args.input).map_err(|e| CliError::new(&args.input, e))?;
-    let options = swm::DecodeOptions::default();
+    let options = swm::DecodeOptions {
+        sharpen: args.sharpen,
+        bend_steps: args.bend,
+        ..Default::default()
+    };
     let start = Instant::now();
     let mesh = swm::decode(&bytes, &options).map_err(|e| CliError::new(&args.input, e))?;
     let seconds = start.elapsed().as_secs_f64();

@@ -175,7 +175,7 @@ fn piece_line(p: &swm::PieceReport) -> String {
         swm::PieceOutcome::Lossless => {
             format!("{shape}: too small for this edge length, kept by lossless coding")
         }
-        _ => format!("{shape}"),
+        _ => shape.to_string(),
     }
 }
 

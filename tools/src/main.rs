@@ -19,6 +19,7 @@ mod encode;
 mod info;
 mod rd;
 mod report;
+mod sharpen;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -52,6 +53,8 @@ enum Command {
     /// configuration, measure size and error; write CSV, Markdown and
     /// plots; or --check a committed table for regressions.
     Rd(rd::Args),
+    /// Restore sharp edges and corners of any mesh (EdgeSharpener), then optionally subdivide (Bender).
+    Sharpen(sharpen::Args),
 }
 
 /// A failure tied to the file it concerns.
@@ -78,6 +81,7 @@ fn main() -> ExitCode {
         Command::Info(args) => info::run(&args),
         Command::Distance(args) => distance::run(&args),
         Command::Rd(args) => rd::run(&args),
+        Command::Sharpen(args) => sharpen::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

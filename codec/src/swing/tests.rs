@@ -1077,7 +1077,10 @@ fn hostile_hole_and_rest_sections_are_errors() {
         max_faces: u64::from(h.triangle_count) + 3,
         ..limits
     };
-    let options = crate::DecodeOptions { limits: tight };
+    let options = crate::DecodeOptions {
+        limits: tight,
+        ..Default::default()
+    };
     assert!(matches!(
         crate::decode(&bytes, &options),
         Err(Error::LimitExceeded(_))

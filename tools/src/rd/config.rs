@@ -2,9 +2,8 @@
 //!
 //! A configuration turns (mesh, byte budget) into a `.swm` file that fits
 //! the budget, or says that none does, that its encoder gave up, or that
-//! it does not take the mesh at all. Adding one (SwingWrapper +
-//! Sharpen&Bend) is a variant here, its name, and the function its `run`
-//! arm calls; [`measure`] does the timing and measuring that every
+//! it does not take the mesh at all. Adding one is a variant here, its
+//! name, and the function its `run` arm calls; [`measure`] does the timing and measuring that every
 //! configuration shares.
 
 use crate::rd::case::{encode, Case};
@@ -27,6 +26,12 @@ pub enum Config {
     /// SwingWrapper at the default 8 angle bits, asked for the budget and
     /// capped at it.
     Swing,
+    /// The `swing` file decoded with EdgeSharpener (no extra bits).
+    #[value(name = "swing+sharpen")]
+    SwingSharpen,
+    /// The `swing` file decoded with EdgeSharpener and one Bender step.
+    #[value(name = "swing+sharpen+bend")]
+    SwingSharpenBend,
 }
 
 /// Bits per dihedral angle the `swing` configuration tries at each rate
@@ -35,7 +40,13 @@ pub const SWING_ANGLE_BITS: [u8; 2] = [5, 6];
 
 impl Config {
     /// Every configuration, in table order.
-    pub const ALL: [Config; 3] = [Config::Lossless, Config::Baseline, Config::Swing];
+    pub const ALL: [Config; 5] = [
+        Config::Lossless,
+        Config::Baseline,
+        Config::Swing,
+        Config::SwingSharpen,
+        Config::SwingSharpenBend,
+    ];
 
     /// The name used on the command line and in tables.
     pub fn name(self) -> &'static str {
@@ -43,6 +54,22 @@ impl Config {
             Config::Lossless => "lossless",
             Config::Baseline => "baseline",
             Config::Swing => "swing",
+            Config::SwingSharpen => "swing+sharpen",
+            Config::SwingSharpenBend => "swing+sharpen+bend",
+        }
+    }
+
+    /// How the decoder post-processes this configuration's files.
+    fn decode_options(self) -> swm::DecodeOptions {
+        let (sharpen, bend_steps) = match self {
+            Config::SwingSharpen => (true, 0),
+            Config::SwingSharpenBend => (true, 1),
+            _ => (false, 0),
+        };
+        swm::DecodeOptions {
+            sharpen,
+            bend_steps,
+            ..Default::default()
         }
     }
 
@@ -57,7 +84,9 @@ impl Config {
         let coded = match self {
             Config::Lossless => lossless(case, budget, samples)?,
             Config::Baseline => crate::rd::baseline::run(case, budget, samples)?,
-            Config::Swing => return swing(case, budget, samples),
+            Config::Swing | Config::SwingSharpen | Config::SwingSharpenBend => {
+                return swing(case, budget, samples, &self.decode_options())
+            }
         };
         Ok(coded.map_or(Outcome::Infeasible, Outcome::Coded))
     }
@@ -85,8 +114,15 @@ fn lossless(case: &Case, budget: u64, samples: u64) -> Result<Option<Coded>, Cli
 /// mesh the mode does not take is `n/a`; a [`swm::RetileError`] where
 /// some retiling worked but no file it made fitted the cap is
 /// `infeasible`; one where every retiling broke down is `failed`. Every
-/// other error (a file that does not decode) stops the run.
-fn swing(case: &Case, budget: u64, samples: u64) -> Result<Outcome, CliError> {
+/// other error (a file that does not decode) stops the run. `post` is how
+/// the file is decoded (Sharpen&Bend or not); the angle bits are chosen
+/// by the L2 after it.
+fn swing(
+    case: &Case,
+    budget: u64,
+    samples: u64,
+    post: &swm::DecodeOptions,
+) -> Result<Outcome, CliError> {
     let mut best: Option<Coded> = None;
     let mut first_error = None;
     for bits in SWING_ANGLE_BITS {
@@ -102,7 +138,7 @@ fn swing(case: &Case, budget: u64, samples: u64) -> Result<Outcome, CliError> {
         match swm::encode(&case.mesh, &options) {
             Ok(encoded) => {
                 let encode_s = start.elapsed().as_secs_f64();
-                let coded = measure(case, bits, samples, &encoded.bytes, encode_s)?;
+                let coded = measure(case, bits, samples, &encoded.bytes, encode_s, post)?;
                 if best.as_ref().is_none_or(|b| coded.l2_rel < b.l2_rel) {
                     best = Some(coded);
                 }
@@ -148,21 +184,23 @@ pub fn finish<'a>(
     let mesh = make()?;
     let bytes = encode(&mesh, qp).map_err(|e| case.err(e))?;
     let encode_s = start.elapsed().as_secs_f64();
-    measure(case, qp, samples, &bytes, encode_s)
+    measure(case, qp, samples, &bytes, encode_s, &Default::default())
 }
 
 /// Decodes a file made in `encode_s` seconds (timed) and measures the
 /// decoded mesh against the reference. `qp` is the row's quantization
-/// figure.
+/// figure; `options` says how to decode (post-processing included in the
+/// decode time).
 fn measure(
     case: &Case,
     qp: u8,
     samples: u64,
     bytes: &[u8],
     encode_s: f64,
+    options: &swm::DecodeOptions,
 ) -> Result<Coded, CliError> {
     let start = Instant::now();
-    let decoded = swm::decode(bytes, &swm::DecodeOptions::default()).map_err(|e| case.err(e))?;
+    let decoded = swm::decode(bytes, options).map_err(|e| case.err(e))?;
     let decode_s = start.elapsed().as_secs_f64();
     let (l2_rel, hausdorff_rel) = case.distance(&decoded, samples)?;
     Ok(Coded {

@@ -349,7 +349,9 @@ fn summary(r: &Row) -> String {
             c.bytes,
             c.faces,
             match r.config {
-                Config::Swing => format!("{} angle bits", c.qp),
+                Config::Swing | Config::SwingSharpen | Config::SwingSharpenBend => {
+                    format!("{} angle bits", c.qp)
+                }
                 _ => format!("qp {}", c.qp),
             },
             c.l2_rel,

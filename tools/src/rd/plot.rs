@@ -25,6 +25,8 @@ fn color(config: Config) -> RGBColor {
         Config::Lossless => RGBColor(230, 25, 75),
         Config::Baseline => RGBColor(60, 180, 75),
         Config::Swing => RGBColor(67, 99, 216),
+        Config::SwingSharpen => RGBColor(245, 130, 49),
+        Config::SwingSharpenBend => RGBColor(145, 30, 180),
     }
 }
 
