@@ -9,17 +9,21 @@ mod common;
 
 use swm::{DecodeOptions, EncodeMode, EncodeOptions, SwingTarget};
 
-fn encode(path: &std::path::Path, bpv: f64) -> (swm::Encoded, swm::TriMesh) {
-    let mesh = swm::io::read_mesh(path).unwrap();
-    let options = EncodeOptions {
+/// SwingWrapper at `bpv` bits per input vertex, 8 angle bits.
+fn at_rate(bpv: f64) -> EncodeOptions {
+    EncodeOptions {
         mode: EncodeMode::Swing {
             target: SwingTarget::BitsPerVertex(bpv),
             angle_bits: 8,
             max_bytes: None,
         },
         ..EncodeOptions::default()
-    };
-    (swm::encode(&mesh, &options).unwrap(), mesh)
+    }
+}
+
+fn encode(path: &std::path::Path, bpv: f64) -> (swm::Encoded, swm::TriMesh) {
+    let mesh = swm::io::read_mesh(path).unwrap();
+    (swm::encode(&mesh, &at_rate(bpv)).unwrap(), mesh)
 }
 
 /// Header allowance of the size bound, bytes (format-spec/05-swing.md).
@@ -158,16 +162,8 @@ fn every_corpus_mesh_encodes_or_fails_cleanly() {
     for (name, on_size) in meshes {
         let input = swm::io::read_mesh(&dir.join(name)).unwrap();
         for bpv in [1.0, 2.0, 4.0] {
-            let options = EncodeOptions {
-                mode: EncodeMode::Swing {
-                    target: SwingTarget::BitsPerVertex(bpv),
-                    angle_bits: 8,
-                    max_bytes: None,
-                },
-                ..EncodeOptions::default()
-            };
             let requested = (bpv * input.vertex_count() as f64 / 8.0).round();
-            match swm::encode(&input, &options) {
+            match swm::encode(&input, &at_rate(bpv)) {
                 Ok(encoded) => {
                     let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
                     swm::CornerTable::new(&decoded.triangles, decoded.vertex_count())

@@ -531,23 +531,10 @@ fn e1_reference(m: &TriMesh, third: &BTreeMap<(u32, u32), u32>, v: u32, w: u32) 
     s
 }
 
-/// The unit icosahedron.
+/// The unit icosahedron (the edgebreaker tests' layout, on the sphere).
 fn icosahedron() -> TriMesh {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let raw = [
-        [-1.0, t, 0.0],
-        [1.0, t, 0.0],
-        [-1.0, -t, 0.0],
-        [1.0, -t, 0.0],
-        [0.0, -1.0, t],
-        [0.0, 1.0, t],
-        [0.0, -1.0, -t],
-        [0.0, 1.0, -t],
-        [t, 0.0, -1.0],
-        [t, 0.0, 1.0],
-        [-t, 0.0, -1.0],
-        [-t, 0.0, 1.0],
-    ];
+    let (raw, triangles) = crate::edgebreaker::tests_support::icosahedron(t);
     let positions = raw
         .iter()
         .map(|p| {
@@ -555,28 +542,6 @@ fn icosahedron() -> TriMesh {
             [d.x as f32, d.y as f32, d.z as f32]
         })
         .collect();
-    let triangles = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
     TriMesh::new(positions, triangles)
 }
 
