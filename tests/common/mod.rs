@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::OnceLock;
+use swm::{EncodeMode, EncodeOptions, SwingTarget, TriMesh};
 
 /// The shared reference corpus (`../shared/corpus` next to the repository),
 /// or `None` after printing the skip notice the project promises.
@@ -80,3 +82,104 @@ pub const NON_MANIFOLD_CORPUS: &[(&str, u64, u64)] = &[
     ("suzanne.obj", 505, 968),
     ("beetle.obj", 1148, 2053),
 ];
+
+/// A small valid `.swm` file.
+pub struct Sample {
+    /// What kind of file it is.
+    pub name: &'static str,
+    /// The file.
+    pub bytes: Vec<u8>,
+}
+
+/// A sphere of radius 1 without the faces whose centroid lies above
+/// z = 0.6: one boundary loop, which the swing encoder closes with a patch
+/// and masks out again with a `HOLE` section.
+pub fn capped_sphere() -> TriMesh {
+    let m = swm_corpus::icosphere(1.0, 3);
+    let keep = m
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| t.iter().map(|&v| m.positions[v as usize][2]).sum::<f32>() / 3.0 < 0.6)
+        .collect();
+    TriMesh::new(m.positions.clone(), keep)
+}
+
+/// A sphere and a far smaller one beside it: the small one is below the
+/// edge length, so the swing encoder keeps it losslessly in `REST`.
+pub fn sphere_and_speck() -> TriMesh {
+    let a = swm_corpus::icosphere(1.0, 3);
+    let b = swm_corpus::icosphere(1.0, 1);
+    let mut m = a.clone();
+    let base = m.positions.len() as u32;
+    m.positions.extend(
+        b.positions
+            .iter()
+            .map(|p| [p[0] * 0.02 + 3.0, p[1] * 0.02, p[2] * 0.02]),
+    );
+    m.triangles
+        .extend(b.triangles.iter().map(|t| t.map(|v| v + base)));
+    m
+}
+
+fn encode(mesh: &TriMesh, mode: EncodeMode) -> Vec<u8> {
+    let options = EncodeOptions {
+        mode,
+        ..Default::default()
+    };
+    swm::encode(mesh, &options).expect("encode").bytes
+}
+
+fn swing(l: f64) -> EncodeMode {
+    EncodeMode::Swing {
+        target: SwingTarget::EdgeLength(l),
+        angle_bits: 8,
+        max_bytes: None,
+    }
+}
+
+fn tag_present(bytes: &[u8], tag: &[u8; 4]) -> bool {
+    let file = swm::container::parse_container(bytes, &swm::Limits::default()).unwrap();
+    file.sections().any(|s| &s.tag.0 == tag)
+}
+
+/// Small files of the four kinds the encoder writes (lossless, swing,
+/// swing with `HOLE`, swing with `REST`), encoded once per test binary.
+pub fn samples() -> &'static [Sample] {
+    static SAMPLES: OnceLock<Vec<Sample>> = OnceLock::new();
+    SAMPLES.get_or_init(|| {
+        let lossless = encode(
+            &swm_corpus::icosphere(1.0, 1),
+            EncodeMode::Lossless { qp: 10 },
+        );
+        let swing_file = encode(&swm_corpus::torus(1.0, 0.4, 16, 8), swing(0.35));
+        let hole = encode(&capped_sphere(), swing(0.3));
+        let rest = encode(&sphere_and_speck(), swing(0.3));
+        assert!(
+            tag_present(&hole, b"HOLE"),
+            "the capped sphere has no HOLE section"
+        );
+        assert!(
+            tag_present(&rest, b"REST"),
+            "the two spheres have no REST section"
+        );
+        vec![
+            Sample {
+                name: "lossless",
+                bytes: lossless,
+            },
+            Sample {
+                name: "swing",
+                bytes: swing_file,
+            },
+            Sample {
+                name: "swing+HOLE",
+                bytes: hole,
+            },
+            Sample {
+                name: "swing+REST",
+                bytes: rest,
+            },
+        ]
+    })
+}

@@ -202,7 +202,11 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
             .ok_or(bad("a dummy vertex has a position"))?;
         *slot = quantizer.dequantize(*q);
     }
-    let mut triangles = Vec::with_capacity(file.header.triangle_count as usize);
+    // Sized by the decoded table, not the header: a header that declares
+    // more triangles than the sections code is refused below, after
+    // allocating only for what was decoded.
+    let mut triangles =
+        Vec::with_capacity(table.face_count().min(file.header.triangle_count as usize));
     for t in table.vertices().chunks_exact(3) {
         let r = [rank[t[0].idx()], rank[t[1].idx()], rank[t[2].idx()]];
         if !r.contains(&u32::MAX) {
@@ -262,6 +266,13 @@ pub(crate) fn read_topology(
     // Counts first, checked before anything sized by them is allocated.
     let symbols = r.varu()?;
     limits.check_faces(symbols)?;
+    // The closed mesh has S + C triangles: the header's T plus one per
+    // boundary edge, of which there are at most 3T; so S <= 4T. Checked
+    // before the symbols are read, so that a lying count allocates no
+    // more than the header's counts (which the limits bound) allow.
+    if symbols > 4 * u64::from(h.triangle_count) {
+        return Err(bad("more CLERS symbols than the header's triangles allow"));
+    }
     // Each symbol costs at least -log2(1 - 4/2^16) > 4/2^16 bits: every
     // symbol keeps a frequency of at least 1 in the 2^16 of a model.
     check_count_fits(
