@@ -1,4 +1,5 @@
-//! `swm decode IN.swm -o OUT.(obj|ply|off|stl) [--sharpen] [--bend N] [--json]`.
+//! `swm decode IN.swm -o OUT.(obj|ply|off|stl) [--sharpen] [--bend N]
+//! [--max-vertices N] [--max-faces N] [--max-alloc BYTES] [--json]`.
 
 use crate::CliError;
 use std::path::PathBuf;
@@ -18,19 +19,36 @@ pub struct Args {
     /// four times the triangles per step.
     #[arg(long, value_name = "N", default_value_t = 0)]
     bend: u32,
+    /// Refuse files whose mesh (after Bender) has more vertices than this.
+    #[arg(long, value_name = "N")]
+    max_vertices: Option<u64>,
+    /// Refuse files whose mesh (after Bender) has more triangles than this.
+    #[arg(long, value_name = "N")]
+    max_faces: Option<u64>,
+    /// Refuse files that would make the decoder allocate more than this
+    /// many bytes at once.
+    #[arg(long, value_name = "BYTES")]
+    max_alloc: Option<u64>,
     /// Print statistics as JSON.
     #[arg(long)]
     json: bool,
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
+    crate::refuse_same_file(&args.input, &args.output)?;
     // Refuse an unknown output format before doing any work.
     swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::new(&args.output, e))?;
     let bytes = std::fs::read(&args.input).map_err(|e| CliError::new(&args.input, e))?;
+    let default = swm::Limits::default();
+    let limits = swm::Limits {
+        max_vertices: args.max_vertices.unwrap_or(default.max_vertices),
+        max_faces: args.max_faces.unwrap_or(default.max_faces),
+        max_alloc_bytes: args.max_alloc.unwrap_or(default.max_alloc_bytes),
+    };
     let options = swm::DecodeOptions {
         sharpen: args.sharpen,
         bend_steps: args.bend,
-        ..Default::default()
+        limits,
     };
     let start = Instant::now();
     let mesh = swm::decode(&bytes, &options).map_err(|e| CliError::new(&args.input, e))?;

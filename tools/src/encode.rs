@@ -49,6 +49,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
+    crate::refuse_same_file(&args.input, &args.output)?;
     let mesh = swm::io::read_mesh(&args.input).map_err(|e| CliError::new(&args.input, e))?;
     let mode = match args.mode {
         ModeArg::Lossless => swm::EncodeMode::Lossless { qp: args.qp },

@@ -22,7 +22,7 @@ mod report;
 mod sharpen;
 
 use clap::{Parser, Subcommand};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -71,6 +71,26 @@ impl CliError {
             error: error.into(),
         }
     }
+}
+
+/// Refuses to write `output` when it names the same file as `input`: the
+/// output is written in full before it replaces anything, but a command
+/// that replaced its own input would still destroy the original.
+pub fn refuse_same_file(input: &Path, output: &Path) -> Result<(), CliError> {
+    // Canonical paths see through `./a.obj`, symlinks and hard-to-spot
+    // spellings; an output that does not exist yet cannot be the input.
+    let same = match (std::fs::canonicalize(input), std::fs::canonicalize(output)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        let e = std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "the output is the input file; refusing to overwrite it",
+        );
+        return Err(CliError::new(output, e));
+    }
+    Ok(())
 }
 
 fn main() -> ExitCode {
