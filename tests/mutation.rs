@@ -56,6 +56,19 @@ fn refused_or_valid(bytes: &[u8], what: &str) {
             mesh.validate().is_ok(),
             "{what}: decodes to an invalid mesh"
         );
+        // Whatever mesh a mutated file gives goes through Sharpen&Bend
+        // too; it may refuse it, but not panic.
+        let post = DecodeOptions {
+            sharpen: true,
+            bend_steps: 1,
+            ..Default::default()
+        };
+        if let Ok(mesh) = try_decode(bytes, &post, what) {
+            assert!(
+                mesh.validate().is_ok(),
+                "{what}: sharpened and bent into an invalid mesh"
+            );
+        }
     }
 }
 
@@ -93,7 +106,12 @@ fn sharpen_and_bend_on_valid_files() {
         ..Default::default()
     };
     for s in samples() {
-        let plain = swm::decode(&s.bytes, &DecodeOptions::default()).unwrap();
+        // EdgeSharpener may add triangles; each Bender step quadruples.
+        let sharpened = DecodeOptions {
+            sharpen: true,
+            ..Default::default()
+        };
+        let plain = swm::decode(&s.bytes, &sharpened).unwrap();
         let mesh = try_decode(&s.bytes, &options, s.name).unwrap();
         mesh.validate().unwrap();
         assert_eq!(mesh.face_count(), 4 * plain.face_count(), "{}", s.name);
@@ -393,9 +411,14 @@ fn tight_limits_refuse_a_valid_file() {
         // the limits bound the header; REST adds faces the header does not
         // count, and the limits bound those too. The larger of the two is
         // the tightest limit the file passes.
+        // The limits also bound the CLERS symbol count S, which in the
+        // lossless mode exceeds the output's triangles by one per boundary
+        // edge (the decoder closes holes; format-spec/04-lossless.md).
         let (hv, ht) = header_counts(&s.bytes);
+        let info = swm::inspect(&s.bytes, &Default::default()).unwrap();
+        let symbols = info.stats.clers.iter().sum::<u64>();
         let v = (mesh.vertex_count() as u64).max(hv);
-        let t = (mesh.face_count() as u64).max(ht);
+        let t = (mesh.face_count() as u64).max(ht).max(symbols);
         let exact = swm::Limits {
             max_vertices: v,
             max_faces: t,
@@ -442,5 +465,55 @@ fn tight_limits_refuse_a_valid_file() {
         let what = format!("{} bent within limits of its own size", s.name);
         let e = try_decode(&s.bytes, &bent, &what).expect_err(&what);
         assert!(matches!(e, Error::LimitExceeded(_)), "{what}: {e:?}");
+    }
+}
+
+/// A deterministic xorshift generator, so that failures repeat.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+}
+
+#[test]
+fn random_multi_byte_overwrites_with_the_crc_fixed() {
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    for s in samples() {
+        for case in 0..2000 {
+            let mut b = s.bytes.clone();
+            for _ in 0..1 + rng.next() % 4 {
+                let at = 4 + (rng.next() as usize) % (b.len() - 8);
+                b[at] = rng.next() as u8;
+            }
+            fix_crc(&mut b);
+            refused_or_valid(&b, &format!("{} random case {case}", s.name));
+        }
+    }
+}
+
+#[test]
+fn mutations_inside_rest_reach_the_nested_decoder() {
+    // REST holds a whole lossless file with its own CRC: fixing both CRCs
+    // lets a mutation reach the nested file's header and sections.
+    let s = samples().iter().find(|s| s.name == "swing+REST").unwrap();
+    let file = swm::container::parse_container(&s.bytes, &Default::default()).unwrap();
+    let rest = file.find(swm::container::Tag::REST).unwrap();
+    let (start, len) = (rest.offset, rest.bytes.len());
+    for at in start + 4..start + len - 4 {
+        for v in [0x00, 0xFF, s.bytes[at] ^ 0x01] {
+            if v == s.bytes[at] {
+                continue;
+            }
+            let mut b = s.bytes.clone();
+            b[at] = v;
+            fix_crc(&mut b[start..start + len]);
+            fix_crc(&mut b);
+            refused_or_valid(&b, &format!("REST byte {} = {v:#x}", at - start));
+        }
     }
 }

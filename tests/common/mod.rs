@@ -143,13 +143,27 @@ fn tag_present(bytes: &[u8], tag: &[u8; 4]) -> bool {
     file.sections().any(|s| &s.tag.0 == tag)
 }
 
-/// Small files of the four kinds the encoder writes (lossless, swing,
-/// swing with `HOLE`, swing with `REST`), encoded once per test binary.
+/// Small files of every kind the encoder writes (lossless, with holes and
+/// handles too; swing, with `HOLE` and with `REST`), encoded once per
+/// test binary.
 pub fn samples() -> &'static [Sample] {
     static SAMPLES: OnceLock<Vec<Sample>> = OnceLock::new();
     SAMPLES.get_or_init(|| {
         let lossless = encode(
             &swm_corpus::icosphere(1.0, 1),
+            EncodeMode::Lossless { qp: 10 },
+        );
+        // Dummy vertices (one per hole) and handle events in TOPO.
+        let mut open = swm_corpus::icosphere(1.0, 1);
+        open.triangles.retain(|t| {
+            t.iter()
+                .map(|&v| open.positions[v as usize][2])
+                .sum::<f32>()
+                < 1.5
+        });
+        let lossless_hole = encode(&open, EncodeMode::Lossless { qp: 10 });
+        let lossless_torus = encode(
+            &swm_corpus::torus(1.0, 0.4, 8, 6),
             EncodeMode::Lossless { qp: 10 },
         );
         let swing_file = encode(&swm_corpus::torus(1.0, 0.4, 16, 8), swing(0.35));
@@ -167,6 +181,14 @@ pub fn samples() -> &'static [Sample] {
             Sample {
                 name: "lossless",
                 bytes: lossless,
+            },
+            Sample {
+                name: "lossless with a hole",
+                bytes: lossless_hole,
+            },
+            Sample {
+                name: "lossless torus",
+                bytes: lossless_torus,
             },
             Sample {
                 name: "swing",
