@@ -11,9 +11,20 @@ use swm::{DecodeOptions, EncodeMode, EncodeOptions, SwingTarget, TriMesh};
 /// build; a hang shows up as a case far beyond it.
 const PER_CASE: Duration = Duration::from_secs(5);
 
-fn modes() -> [(&'static str, EncodeMode); 2] {
+/// Lossless, swing at 4 bits per vertex (which a tiny mesh cannot meet)
+/// and swing at an edge length of a tenth of the bounding box diagonal
+/// (which retiles even a tiny mesh).
+fn modes(mesh: &TriMesh) -> [(&'static str, EncodeMode); 3] {
     [
         ("lossless", EncodeMode::Lossless { qp: 12 }),
+        (
+            "swing L = diagonal / 10",
+            EncodeMode::Swing {
+                target: SwingTarget::EdgeLength(mesh.bbox_diagonal() / 10.0),
+                angle_bits: 8,
+                max_bytes: None,
+            },
+        ),
         (
             "swing",
             EncodeMode::Swing {
@@ -28,7 +39,7 @@ fn modes() -> [(&'static str, EncodeMode); 2] {
 /// Encodes `mesh` in both modes; returns which modes succeeded.
 fn encode_both(name: &str, mesh: &TriMesh) -> Vec<&'static str> {
     let mut ok = Vec::new();
-    for (mode_name, mode) in modes() {
+    for (mode_name, mode) in modes(mesh) {
         let what = format!("{name}, {mode_name}");
         let options = EncodeOptions {
             mode,
