@@ -288,8 +288,12 @@ struct Dynamic {
     /// Scratch marks per vertex, valid when equal to `stamp`.
     mark: Vec<u32>,
     stamp: u32,
-    /// (vertex, face) memberships that flips created: few, scanned whole.
-    extra: Vec<(u32, u32)>,
+    /// Per vertex, the faces that flips gave it (not in `list`); empty
+    /// until the first flip. Indexed by vertex, not one list scanned
+    /// whole: a hostile file made a flip cycle that ran until the
+    /// operation budget, and a whole scan per `faces_of` turned that
+    /// into seconds (fuzz finding, issue 8).
+    extra: Vec<Vec<u32>>,
     /// Faces deleted, in order.
     killed: Vec<u32>,
     scratch: [Vec<u32>; 3],
@@ -342,10 +346,14 @@ impl Dynamic {
         if !self.extra.is_empty() {
             // A flip may have given a face back a vertex it had at the
             // start: skip faces already listed.
-            for &(_, f) in &self.extra {
-                if live(f) && !out.contains(&f) {
-                    out.push(f);
+            let mut w = v;
+            while w != NONE {
+                for &f in &self.extra[w as usize] {
+                    if live(f) && !out.contains(&f) {
+                        out.push(f);
+                    }
                 }
+                w = self.chain_next[w as usize];
             }
         }
     }
@@ -450,8 +458,15 @@ impl Dynamic {
         }
         self.tris[f] = nf;
         self.tris[g as usize] = ng;
-        self.extra.push((y, f as u32));
-        self.extra.push((a, g));
+        if self.extra.is_empty() {
+            self.extra = vec![Vec::new(); self.chain_next.len()];
+        }
+        for (x, h) in [(y, f as u32), (a, g)] {
+            // A flip cycle gives the same face to the same vertex again.
+            if !self.extra[x as usize].contains(&h) {
+                self.extra[x as usize].push(h);
+            }
+        }
         Some(g)
     }
 

@@ -1,0 +1,38 @@
+//! Arbitrary bytes as a `.swm` file: `swm::decode` must return an error or
+//! a valid mesh, never panic, hang or allocate beyond its limits.
+//!
+//! The first byte picks the options, so one corpus exercises both paths:
+//! even, the defaults (what a viewer does); odd, EdgeSharpener and one
+//! Bender step under tight limits, which reach the post-processing code and
+//! the limit checks on Bender's fourfold output.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use swm::{DecodeOptions, Limits};
+
+/// Small enough that a lying header is caught early, large enough for the
+/// seed files (a few thousand triangles, four times that after Bender).
+const TIGHT: Limits = Limits {
+    max_vertices: 1 << 16,
+    max_faces: 1 << 17,
+    max_alloc_bytes: 64 << 20,
+};
+
+fuzz_target!(|data: &[u8]| {
+    let Some((&selector, file)) = data.split_first() else {
+        return;
+    };
+    let options = if selector & 1 == 0 {
+        DecodeOptions::default()
+    } else {
+        DecodeOptions {
+            limits: TIGHT,
+            sharpen: true,
+            bend_steps: 1,
+        }
+    };
+    if let Ok(mesh) = swm::decode(file, &options) {
+        // A decoded mesh is a mesh: indices in range, positions finite.
+        mesh.validate().expect("decode returned an invalid mesh");
+    }
+});
