@@ -246,10 +246,16 @@ fn sharpen_and_bend(mesh: TriMesh, options: &DecodeOptions) -> Result<TriMesh, E
     } else {
         (mesh, crate::post::SharpEdges::default())
     };
-    if options.bend_steps == 0 {
-        return Ok(mesh);
-    }
-    Ok(crate::post::bend::bend(&mesh, &sharp, options.bend_steps, &options.limits)?.mesh)
+    let mesh = if options.bend_steps == 0 {
+        mesh
+    } else {
+        crate::post::bend::bend(&mesh, &sharp, options.bend_steps, &options.limits)?.mesh
+    };
+    // A hostile file can place vertices near f32's limit (L about 1e38);
+    // snaps and stencils there overflow to infinity. The caller gets an
+    // error, never a mesh with non-finite positions.
+    mesh.validate()?;
+    Ok(mesh)
 }
 
 /// What `swm info` shows of a `.swm` file, read without decoding geometry.

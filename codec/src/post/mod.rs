@@ -61,6 +61,25 @@ impl SharpEdges {
 mod tests {
     use super::SharpEdges;
 
+    /// Fuzz finding (issue 8): a valid swing file with L ≈ 1e38 decodes
+    /// to finite positions, but Bender's stencils overflow them to
+    /// infinity; decoding with Sharpen&Bend must refuse, not return them.
+    #[test]
+    fn overflowing_post_processing_is_an_error() {
+        let bytes = include_bytes!("testdata/fuzz-bend-overflow.swm");
+        let plain = crate::decode(bytes, &Default::default()).unwrap();
+        plain.validate().unwrap();
+        let options = crate::DecodeOptions {
+            sharpen: true,
+            bend_steps: 1,
+            ..Default::default()
+        };
+        match crate::decode(bytes, &options) {
+            Ok(mesh) => mesh.validate().unwrap(),
+            Err(e) => assert!(matches!(e, crate::Error::Format(_)), "{e:?}"),
+        }
+    }
+
     #[test]
     fn sharp_edges_normalize_order_and_repeats() {
         let s = SharpEdges::new([[3, 1], [1, 3], [2, 2], [0, 5]]);
