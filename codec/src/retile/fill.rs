@@ -157,6 +157,47 @@ const FLAT: f64 = 0.02;
 /// Thickness of a flat disk's shell, in loop radii.
 const SHELL: f64 = 0.25;
 
+fn point(mesh: &TriMesh, v: u32) -> DVec3 {
+    DVec3::from(mesh.positions[v as usize].map(f64::from))
+}
+
+/// A boundary loop as both closers measure it: its points, their centroid,
+/// mean distance to it, and mean edge length.
+struct Loop {
+    outer: Vec<DVec3>,
+    centre: DVec3,
+    radius: f64,
+    edge: f64,
+}
+
+impl Loop {
+    fn new(mesh: &TriMesh, ring: &[u32]) -> Loop {
+        let outer: Vec<DVec3> = ring.iter().map(|&v| point(mesh, v)).collect();
+        let n = outer.len() as f64;
+        let centre = outer.iter().sum::<DVec3>() / n;
+        let radius = outer.iter().map(|p| p.distance(centre)).sum::<f64>() / n;
+        let edge = (0..outer.len())
+            .map(|i| outer[i].distance(outer[(i + 1) % outer.len()]))
+            .sum::<f64>()
+            / n;
+        Loop {
+            outer,
+            centre,
+            radius,
+            edge,
+        }
+    }
+
+    /// Steps of about one loop edge across `length`, 1 to `max`.
+    fn steps(&self, length: f64, max: usize) -> usize {
+        if self.edge > 0.0 {
+            ((length / self.edge).ceil() as usize).clamp(1, max)
+        } else {
+            1
+        }
+    }
+}
+
 /// Appends to `mesh` (one flat disk facing `normal`) a shell closing its
 /// loop `ring`: a wall down from the loop and a mirror copy of the disk
 /// at its foot, faces reversed. A membrane spanning a flat disk's loop
@@ -172,26 +213,15 @@ const SHELL: f64 = 0.25;
 ///                         the copy at the foot, reversed
 /// ```
 fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
-    let n = ring.len();
-    let at = |v: u32, m: &TriMesh| DVec3::from(m.positions[v as usize].map(f64::from));
-    let outer: Vec<DVec3> = ring.iter().map(|&v| at(v, mesh)).collect();
-    let centre = outer.iter().sum::<DVec3>() / n as f64;
-    let radius = outer.iter().map(|p| p.distance(centre)).sum::<f64>() / n as f64;
-    let edge = (0..n)
-        .map(|i| outer[i].distance(outer[(i + 1) % n]))
-        .sum::<f64>()
-        / n as f64;
-    let depth = SHELL * radius;
-    let rows = if edge > 0.0 {
-        ((depth / edge).ceil() as usize).clamp(1, 4 * MAX_RINGS)
-    } else {
-        1
-    };
+    let lp = Loop::new(mesh, ring);
+    let (n, outer) = (ring.len(), &lp.outer);
+    let depth = SHELL * lp.radius;
+    let rows = lp.steps(depth, 4 * MAX_RINGS);
     let disk_vertices = mesh.vertex_count() as u32;
     let disk_faces = mesh.face_count();
     // The copy: vertex v becomes v + disk_vertices.
     for v in 0..disk_vertices {
-        let p = at(v, mesh) - normal * depth;
+        let p = point(mesh, v) - normal * depth;
         mesh.positions.push(p.as_vec3().to_array());
     }
     for f in 0..disk_faces {
@@ -227,20 +257,9 @@ fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
 /// Appends to `mesh` a patch closing the loop `ring` (the input's edges
 /// run ring[i] → ring[i+1]).
 fn add_patch(mesh: &mut TriMesh, ring: &[u32]) {
-    let n = ring.len();
-    let at = |v: u32, m: &TriMesh| DVec3::from(m.positions[v as usize].map(f64::from));
-    let outer: Vec<DVec3> = ring.iter().map(|&v| at(v, mesh)).collect();
-    let centre = outer.iter().sum::<DVec3>() / n as f64;
-    let edge = (0..n)
-        .map(|i| outer[i].distance(outer[(i + 1) % n]))
-        .sum::<f64>()
-        / n as f64;
-    let radius = outer.iter().map(|p| p.distance(centre)).sum::<f64>() / n as f64;
-    let rings = if edge > 0.0 {
-        ((radius / edge).ceil() as usize).clamp(1, MAX_RINGS)
-    } else {
-        1
-    };
+    let lp = Loop::new(mesh, ring);
+    let (n, outer, centre, radius) = (ring.len(), &lp.outer, lp.centre, lp.radius);
+    let rings = lp.steps(radius, MAX_RINGS);
     // grid[k][i]: ring k (0 = the loop), i around; ring `rings` is the
     // centre alone.
     let mut grid: Vec<Vec<DVec3>> = (0..rings)

@@ -513,7 +513,11 @@ const NONE_PLACEHOLDER: u32 = NONE;
 /// the rim can close in a loop shorter than L. On a closed piece: the
 /// vertex whose own ring is flattest.
 fn start_vertex(s: &Surface, rank: u32, l: f64) -> u32 {
-    let hops = patch_hops(s);
+    // A closed input has no rim to keep away from; there the ring's own
+    // flatness was measured better (rd generated table: the wider score
+    // made 21 of 29 swing rows worse, by 2-37%).
+    let patched = s.patch.iter().any(|&p| p != NONE);
+    let hops = if patched { patch_hops(s) } else { Vec::new() };
     let far = hops.iter().copied().max().unwrap_or(0).min(RIM_HOPS);
     let ring_flatness = |x: u32| {
         let (mut sum, mut n) = (DVec3::ZERO, 0u32);
@@ -524,7 +528,7 @@ fn start_vertex(s: &Surface, rank: u32, l: f64) -> u32 {
         (n >= 5).then(|| sum.length() / n as f64)
     };
     let mut scored: Vec<(f64, u32)> = (0..s.vertex_count() as u32)
-        .filter(|&x| s.corner_of[x as usize] != NONE && hops[x as usize] >= far)
+        .filter(|&x| s.corner_of[x as usize] != NONE && (!patched || hops[x as usize] >= far))
         .filter_map(|x| ring_flatness(x).map(|f| (f, x)))
         .collect();
     if scored.is_empty() {
@@ -532,10 +536,7 @@ fn start_vertex(s: &Surface, rank: u32, l: f64) -> u32 {
     }
     // Flattest first, lowest id on ties.
     let order = |a: &(f64, u32), b: &(f64, u32)| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
-    // A closed input has no rim to keep away from; there the ring's own
-    // flatness was measured better (rd generated table: the wider score
-    // made 21 of 29 swing rows worse, by 2-37%).
-    if s.patch.iter().all(|&p| p == NONE) {
+    if !patched {
         let k = (rank as usize).min(scored.len() - 1);
         scored.select_nth_unstable_by(k, order);
         return scored[k].1;
