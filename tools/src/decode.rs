@@ -64,14 +64,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         v["decode_seconds"] = seconds.into();
         crate::report::print_json(&v);
     } else {
-        say!(
-            "{} -> {}: {} vertices, {} triangles, {:.3} s",
-            args.input.display(),
-            args.output.display(),
-            mesh.vertex_count(),
-            mesh.face_count(),
-            seconds
-        );
+        crate::report::print_written(&args.input, &args.output, &mesh, seconds);
     }
     Ok(())
 }

@@ -1,4 +1,5 @@
-//! Statistics as JSON, shared by the subcommands.
+//! Statistics as JSON, and the one-line summaries, shared by the
+//! subcommands.
 
 use serde_json::{json, Value};
 
@@ -7,6 +8,23 @@ pub fn print_json(v: &Value) {
     say!(
         "{}",
         serde_json::to_string_pretty(v).expect("JSON of numbers")
+    );
+}
+
+/// The line `decode` and `sharpen` print for a mesh they wrote.
+pub fn print_written(
+    input: &std::path::Path,
+    output: &std::path::Path,
+    mesh: &swm::TriMesh,
+    seconds: f64,
+) {
+    say!(
+        "{} -> {}: {} vertices, {} triangles, {:.3} s",
+        input.display(),
+        output.display(),
+        mesh.vertex_count(),
+        mesh.face_count(),
+        seconds
     );
 }
 

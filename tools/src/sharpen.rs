@@ -49,14 +49,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         });
         crate::report::print_json(&v);
     } else {
-        say!(
-            "{} -> {}: {} vertices, {} triangles, {:.3} s",
-            args.input.display(),
-            args.output.display(),
-            out.mesh.vertex_count(),
-            out.mesh.face_count(),
-            seconds
-        );
+        crate::report::print_written(&args.input, &args.output, &out.mesh, seconds);
         say!(
             "sharpened: {} chamfer edges, {} corners, {} vertices snapped, {} sharp edges{}",
             r.chamfer_edges,
