@@ -7,14 +7,24 @@
 //! Remeshing and Applications* (2004), chapters 7 and 8.
 //!
 //! Features: `std` (default), `io` (file readers and writers), `encoder`
-//! (cleaning of arbitrary input and the encoders). The decoder path is
-//! meant to build without `io` and `encoder`.
+//! (cleaning of arbitrary input and the encoders), `metrics`. Without
+//! them (`--no-default-features`) the crate is `#![no_std]` + `alloc` and
+//! holds the whole decoder: every mode, Sharpen&Bend, vertex normals.
 //!
 //! `unsafe` is denied everywhere; the single exception is the memory map
 //! of input files in `io::source`, which `memmap2` can only offer through
 //! an `unsafe` constructor.
+#![cfg_attr(not(feature = "std"), no_std)]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
+
+extern crate alloc;
+
+/// What `std`'s prelude gives and `core`'s does not: imported by every
+/// module of the decoder path, so it builds with and without `std`.
+mod prelude {
+    pub(crate) use alloc::{boxed::Box, vec, vec::Vec};
+}
 
 mod api;
 pub mod container;
@@ -24,6 +34,7 @@ mod error;
 pub mod geometry;
 mod limits;
 mod lossless;
+mod math;
 pub mod mesh;
 #[cfg(feature = "metrics")]
 pub mod metrics;
@@ -48,7 +59,10 @@ pub use error::{
     RetileFailure, TopologyError,
 };
 pub use limits::Limits;
-pub use mesh::{CornerId, CornerTable, FaceId, MeshStats, TriMesh, VertexId};
+pub use mesh::{
+    vertex_normals, vertex_normals_into, CornerId, CornerTable, FaceId, MeshStats, TriMesh,
+    VertexId,
+};
 pub use post::bend::{bend, Bent};
 pub use post::sharpen::{sharpen, SharpenOptions, SharpenReport, Sharpened, Unmoved};
 pub use post::SharpEdges;

@@ -8,6 +8,8 @@
 //! parameters do not: they travel in the `HEAD` section, so this layout
 //! stays the same for every mode.
 
+use crate::prelude::*;
+
 use super::{UnsupportedError, UnsupportedFeature};
 use super::{FORMAT_MAJOR, FORMAT_MINOR, FORMAT_NAME, MAGIC};
 use crate::{Error, FormatError, Limits, Location, Malformed};

@@ -6,6 +6,8 @@
 //! 1 to 255 printable ASCII characters without spaces; values are bytes,
 //! UTF-8 text unless the key's definition says otherwise.
 
+use crate::prelude::*;
+
 use super::header::put_u32;
 use super::{Section, FORMAT_NAME};
 use crate::{FormatError, Location, Malformed};

@@ -5,6 +5,8 @@
 //! older minor version, and tests can forge newer ones). It checks only
 //! what would make the frame unreadable.
 
+use crate::prelude::*;
+
 use super::crc::crc32;
 use super::header::{at, put_u16, put_u32, Header, MIN_LEN, TABLE_ENTRY_LEN};
 use super::Tag;

@@ -26,6 +26,8 @@
 //! does not describe a closed manifold gives an error, never a panic, a
 //! loop or an allocation beyond the declared (and limit-checked) counts.
 
+use crate::prelude::*;
+
 use super::shared::{Connectivity, Side, Symbol};
 use crate::{CornerId, CornerTable, FormatError, Malformed, VertexId};
 

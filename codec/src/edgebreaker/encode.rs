@@ -18,6 +18,8 @@
 //! edge. It is skipped, and a [`SplitEvent`] tells the decoder which later
 //! triangle that edge is glued to. On genus 0 this never happens.
 
+use crate::prelude::*;
+
 use super::shared::{Connectivity, Side, SplitEvent, Symbol};
 use crate::{CornerId, CornerTable, TopologyError, VertexId};
 

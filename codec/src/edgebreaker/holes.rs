@@ -8,6 +8,8 @@
 //! A boundary vertex lies on exactly one loop once (the corner table is
 //! manifold), so the result is a closed manifold.
 
+use crate::prelude::*;
+
 use crate::{CornerId, CornerTable, VertexId};
 
 /// A mesh closed by [`fill_holes`].

@@ -43,6 +43,8 @@
 //! closed genus-0 component costs at most 2 bits per triangle; the
 //! adaptive coder of the container does far better on regular meshes.
 
+use crate::prelude::*;
+
 /// One CLERS symbol.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[repr(u8)]

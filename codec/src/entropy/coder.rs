@@ -18,6 +18,8 @@
 //! gives garbage symbols or an error, never a panic, a loop or an
 //! allocation; the layers above validate what the symbols mean.
 
+use crate::prelude::*;
+
 use core::borrow::Borrow;
 use core::convert::Infallible;
 use core::num::NonZeroU32;

@@ -41,6 +41,8 @@
 //! the encoder and the decoder call after every symbol: the two sides stay
 //! in step only because it is the same code.
 
+use crate::prelude::*;
+
 use core::borrow::Borrow;
 use core::num::NonZeroU32;
 

@@ -52,6 +52,8 @@
 //! exceed `bits`, so decoded coordinates are always in the grid, and
 //! memory is bounded by the number of predictions.
 
+use crate::prelude::*;
+
 use super::predict::{average, average_of, parallelogram, Prediction, Predictions, MAX_SELECTABLE};
 use super::quantize::{max_value, MAX_BITS};
 #[cfg(doc)]

@@ -30,6 +30,8 @@
 //! same point. Must match the encoder exactly: both sides call
 //! [`Prediction::predict`] and [`average`].
 
+use crate::prelude::*;
+
 use super::quantize::max_value;
 use crate::{Error, FormatError, Malformed};
 

@@ -110,7 +110,7 @@ impl Quantizer {
             }
             let t = (p[k] as f64 - self.origin[k] as f64) / step;
             // `as` saturates (NaN becomes 0), then the clamp keeps the grid.
-            ((t + 0.5).floor() as u32).min(max)
+            (crate::math::floor(t + 0.5) as u32).min(max)
         })
     }
 

@@ -71,7 +71,9 @@
 //! arrays are larger than the table, and building them costs a pass of
 //! scattered writes.
 
-use std::collections::VecDeque;
+use crate::prelude::*;
+
+use alloc::collections::VecDeque;
 
 use super::predict::{Prediction, Predictions};
 use crate::mesh::{corners_by_vertex, CornerId, CornerTable, VertexId};

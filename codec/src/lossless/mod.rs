@@ -14,6 +14,8 @@
 //! below; each pair must match exactly. The SwingWrapper mode writes and
 //! reads its `TOPO` and `CLRS` with the same functions.
 
+use crate::prelude::*;
+
 #[cfg(test)]
 use crate::container::parse_container;
 use crate::container::{check_count_fits, Container, Tag};

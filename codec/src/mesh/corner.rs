@@ -30,6 +30,8 @@
 //! Building is linear: half-edges are bucketed by their lower vertex
 //! (a counting sort), then matched inside each bucket.
 
+use crate::prelude::*;
+
 use super::{CornerId, FaceId, VertexId};
 use crate::TopologyError;
 

@@ -4,8 +4,11 @@
 //! geometric computation converts to `f64` first (glam `DVec3`), so sums
 //! of many small terms and nearly-degenerate cross products stay accurate.
 
+use crate::prelude::*;
+
 mod corner;
 mod ids;
+mod normals;
 mod topology;
 
 #[cfg(test)]
@@ -17,6 +20,7 @@ pub mod clean;
 pub(crate) use corner::corners_by_vertex;
 pub use corner::CornerTable;
 pub use ids::{CornerId, FaceId, VertexId};
+pub use normals::{vertex_normals, vertex_normals_into};
 pub use topology::{Component, MeshStats};
 
 use glam::DVec3;

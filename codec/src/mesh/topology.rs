@@ -5,6 +5,8 @@
 //! the Euler characteristic is chi = V - E + F = 2 - 2g - b, which gives the
 //! genus g. E is (3F + B) / 2 where B counts boundary half-edges.
 
+use crate::prelude::*;
+
 use super::{CornerId, CornerTable, FaceId, TriMesh, VertexId};
 
 /// One connected component (connected through shared edges).

@@ -11,6 +11,8 @@
 //!
 //! The tags are the only thing the two steps share: [`SharpEdges`].
 
+use crate::prelude::*;
+
 pub mod bend;
 pub mod sharpen;
 

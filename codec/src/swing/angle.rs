@@ -26,6 +26,8 @@
 //! fixed polynomials, not from the platform's `sin`/`cos`: so every
 //! conforming decoder rebuilds the same bits. Must match the spec exactly.
 
+use crate::prelude::*;
+
 use crate::{CornerId, CornerTable, Error, FormatError, Malformed};
 
 /// Fewest angle bits a file may use.
@@ -84,7 +86,7 @@ fn horner(c: &[f64], z: f64) -> f64 {
 /// implementation; a `no_std` build must keep that property).
 #[inline]
 fn sqrt(x: f64) -> f64 {
-    x.sqrt()
+    crate::math::sqrt(x)
 }
 
 /// Cosines and sines of the 2^K quantized angles qΔ, Δ = 2π/2^K.

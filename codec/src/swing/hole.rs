@@ -37,6 +37,8 @@
 //! [`encode`] and [`decode`] mirror each other: both take each context
 //! from [`context`], with the same models, in the same triangle order.
 
+use crate::prelude::*;
+
 #[cfg(feature = "encoder")]
 use crate::entropy::Encoder;
 use crate::entropy::{ContextModel, Decoder};

@@ -25,6 +25,8 @@
 //! dropping rule), `write` (the encoder side), `read` (the decoder side
 //! and `inspect`).
 
+use crate::prelude::*;
+
 mod angle;
 mod hole;
 mod read;

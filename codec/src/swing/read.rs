@@ -4,6 +4,8 @@
 //! (`HOLE`) drops triangles and the lossless remainder (`REST`) adds
 //! some. Every count is checked before anything sized by it is allocated.
 
+use crate::prelude::*;
+
 use super::{angle, hole, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
 use crate::container::{check_count_fits, parse_container, Container, Mode, Section, Tag};
 use crate::edgebreaker::{self, Connectivity, Symbol};

@@ -20,6 +20,8 @@
 //! The models, the order of the fields and the walk over the triangles
 //! must match between [`encode`] and [`decode`] exactly.
 
+use crate::prelude::*;
+
 #[cfg(feature = "encoder")]
 use crate::entropy::Encoder;
 use crate::entropy::{AdaptiveModel, ContextModel, Decoder};

@@ -29,6 +29,8 @@
 //! caller's cap), and a walk only crosses non-hard edges, which are never
 //! boundaries, so it never meets a missing neighbour.
 
+use crate::prelude::*;
+
 use super::super::SharpEdges;
 use crate::{CornerId, CornerTable, VertexId};
 

@@ -14,6 +14,8 @@
 //! there (`tests.rs` checks both). Vertex names: V and W are the edge's
 //! ends, p is the new point, `=` marks a sharp (tagged or boundary) edge.
 
+use crate::math;
+
 use glam::DVec3;
 
 /// **R1**, the butterfly (both ends smooth, valence 6). Weights in the
@@ -153,7 +155,7 @@ pub(super) fn e1(k: usize, j: usize) -> f64 {
         4 => [0.375, 0.0, -0.125, 0.0][j % 4],
         _ => {
             let a = core::f64::consts::TAU * j as f64 / k as f64;
-            (0.25 + a.cos() + 0.5 * (2.0 * a).cos()) / k as f64
+            (0.25 + math::cos(a) + 0.5 * math::cos(2.0 * a)) / k as f64
         }
     }
 }
@@ -163,7 +165,7 @@ pub(super) fn e1(k: usize, j: usize) -> f64 {
 /// `1 − sin θ · sin iθ / (k (1 − cos θ))`, θ = π/k.
 pub(super) fn e2_center(k: usize, i: usize) -> f64 {
     let (kf, t) = sector_angle(k);
-    1.0 - t.sin() * (i as f64 * t).sin() / (kf * (1.0 - t.cos()))
+    1.0 - math::sin(t) * math::sin(i as f64 * t) / (kf * (1.0 - math::cos(t)))
 }
 
 /// **E2**, weight of `s_j` (0 ≤ j ≤ k) for the edge V–s_i of a sector
@@ -185,15 +187,18 @@ pub(super) fn e2(k: usize, i: usize, j: usize) -> f64 {
     let (kf, t) = sector_angle(k);
     let (i, jf) = (i as f64, j as f64);
     if j == 0 || j == k {
-        let s0 = 0.25 * (i * t).cos()
-            - (2.0 * t).sin() * (2.0 * i * t).sin() / (4.0 * kf * (t.cos() - (2.0 * t).cos()));
+        let s0 = 0.25 * math::cos(i * t)
+            - math::sin(2.0 * t) * math::sin(2.0 * i * t)
+                / (4.0 * kf * (math::cos(t) - math::cos(2.0 * t)));
         if j == 0 {
             s0
         } else {
             -s0
         }
     } else {
-        ((i * t).sin() * (jf * t).sin() + 0.5 * (2.0 * i * t).sin() * (2.0 * jf * t).sin()) / kf
+        (math::sin(i * t) * math::sin(jf * t)
+            + 0.5 * math::sin(2.0 * i * t) * math::sin(2.0 * jf * t))
+            / kf
     }
 }
 
@@ -258,18 +263,18 @@ pub(super) fn e1_all(center: DVec3, ring: &[DVec3], out: &mut [DVec3]) {
     for (m, &r) in ring.iter().enumerate() {
         let x = a * m as f64;
         sum += r;
-        c1 += r * x.cos();
-        s1 += r * x.sin();
-        c2 += r * (2.0 * x).cos();
-        s2 += r * (2.0 * x).sin();
+        c1 += r * math::cos(x);
+        s1 += r * math::sin(x);
+        c2 += r * math::cos(2.0 * x);
+        s2 += r * math::sin(2.0 * x);
     }
     let kf = k as f64;
     for (e, o) in out.iter_mut().enumerate().take(k) {
         let x = a * e as f64;
         let fourier = 0.25 * sum
-            + x.cos() * c1
-            + x.sin() * s1
-            + 0.5 * ((2.0 * x).cos() * c2 + (2.0 * x).sin() * s2);
+            + math::cos(x) * c1
+            + math::sin(x) * s1
+            + 0.5 * (math::cos(2.0 * x) * c2 + math::sin(2.0 * x) * s2);
         *o = 0.75 * center + fourier / kf;
     }
 }
@@ -287,14 +292,14 @@ pub(super) fn e2_all(center: DVec3, sector: &[DVec3], out: &mut [DVec3]) {
     let (kf, t) = sector_angle(k);
     let (mut t1, mut t2) = (DVec3::ZERO, DVec3::ZERO);
     for (j, &s) in sector.iter().enumerate().take(k).skip(1) {
-        t1 += s * (j as f64 * t).sin();
-        t2 += s * (2.0 * j as f64 * t).sin();
+        t1 += s * math::sin(j as f64 * t);
+        t2 += s * math::sin(2.0 * j as f64 * t);
     }
     let ends = sector[0] - sector[k];
     for (i, o) in out.iter_mut().enumerate().take(k).skip(1) {
         let x = i as f64 * t;
         *o = center * e2_center(k, i)
             + ends * e2(k, i, 0)
-            + (x.sin() * t1 + 0.5 * (2.0 * x).sin() * t2) / kf;
+            + (math::sin(x) * t1 + 0.5 * math::sin(2.0 * x) * t2) / kf;
     }
 }

@@ -34,6 +34,8 @@
 //! shared by the whole fan ([`stencil::e1_all`], [`stencil::e2_all`])
 //! instead of summing each edge's stencil.
 
+use crate::prelude::*;
+
 use glam::DVec3;
 
 use super::super::SharpEdges;

@@ -22,6 +22,9 @@
 //! Every filter is one or two sweeps over flat arrays indexed by corner,
 //! face or vertex; the flood visits each face at most once.
 
+use crate::math;
+use crate::prelude::*;
+
 use glam::Vec3;
 
 use crate::mesh::{CornerId, CornerTable, FaceId};
@@ -102,7 +105,7 @@ pub(super) fn classify(table: &CornerTable, normals: &[Vec3], smooth_factor: f64
     // compares false. With t = 0 nothing is smooth.
     let threshold = (smooth_factor * mean).min(core::f64::consts::PI);
     let cos_threshold = if threshold > 0.0 {
-        threshold.cos() as f32
+        math::cos(threshold) as f32
     } else {
         f32::INFINITY
     };
@@ -247,7 +250,7 @@ pub(super) fn acos(x: f64) -> f64 {
     ];
     let t = x.abs();
     let poly = A.iter().rev().fold(0.0, |acc, &a| acc * t + a);
-    let r = (1.0 - t).max(0.0).sqrt() * poly;
+    let r = math::sqrt((1.0 - t).max(0.0)) * poly;
     if x < 0.0 {
         core::f64::consts::PI - r
     } else {

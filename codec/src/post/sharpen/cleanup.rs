@@ -38,6 +38,9 @@
 //! the slivers. Every collapse deletes a face; flips do not, so a budget
 //! of operations bounds the loop.
 
+use crate::math;
+use crate::prelude::*;
+
 use glam::DVec3;
 
 use super::{angle_at, point};
@@ -87,7 +90,8 @@ pub(super) fn is_sliver(p: [DVec3; 3], sin2: f64) -> bool {
 
 /// The `sin²` of the angle below which a triangle is a sliver.
 pub(super) fn sliver_sin2(min_angle_degrees: f64) -> f64 {
-    min_angle_degrees.to_radians().sin().powi(2)
+    let s = math::sin(min_angle_degrees.to_radians());
+    s * s
 }
 
 /// Removes slivers (module docs). `original` is the input's vertex count:

@@ -37,6 +37,9 @@
 //! Cost: linear in the mesh size; flat arrays indexed by corner, face or
 //! vertex, and no hashing.
 
+use crate::math;
+use crate::prelude::*;
+
 mod classify;
 mod cleanup;
 mod snap;
@@ -376,7 +379,7 @@ impl FaceGeometry {
             .collect();
         FaceGeometry {
             normals,
-            longest_edge: longest2.sqrt(),
+            longest_edge: math::sqrt(longest2),
             slivers,
         }
     }
@@ -391,7 +394,7 @@ fn unit_normal(u: DVec3, v: DVec3) -> DVec3 {
     let len2 = n.length_squared();
     let scale = u.length_squared() * v.length_squared();
     if len2 > 1e-24 * scale && len2 > 0.0 {
-        n / len2.sqrt()
+        n / math::sqrt(len2)
     } else {
         DVec3::ZERO
     }
@@ -409,5 +412,5 @@ fn point(positions: &[[f32; 3]], v: u32) -> DVec3 {
 #[inline]
 fn angle_at(p: DVec3, q: DVec3, r: DVec3) -> f64 {
     let (u, v) = (q - p, r - p);
-    u.cross(v).length().atan2(u.dot(v))
+    math::atan2(u.cross(v).length(), u.dot(v))
 }

@@ -30,6 +30,8 @@
 //! would be too long has its new vertices put back (a worklist, since
 //! putting a chamfer vertex back changes the face across the edge).
 
+use crate::prelude::*;
+
 use glam::DVec3;
 
 use super::classify::{is_green, Classes};
