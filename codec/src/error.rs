@@ -305,6 +305,15 @@ impl fmt::Display for Malformed {
 pub enum ParameterError {
     /// The file extension names no supported mesh format.
     UnknownExtension,
+    /// A caller-provided output buffer cannot hold the decoded mesh.
+    BufferTooSmall {
+        /// Which buffer: `"positions"`, `"indices"` or `"normals"`.
+        buffer: &'static str,
+        /// Elements it needs.
+        needed: u64,
+        /// Elements it has.
+        given: u64,
+    },
     /// A numeric option is outside its range.
     OutOfRange {
         /// The option's name.
@@ -324,6 +333,14 @@ impl fmt::Display for ParameterError {
             ParameterError::UnknownExtension => {
                 write!(f, "unknown mesh format (expected .obj, .ply, .off or .stl)")
             }
+            ParameterError::BufferTooSmall {
+                buffer,
+                needed,
+                given,
+            } => write!(
+                f,
+                "the {buffer} buffer holds {given} elements, the decoded mesh needs {needed}"
+            ),
             ParameterError::OutOfRange {
                 name,
                 value,

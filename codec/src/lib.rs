@@ -27,6 +27,7 @@ mod prelude {
 }
 
 mod api;
+mod buffers;
 pub mod container;
 pub mod edgebreaker;
 pub mod entropy;
@@ -53,6 +54,7 @@ pub use api::{
     encode, Attempt, EncodeMode, EncodeOptions, EncodeStats, Encoded, PieceOutcome, PieceReport,
     RateReport, SwingTarget,
 };
+pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::Mode;
 pub use error::{
     Error, FormatError, LimitError, Limited, Location, Malformed, ParameterError, RetileError,

@@ -41,7 +41,7 @@ pub use angle::{first_edge_length, rebuild_positions, MAX_ANGLE_BITS, MIN_ANGLE_
 // What the retiler builds its tips with: the decoder's own arithmetic.
 #[cfg(feature = "encoder")]
 pub use angle::{quantize, tip_radius, AngleTable, Frame};
-pub(crate) use read::{decode, inspect};
+pub(crate) use read::{decode, inspect, rest_counts};
 #[cfg(feature = "encoder")]
 pub(crate) use write::write;
 

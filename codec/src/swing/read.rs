@@ -153,6 +153,18 @@ fn read_rest<'a>(section: Section<'a>, limits: &Limits) -> Result<Container<'a>,
         .map_err(in_section(section.offset))
 }
 
+/// Vertices and triangles of `REST` (0, 0 without one), from its header:
+/// what `decode` appends to the retiled mesh.
+pub(crate) fn rest_counts(file: &Container<'_>, limits: &Limits) -> Result<(u64, u64), Error> {
+    Ok(match file.find(Tag::REST) {
+        Some(s) => {
+            let h = read_rest(s, limits)?.header;
+            (u64::from(h.vertex_count), u64::from(h.triangle_count))
+        }
+        None => (0, 0),
+    })
+}
+
 /// Decodes a SwingWrapper file whose container was parsed.
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
     let (head, conn, table) = read_connectivity(file, limits)?;
