@@ -305,6 +305,21 @@ impl fmt::Display for Malformed {
 pub enum ParameterError {
     /// The file extension names no supported mesh format.
     UnknownExtension,
+    /// The format can be written but not read (GLB).
+    WriteOnly {
+        /// Short name of the format.
+        format: &'static str,
+    },
+    /// The file would be larger than its format can describe (GLB stores
+    /// lengths as 32-bit numbers).
+    FileTooLarge {
+        /// Short name of the format.
+        format: &'static str,
+        /// Bytes the file would take.
+        bytes: u64,
+        /// Most bytes a file of the format can take.
+        max: u64,
+    },
     /// A numeric option is outside its range.
     OutOfRange {
         /// The option's name.
@@ -322,8 +337,19 @@ impl fmt::Display for ParameterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ParameterError::UnknownExtension => {
-                write!(f, "unknown mesh format (expected .obj, .ply, .off or .stl)")
+                write!(
+                    f,
+                    "unknown mesh format (expected .obj, .ply, .off or .stl, or .glb for output)"
+                )
             }
+            ParameterError::WriteOnly { format } => write!(
+                f,
+                "{format} files can be written but not read (inputs: .obj, .ply, .off or .stl)"
+            ),
+            ParameterError::FileTooLarge { format, bytes, max } => write!(
+                f,
+                "the {format} file would take {bytes} bytes, more than the {max} the format allows"
+            ),
             ParameterError::OutOfRange {
                 name,
                 value,
