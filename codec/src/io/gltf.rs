@@ -24,10 +24,11 @@
 //! - every NORMAL is unit length (required by §3.7.2.1);
 //! - the JSON holds only finite numbers: a non-finite position is refused
 //!   with the error [`TriMesh::validate`] gives, never written;
-//! - a mesh without triangles gives a valid file with one empty scene and
-//!   no buffer: glTF accessors and bufferViews cannot be empty (`count`
-//!   and `byteLength` ≥ 1), and a triangle primitive needs triangles. Its
-//!   vertices, which nothing draws, are not written.
+//! - a mesh without triangles gives a valid file whose scene holds one
+//!   node without a mesh, and no buffer: glTF accessors and bufferViews
+//!   cannot be empty (`count` and `byteLength` ≥ 1), and a triangle
+//!   primitive needs triangles. Its vertices, which nothing draws, are not
+//!   written.
 //!
 //! Reading GLB is not supported (see `MeshFormat::Glb`).
 
@@ -171,8 +172,8 @@ fn bounds(positions: &[[f32; 3]]) -> Result<([f32; 3], [f32; 3]), Error> {
     Ok((min, max))
 }
 
-/// The JSON chunk's text, unpadded. With no triangles: the asset and one
-/// empty scene.
+/// The JSON chunk's text, unpadded. With no triangles: the asset and a
+/// scene of one empty node.
 fn json(vertices: u64, triangles: u64, min: [f32; 3], max: [f32; 3]) -> String {
     let mut s = String::with_capacity(1024);
     // `write!` into a String cannot fail.
@@ -182,7 +183,9 @@ fn json(vertices: u64, triangles: u64, min: [f32; 3], max: [f32; 3]) -> String {
         env!("CARGO_PKG_VERSION")
     );
     if triangles == 0 {
-        s.push_str(r#""scenes":[{}]}"#);
+        // `scene.nodes` is optional in the glTF schema, but readers such as
+        // the `gltf` crate (1.4) require it; an empty node satisfies both.
+        s.push_str(r#""scenes":[{"nodes":[0]}],"nodes":[{}]}"#);
         return s;
     }
     let attribute_len = 12 * vertices;
@@ -413,7 +416,7 @@ mod tests {
     }
 
     #[test]
-    fn no_triangles_is_an_empty_scene() {
+    fn no_triangles_is_a_scene_without_a_mesh() {
         for mesh in [
             TriMesh::default(),
             TriMesh::new(vec![[1.0, 2.0, 3.0]], vec![]),
@@ -424,8 +427,9 @@ mod tests {
             let doc: Value = serde_json::from_str(json).unwrap();
             assert_eq!(doc["asset"]["version"], "2.0");
             assert_eq!(doc["scene"], 0);
-            assert_eq!(doc["scenes"], serde_json::json!([{}]));
-            for key in ["nodes", "meshes", "buffers", "bufferViews", "accessors"] {
+            assert_eq!(doc["scenes"], serde_json::json!([{"nodes": [0]}]));
+            assert_eq!(doc["nodes"], serde_json::json!([{}]));
+            for key in ["meshes", "buffers", "bufferViews", "accessors"] {
                 assert!(doc.get(key).is_none(), "{key}");
             }
         }

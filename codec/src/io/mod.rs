@@ -212,7 +212,7 @@ fn temp_path(path: &Path) -> PathBuf {
 /// `BufWriter`). OBJ, PLY and OFF keep the mesh exactly; STL is written
 /// as binary STL, three corners per triangle; GLB keeps positions and
 /// triangles and adds unit vertex normals (a mesh without triangles gives
-/// a GLB file with an empty scene).
+/// a GLB file whose scene has no mesh).
 pub fn write_mesh_to<W: Write>(w: W, format: MeshFormat, mesh: &TriMesh) -> Result<(), Error> {
     mesh.validate()?;
     let mut w = BufWriter::with_capacity(1 << 16, w);
