@@ -30,8 +30,8 @@ fn main() -> ExitCode {
 
 fn run(input: &str, output: &str) -> Result<(), String> {
     let bytes = std::fs::read(input).map_err(|e| format!("{input}: {e}"))?;
-    let mesh = swm::decode(&bytes, &swm::DecodeOptions::default())
-        .map_err(|e| format!("{input}: {e}"))?;
+    let mesh =
+        swm::decode(&bytes, &swm::DecodeOptions::default()).map_err(|e| format!("{input}: {e}"))?;
     let temp = format!("{output}.part");
     let written = (|| {
         let mut w = BufWriter::new(std::fs::File::create(&temp)?);

@@ -307,12 +307,27 @@ pub enum ParameterError {
     UnknownExtension,
     /// A caller-provided output buffer cannot hold the decoded mesh.
     BufferTooSmall {
-        /// Which buffer: `"positions"`, `"indices"` or `"normals"`.
+        /// Which buffer: `"positions"` or `"indices"`.
         buffer: &'static str,
         /// Elements it needs.
         needed: u64,
         /// Elements it has.
         given: u64,
+    },
+    /// The format can be written but not read (GLB).
+    WriteOnly {
+        /// Short name of the format.
+        format: &'static str,
+    },
+    /// The file would be larger than its format can describe (GLB stores
+    /// lengths as 32-bit numbers).
+    FileTooLarge {
+        /// Short name of the format.
+        format: &'static str,
+        /// Bytes the file would take.
+        bytes: u64,
+        /// Most bytes a file of the format can take.
+        max: u64,
     },
     /// A numeric option is outside its range.
     OutOfRange {
@@ -331,7 +346,10 @@ impl fmt::Display for ParameterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ParameterError::UnknownExtension => {
-                write!(f, "unknown mesh format (expected .obj, .ply, .off or .stl)")
+                write!(
+                    f,
+                    "unknown mesh format (expected .obj, .ply, .off or .stl, or .glb for output)"
+                )
             }
             ParameterError::BufferTooSmall {
                 buffer,
@@ -340,6 +358,14 @@ impl fmt::Display for ParameterError {
             } => write!(
                 f,
                 "the {buffer} buffer holds {given} elements, the decoded mesh needs {needed}"
+            ),
+            ParameterError::WriteOnly { format } => write!(
+                f,
+                "{format} files can be written but not read (inputs: .obj, .ply, .off or .stl)"
+            ),
+            ParameterError::FileTooLarge { format, bytes, max } => write!(
+                f,
+                "the {format} file would take {bytes} bytes, more than the {max} the format allows"
             ),
             ParameterError::OutOfRange {
                 name,

@@ -1,4 +1,4 @@
-//! `swm decode IN.swm -o OUT.(obj|ply|off|stl) [--sharpen] [--bend N]
+//! `swm decode IN.swm -o OUT.(obj|ply|off|stl|glb) [--sharpen] [--bend N]
 //! [--max-vertices N] [--max-faces N] [--max-alloc BYTES] [--json]`.
 
 use crate::CliError;
@@ -9,7 +9,8 @@ use std::time::Instant;
 pub struct Args {
     /// The .swm file to decode.
     input: PathBuf,
-    /// The mesh file to write; its extension picks the format.
+    /// The mesh file to write; its extension picks the format: .obj, .ply,
+    /// .off, .stl, or .glb (glTF 2.0 binary, with vertex normals).
     #[arg(short, long)]
     output: PathBuf,
     /// Restore sharp edges and corners after decoding (EdgeSharpener).
@@ -38,7 +39,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
     // Refuse an unknown output format before doing any work.
     swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::new(&args.output, e))?;
-    let bytes = std::fs::read(&args.input).map_err(|e| CliError::new(&args.input, e))?;
+    // Mapped when large: the decoder reads the file once, front to back.
+    let bytes = swm::io::read_file(&args.input).map_err(|e| CliError::new(&args.input, e))?;
     let default = swm::Limits::default();
     let limits = swm::Limits {
         max_vertices: args.max_vertices.unwrap_or(default.max_vertices),

@@ -1,4 +1,5 @@
-//! Mesh file readers and writers: Wavefront OBJ, PLY, OFF and STL.
+//! Mesh file readers and writers: Wavefront OBJ, PLY, OFF and STL, and a
+//! writer for glTF 2.0 binary (GLB), which is output only.
 //!
 //! Readers return the *raw* mesh of a file: positions as written
 //! (converted to `f32`), polygons fan-triangulated as (v0, vi, vi+1), no
@@ -18,12 +19,14 @@
 //! Writers produce files these readers read back to the same mesh, bit for
 //! bit: OBJ and OFF with shortest round-trip decimals, PLY as binary
 //! little-endian, STL as binary (which cannot share vertices, so it keeps
-//! positions but not the indexing). [`write_mesh`] replaces its target only
-//! once the whole file is written.
+//! positions but not the indexing). GLB gets the positions bit for bit, the
+//! triangles, and angle-weighted unit normals for shading. [`write_mesh`]
+//! replaces its target only once the whole file is written.
 //!
 //! One file per format; `source` maps or reads input files, `text` holds
 //! the ASCII scanning the text formats share.
 
+mod gltf;
 mod obj;
 mod off;
 mod ply;
@@ -35,7 +38,11 @@ use crate::{Error, FormatError, LimitError, Limited, Limits, Malformed, Paramete
 use std::ffi::OsString;
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
+use std::ops::Deref;
 use std::path::{Path, PathBuf};
+
+/// What every reader is: the bytes of a whole file to its raw mesh.
+type Reader = fn(&[u8], &Limits) -> Result<TriMesh, Error>;
 
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,6 +56,8 @@ pub enum MeshFormat {
     Off,
     /// STL (ASCII or binary).
     Stl,
+    /// glTF 2.0 binary: written, not read.
+    Glb,
 }
 
 impl MeshFormat {
@@ -60,6 +69,7 @@ impl MeshFormat {
             ("ply", MeshFormat::Ply),
             ("off", MeshFormat::Off),
             ("stl", MeshFormat::Stl),
+            ("glb", MeshFormat::Glb),
         ]
         .into_iter()
         .find(|(name, _)| ext.eq_ignore_ascii_case(name))
@@ -67,15 +77,46 @@ impl MeshFormat {
         .ok_or(Error::Parameter(ParameterError::UnknownExtension))
     }
 
-    /// Short upper-case name: "OBJ", "PLY", "OFF" or "STL".
+    /// Short upper-case name: "OBJ", "PLY", "OFF", "STL" or "GLB".
     pub fn name(self) -> &'static str {
         match self {
             MeshFormat::Obj => "OBJ",
             MeshFormat::Ply => "PLY",
             MeshFormat::Off => "OFF",
             MeshFormat::Stl => "STL",
+            MeshFormat::Glb => "GLB",
         }
     }
+
+    /// Whether this crate reads the format (every format is written).
+    pub fn is_readable(self) -> bool {
+        self.reader().is_ok()
+    }
+
+    /// The format's reader, or [`ParameterError::WriteOnly`].
+    fn reader(self) -> Result<Reader, Error> {
+        Ok(match self {
+            MeshFormat::Obj => obj::read,
+            MeshFormat::Ply => ply::read,
+            MeshFormat::Off => off::read,
+            MeshFormat::Stl => stl::read,
+            MeshFormat::Glb => {
+                let format = self.name();
+                return Err(Error::Parameter(ParameterError::WriteOnly { format }));
+            }
+        })
+    }
+}
+
+/// The whole content of a file, as [`read_mesh_with`] gets it: files of
+/// 1 MiB or more are memory-mapped, smaller ones read into memory. For
+/// inputs other than meshes, e.g. `.swm` files.
+///
+/// As with [`read_mesh_with`], if another process truncates a mapped file
+/// while the bytes are in use, the operating system may kill this one
+/// (`SIGBUS`); use `std::fs::read` when that matters.
+pub fn read_file(path: &Path) -> Result<impl Deref<Target = [u8]>, Error> {
+    Ok(source::Source::open(path)?)
 }
 
 /// Reads a mesh file, its format given by the extension, with the default
@@ -92,26 +133,25 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, Error> {
 /// that matters.
 pub fn read_mesh_with(path: &Path, limits: &Limits) -> Result<TriMesh, Error> {
     let format = MeshFormat::from_path(path)?;
+    // Before opening: a write-only format is refused without reading.
+    format.reader()?;
     let bytes = source::Source::open(path)?;
     read_mesh_bytes(&bytes, format, limits)
 }
 
-/// Reads a mesh from the bytes of a file.
+/// Reads a mesh from the bytes of a file. A format that is only written
+/// ([`MeshFormat::is_readable`]) gives [`ParameterError::WriteOnly`].
 pub fn read_mesh_bytes(
     bytes: &[u8],
     format: MeshFormat,
     limits: &Limits,
 ) -> Result<TriMesh, Error> {
+    let read = format.reader()?;
     let empty = || Error::Format(FormatError::new(format.name(), Malformed::Empty));
     if text::is_blank(bytes) {
         return Err(empty());
     }
-    let mesh = match format {
-        MeshFormat::Obj => obj::read(bytes, limits)?,
-        MeshFormat::Ply => ply::read(bytes, limits)?,
-        MeshFormat::Off => off::read(bytes, limits)?,
-        MeshFormat::Stl => stl::read(bytes, limits)?,
-    };
+    let mesh = read(bytes, limits)?;
     if mesh.positions.is_empty() && mesh.triangles.is_empty() {
         return Err(empty());
     }
@@ -170,7 +210,9 @@ fn temp_path(path: &Path) -> PathBuf {
 
 /// Writes a mesh in `format` to `w` (buffered here; no need to pass a
 /// `BufWriter`). OBJ, PLY and OFF keep the mesh exactly; STL is written
-/// as binary STL, three corners per triangle.
+/// as binary STL, three corners per triangle; GLB keeps positions and
+/// triangles and adds unit vertex normals (a mesh without triangles gives
+/// a GLB file whose scene has no mesh).
 pub fn write_mesh_to<W: Write>(w: W, format: MeshFormat, mesh: &TriMesh) -> Result<(), Error> {
     mesh.validate()?;
     let mut w = BufWriter::with_capacity(1 << 16, w);
@@ -179,6 +221,7 @@ pub fn write_mesh_to<W: Write>(w: W, format: MeshFormat, mesh: &TriMesh) -> Resu
         MeshFormat::Ply => ply::write(&mut w, mesh)?,
         MeshFormat::Off => off::write(&mut w, mesh)?,
         MeshFormat::Stl => stl::write(&mut w, mesh)?,
+        MeshFormat::Glb => gltf::write(&mut w, mesh)?,
     }
     w.flush()?;
     Ok(())

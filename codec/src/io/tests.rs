@@ -84,6 +84,7 @@ fn formats_by_extension() {
     assert_eq!(f("B.PLY").unwrap(), MeshFormat::Ply);
     assert_eq!(f("x.Off").unwrap(), MeshFormat::Off);
     assert_eq!(f("x.stl").unwrap(), MeshFormat::Stl);
+    assert_eq!(f("x.GLB").unwrap(), MeshFormat::Glb);
     for bad in ["x.xyz", "noext", "obj", ""] {
         assert!(matches!(
             f(bad),
@@ -91,6 +92,49 @@ fn formats_by_extension() {
         ));
     }
     assert_eq!(MeshFormat::Stl.name(), "STL");
+    assert_eq!(MeshFormat::Glb.name(), "GLB");
+}
+
+#[test]
+fn glb_is_written_not_read() {
+    assert!(MeshFormat::Obj.is_readable());
+    assert!(!MeshFormat::Glb.is_readable());
+    let write_only = |r: Result<TriMesh, Error>| {
+        matches!(
+            r,
+            Err(Error::Parameter(ParameterError::WriteOnly {
+                format: "GLB"
+            }))
+        )
+    };
+    let dir = scratch("glb");
+    let path = dir.join("m.glb");
+    // Refused by format before the (missing) file is opened.
+    assert!(write_only(read_mesh(&path)));
+    write_mesh(&path, &awkward_mesh()).unwrap();
+    let bytes = fs::read(&path).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    assert!(write_only(read(&bytes, MeshFormat::Glb)));
+    assert!(write_only(read(b"", MeshFormat::Glb)));
+    let message = read_mesh(&path).unwrap_err().to_string();
+    assert!(
+        message.contains("GLB files can be written but not read"),
+        "{message}"
+    );
+    let _ = fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn read_file_maps_or_reads() {
+    let dir = scratch("read-file");
+    for len in [0, 5, 1 << 20, (1 << 20) + 3] {
+        let path = dir.join(format!("f{len}"));
+        let bytes = garbage(len, len as u64 + 1);
+        fs::write(&path, &bytes).unwrap();
+        assert_eq!(&*read_file(&path).unwrap(), &bytes[..], "{len}");
+    }
+    assert!(matches!(read_file(&dir.join("missing")), Err(Error::Io(_))));
+    let _ = fs::remove_dir_all(&dir);
 }
 
 fn scratch(name: &str) -> PathBuf {

@@ -1,0 +1,482 @@
+//! glTF 2.0 binary (GLB) writer, after the Khronos "glTF 2.0
+//! Specification" (§4.4 "GLB File Format Specification", §3.6 "Binary
+//! Data Storage", §3.7 "Geometry").
+//!
+//! ```text
+//! header   magic "glTF" | version 2 | total length          12 bytes, u32 LE
+//! chunk 0  length | "JSON" | JSON text, padded with spaces
+//! chunk 1  length | "BIN\0" | POSITION | NORMAL | indices, padded with zeros
+//!                            12 B/vertex  12 B/vertex  12 B/triangle
+//! ```
+//!
+//! The document is one scene, one node, one mesh with one triangle
+//! primitive (mode 4): POSITION and NORMAL as `VEC3` float accessors
+//! (bufferView target 34962, ARRAY_BUFFER) and the indices as `SCALAR`
+//! unsigned int (target 34963, ELEMENT_ARRAY_BUFFER), each in its own
+//! tightly packed bufferView, so no `byteStride` is needed.
+//!
+//! Invariants:
+//! - every chunk starts and ends on a multiple of 4 bytes, and so does
+//!   every bufferView and accessor (each element is 4-byte aligned: 12
+//!   bytes per vertex or triangle), as §3.6.2.4 requires;
+//! - the POSITION accessor carries `min` and `max` (required by §3.7.2.1),
+//!   equal to the positions' exact bounds;
+//! - every NORMAL is unit length (required by §3.7.2.1);
+//! - the JSON holds only finite numbers: a non-finite position is refused
+//!   with the error [`TriMesh::validate`] gives, never written;
+//! - a mesh without triangles gives a valid file whose scene holds one
+//!   node without a mesh, and no buffer: glTF accessors and bufferViews
+//!   cannot be empty (`count` and `byteLength` ≥ 1), and a triangle
+//!   primitive needs triangles. Its vertices, which nothing draws, are not
+//!   written.
+//!
+//! Reading GLB is not supported (see `MeshFormat::Glb`).
+
+use crate::mesh::vertex_normals;
+use crate::{Error, FormatError, Malformed, ParameterError, TriMesh};
+use core::fmt::Write as _;
+use std::io::Write;
+
+const FORMAT: &str = "GLB";
+
+const MAGIC: &[u8; 4] = b"glTF";
+const VERSION: u32 = 2;
+const CHUNK_JSON: &[u8; 4] = b"JSON";
+const CHUNK_BIN: &[u8; 4] = b"BIN\0";
+/// The file header: magic, version, total length.
+const HEADER_LEN: u64 = 12;
+/// A chunk header: length, type.
+const CHUNK_HEADER_LEN: u64 = 8;
+
+/// bufferView targets (the WebGL buffer binding points).
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+/// accessor componentTypes.
+const FLOAT: u32 = 5126;
+const UNSIGNED_INT: u32 = 5125;
+/// primitive mode TRIANGLES.
+const TRIANGLES: u32 = 4;
+
+/// The normal of a vertex that has none. `vertex_normals` gives zero
+/// only to vertices that no triangle uses or whose every triangle has
+/// zero area: such a vertex shades no pixel, so any unit vector is right,
+/// and glTF requires unit normals. A fixed one keeps the file a function
+/// of the mesh alone.
+const FALLBACK_NORMAL: [f32; 3] = [0.0, 0.0, 1.0];
+
+/// Writes `mesh` as a GLB file. The mesh's indices must be in range
+/// (`write_mesh_to` validates it first); non-finite positions are refused
+/// here too, since they would make the JSON invalid.
+pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> Result<(), Error> {
+    let (min, max) = bounds(&mesh.positions)?;
+    let vertices = mesh.positions.len() as u64;
+    let triangles = mesh.triangles.len() as u64;
+    let json = json(vertices, triangles, min, max);
+    let len = lengths(json.len() as u64, vertices, triangles)?;
+
+    w.write_all(MAGIC)?;
+    w.write_all(&VERSION.to_le_bytes())?;
+    w.write_all(&len.total.to_le_bytes())?;
+
+    // Both chunk lengths are below `total`, so they fit a u32 too.
+    w.write_all(&(padded(len.json) as u32).to_le_bytes())?;
+    w.write_all(CHUNK_JSON)?;
+    w.write_all(json.as_bytes())?;
+    w.write_all(&b"   "[..(padded(len.json) - len.json) as usize])?;
+
+    if triangles == 0 {
+        return Ok(());
+    }
+    w.write_all(&(padded(len.bin) as u32).to_le_bytes())?;
+    w.write_all(CHUNK_BIN)?;
+    for p in &mesh.positions {
+        write_vec3(w, p)?;
+    }
+    for n in vertex_normals(mesh) {
+        write_vec3(w, &if n == [0.0; 3] { FALLBACK_NORMAL } else { n })?;
+    }
+    for t in &mesh.triangles {
+        let mut record = [0u8; 12];
+        for (chunk, v) in record.chunks_exact_mut(4).zip(t) {
+            chunk.copy_from_slice(&v.to_le_bytes());
+        }
+        w.write_all(&record)?;
+    }
+    // 12 bytes per element: the BIN chunk needs no padding today, but
+    // write it should the layout change.
+    w.write_all(&[0u8; 3][..(padded(len.bin) - len.bin) as usize])?;
+    Ok(())
+}
+
+/// Unpadded chunk data lengths and the whole file's length.
+#[derive(Debug, PartialEq)]
+struct Lengths {
+    json: u64,
+    /// 0 when there is no BIN chunk (no triangles).
+    bin: u64,
+    total: u32,
+}
+
+/// The lengths of a file whose JSON text is `json` bytes long; an error
+/// if the file would not fit the u32 length fields of GLB.
+fn lengths(json: u64, vertices: u64, triangles: u64) -> Result<Lengths, Error> {
+    let mut total = HEADER_LEN + CHUNK_HEADER_LEN + padded(json);
+    let mut bin = 0;
+    if triangles > 0 {
+        // POSITION and NORMAL, then the indices.
+        bin = 24 * vertices + 12 * triangles;
+        total += CHUNK_HEADER_LEN + padded(bin);
+    }
+    let total = u32::try_from(total).map_err(|_| {
+        Error::Parameter(ParameterError::FileTooLarge {
+            format: FORMAT,
+            bytes: total,
+            max: u32::MAX.into(),
+        })
+    })?;
+    Ok(Lengths { json, bin, total })
+}
+
+fn write_vec3<W: Write>(w: &mut W, v: &[f32; 3]) -> std::io::Result<()> {
+    let mut record = [0u8; 12];
+    for (chunk, c) in record.chunks_exact_mut(4).zip(v) {
+        chunk.copy_from_slice(&c.to_le_bytes());
+    }
+    w.write_all(&record)
+}
+
+/// `n` rounded up to a multiple of 4.
+fn padded(n: u64) -> u64 {
+    n.div_ceil(4) * 4
+}
+
+/// Per-axis least and greatest position (zeros for no vertices, which
+/// are then not written); the error of [`TriMesh::validate`] for a
+/// non-finite one.
+fn bounds(positions: &[[f32; 3]]) -> Result<([f32; 3], [f32; 3]), Error> {
+    let mut min = [f32::INFINITY; 3];
+    let mut max = [f32::NEG_INFINITY; 3];
+    for (i, p) in positions.iter().enumerate() {
+        if !p.iter().all(|c| c.is_finite()) {
+            let what = Malformed::NonFinite { vertex: i as u64 };
+            return Err(FormatError::new("mesh", what).into());
+        }
+        for k in 0..3 {
+            min[k] = min[k].min(p[k]);
+            max[k] = max[k].max(p[k]);
+        }
+    }
+    if positions.is_empty() {
+        return Ok(([0.0; 3], [0.0; 3]));
+    }
+    Ok((min, max))
+}
+
+/// The JSON chunk's text, unpadded. With no triangles: the asset and a
+/// scene of one empty node.
+fn json(vertices: u64, triangles: u64, min: [f32; 3], max: [f32; 3]) -> String {
+    let mut s = String::with_capacity(1024);
+    // `write!` into a String cannot fail.
+    let _ = write!(
+        s,
+        r#"{{"asset":{{"version":"2.0","generator":"swm {}"}},"scene":0,"#,
+        env!("CARGO_PKG_VERSION")
+    );
+    if triangles == 0 {
+        // `scene.nodes` is optional in the glTF schema, but readers such as
+        // the `gltf` crate (1.4) require it; an empty node satisfies both.
+        s.push_str(r#""scenes":[{"nodes":[0]}],"nodes":[{}]}"#);
+        return s;
+    }
+    let attribute_len = 12 * vertices;
+    let index_len = 12 * triangles;
+    let _ = write!(s, r#""scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],"#);
+    let _ = write!(
+        s,
+        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1}},"indices":2,"mode":{TRIANGLES}}}]}}],"#
+    );
+    let _ = write!(
+        s,
+        r#""buffers":[{{"byteLength":{}}}],"#,
+        2 * attribute_len + index_len
+    );
+    let _ = write!(
+        s,
+        r#""bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":{attribute_len},"target":{ARRAY_BUFFER}}},{{"buffer":0,"byteOffset":{attribute_len},"byteLength":{attribute_len},"target":{ARRAY_BUFFER}}},{{"buffer":0,"byteOffset":{},"byteLength":{index_len},"target":{ELEMENT_ARRAY_BUFFER}}}],"#,
+        2 * attribute_len
+    );
+    let _ = write!(
+        s,
+        r#""accessors":[{{"bufferView":0,"componentType":{FLOAT},"count":{vertices},"type":"VEC3","min":{},"max":{}}},"#,
+        json_vec3(min),
+        json_vec3(max)
+    );
+    let _ = write!(
+        s,
+        r#"{{"bufferView":1,"componentType":{FLOAT},"count":{vertices},"type":"VEC3"}},{{"bufferView":2,"componentType":{UNSIGNED_INT},"count":{},"type":"SCALAR"}}]}}"#,
+        3 * triangles
+    );
+    s
+}
+
+/// `[x,y,z]` as JSON numbers. Each is the `f32` widened to `f64` and
+/// written with the shortest decimals that give that `f64` back (Rust's
+/// `Display`: no exponent, so never `1e38`-style tokens some parsers
+/// mishandle, and `-0` is valid JSON). The text then names the `f32`
+/// exactly whether a reader compares in `f64` or in `f32` (validators
+/// check the bounds against the data); the shortest `f32` decimals
+/// (`0.1`) would equal the data only after rounding to `f32`. Callers
+/// pass finite values only.
+fn json_vec3(v: [f32; 3]) -> String {
+    let [x, y, z] = v.map(f64::from);
+    format!("[{x},{y},{z}]")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::Value;
+
+    fn glb(mesh: &TriMesh) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        write(&mut bytes, mesh).unwrap();
+        bytes
+    }
+
+    fn u32_at(bytes: &[u8], at: usize) -> u32 {
+        u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap())
+    }
+
+    fn f32s(bytes: &[u8]) -> Vec<f32> {
+        bytes
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+            .collect()
+    }
+
+    /// The JSON text (padding included) and the BIN chunk's data, checked
+    /// against the header and chunk lengths on the way.
+    fn chunks(bytes: &[u8]) -> (&str, Option<&[u8]>) {
+        assert_eq!(&bytes[..4], b"glTF");
+        assert_eq!(u32_at(bytes, 4), 2);
+        assert_eq!(u32_at(bytes, 8) as usize, bytes.len());
+        assert_eq!(bytes.len() % 4, 0);
+        let json_len = u32_at(bytes, 12) as usize;
+        assert_eq!(json_len % 4, 0);
+        assert_eq!(&bytes[16..20], b"JSON");
+        let json = std::str::from_utf8(&bytes[20..20 + json_len]).unwrap();
+        let rest = &bytes[20 + json_len..];
+        if rest.is_empty() {
+            return (json, None);
+        }
+        let bin_len = u32_at(rest, 0) as usize;
+        assert_eq!(bin_len % 4, 0);
+        assert_eq!(&rest[4..8], b"BIN\0");
+        assert_eq!(rest.len(), 8 + bin_len, "nothing after the BIN chunk");
+        (json, Some(&rest[8..]))
+    }
+
+    /// A tetrahedron-like fan with an isolated vertex and awkward numbers.
+    fn sample() -> TriMesh {
+        TriMesh::new(
+            vec![
+                [0.0, -0.0, 0.1],
+                [1.0, 0.0, 3.4028235e38],
+                [0.0, 1.0, -1e-45],
+                [-2.5, 7.0, 0.3], // isolated
+                [0.25, 0.25, 1.0],
+            ],
+            vec![[0, 1, 2], [0, 1, 4], [1, 2, 4], [2, 0, 4]],
+        )
+    }
+
+    #[test]
+    fn header_chunks_and_padding() {
+        let mesh = sample();
+        let bytes = glb(&mesh);
+        let (json, bin) = chunks(&bytes);
+        // Spaces pad the JSON; the text itself ends with its closing brace.
+        assert_eq!(json.trim_end_matches(' ').chars().last(), Some('}'));
+        assert!(json.len() - json.trim_end_matches(' ').len() < 4);
+        let bin = bin.unwrap();
+        assert_eq!(bin.len(), 24 * 5 + 12 * 4);
+    }
+
+    #[test]
+    fn json_padding_for_every_length() {
+        // The JSON length varies with the counts' digits; every remainder
+        // mod 4 must pad to a multiple of 4.
+        let mut remainders = [false; 4];
+        let mut positions = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        for extra in 0..40 {
+            let mesh = TriMesh::new(positions.clone(), vec![[0, 1, 2]; 1 + extra % 7]);
+            let bytes = glb(&mesh);
+            let (json, _) = chunks(&bytes);
+            remainders[json.trim_end_matches(' ').len() % 4] = true;
+            positions.push([extra as f32 * 0.37, 1.0 / (extra as f32 + 1.0), 2.0]);
+        }
+        assert_eq!(remainders, [true; 4]);
+    }
+
+    #[test]
+    fn json_structure_and_bounds() {
+        let mesh = sample();
+        let bytes = glb(&mesh);
+        let (json, bin) = chunks(&bytes);
+        let bin = bin.unwrap();
+        let doc: Value = serde_json::from_str(json).unwrap();
+        assert_eq!(doc["asset"]["version"], "2.0");
+        assert_eq!(
+            doc["asset"]["generator"],
+            format!("swm {}", env!("CARGO_PKG_VERSION"))
+        );
+        assert_eq!(doc["scene"], 0);
+        assert_eq!(doc["scenes"][0]["nodes"], serde_json::json!([0]));
+        assert_eq!(doc["nodes"][0]["mesh"], 0);
+        let primitives = doc["meshes"][0]["primitives"].as_array().unwrap();
+        assert_eq!(primitives.len(), 1);
+        let p = &primitives[0];
+        assert_eq!(p["mode"], 4);
+        assert_eq!(p["indices"], 2);
+        assert_eq!(p["attributes"]["POSITION"], 0);
+        assert_eq!(p["attributes"]["NORMAL"], 1);
+        assert_eq!(doc["buffers"][0]["byteLength"], bin.len());
+        assert!(doc["buffers"][0].get("uri").is_none());
+
+        let views = doc["bufferViews"].as_array().unwrap();
+        let expected = [(0, 60, 34962), (60, 60, 34962), (120, 48, 34963)];
+        for (view, (offset, len, target)) in views.iter().zip(expected) {
+            assert_eq!(view["buffer"], 0);
+            assert_eq!(view["byteOffset"], offset);
+            assert_eq!(view["byteLength"], len);
+            assert_eq!(view["target"], target);
+            assert!(view.get("byteStride").is_none());
+        }
+        let accessors = doc["accessors"].as_array().unwrap();
+        let expected = [(5126, 5, "VEC3"), (5126, 5, "VEC3"), (5125, 12, "SCALAR")];
+        for (k, (a, (component, count, kind))) in accessors.iter().zip(expected).enumerate() {
+            assert_eq!(a["bufferView"], k);
+            assert_eq!(a["componentType"], component);
+            assert_eq!(a["count"], count);
+            assert_eq!(a["type"], kind);
+            // Offset 0 in a view that starts on a multiple of 4.
+            assert_eq!(a.get("byteOffset").map_or(0, |o| o.as_u64().unwrap()), 0);
+        }
+
+        // The bounds, read with Rust's correctly rounded parser: exact in
+        // f64, so exact in f32.
+        let bound = |key: &str| -> Vec<f64> {
+            let start = json.find(&format!("\"{key}\":[")).unwrap() + key.len() + 4;
+            let end = start + json[start..].find(']').unwrap();
+            json[start..end]
+                .split(',')
+                .map(|x| x.parse().unwrap())
+                .collect()
+        };
+        let positions = f32s(&bin[..60]);
+        for k in 0..3 {
+            let axis = positions.iter().skip(k).step_by(3);
+            let lo = axis.clone().copied().fold(f32::INFINITY, f32::min);
+            let hi = axis.copied().fold(f32::NEG_INFINITY, f32::max);
+            assert_eq!(bound("min")[k], f64::from(lo), "min {k}");
+            assert_eq!(bound("max")[k], f64::from(hi), "max {k}");
+        }
+        assert_eq!(bound("max")[2], f64::from(f32::MAX));
+        assert_eq!(bound("min")[2], f64::from(-1e-45f32));
+    }
+
+    #[test]
+    fn buffer_holds_positions_unit_normals_and_indices() {
+        let mesh = sample();
+        let bytes = glb(&mesh);
+        let bin = chunks(&bytes).1.unwrap();
+        let positions = f32s(&bin[..60]);
+        let flat: Vec<f32> = mesh.positions.iter().flatten().copied().collect();
+        assert_eq!(
+            positions.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+            flat.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+        );
+        let normals = f32s(&bin[60..120]);
+        let computed = vertex_normals(&mesh);
+        for (v, n) in normals.chunks_exact(3).enumerate() {
+            let len = n.iter().map(|c| c * c).sum::<f32>().sqrt();
+            assert!((len - 1.0).abs() < 1e-5, "vertex {v}: {n:?}");
+            if computed[v] != [0.0; 3] {
+                assert_eq!(n, computed[v]);
+            }
+        }
+        // The isolated vertex gets the fallback.
+        assert_eq!(&normals[9..12], &FALLBACK_NORMAL);
+        let indices: Vec<u32> = bin[120..]
+            .chunks_exact(4)
+            .map(|c| u32::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        let flat: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+        assert_eq!(indices, flat);
+    }
+
+    #[test]
+    fn no_triangles_is_a_scene_without_a_mesh() {
+        for mesh in [
+            TriMesh::default(),
+            TriMesh::new(vec![[1.0, 2.0, 3.0]], vec![]),
+        ] {
+            let bytes = glb(&mesh);
+            let (json, bin) = chunks(&bytes);
+            assert!(bin.is_none());
+            let doc: Value = serde_json::from_str(json).unwrap();
+            assert_eq!(doc["asset"]["version"], "2.0");
+            assert_eq!(doc["scene"], 0);
+            assert_eq!(doc["scenes"], serde_json::json!([{"nodes": [0]}]));
+            assert_eq!(doc["nodes"], serde_json::json!([{}]));
+            for key in ["meshes", "buffers", "bufferViews", "accessors"] {
+                assert!(doc.get(key).is_none(), "{key}");
+            }
+        }
+    }
+
+    #[test]
+    fn non_finite_positions_are_refused() {
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            let mesh = TriMesh::new(
+                vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, bad, 0.0]],
+                vec![[0, 1, 2]],
+            );
+            let mut bytes = Vec::new();
+            match write(&mut bytes, &mesh) {
+                Err(Error::Format(e)) => {
+                    assert_eq!(e.what, Malformed::NonFinite { vertex: 2 })
+                }
+                other => panic!("{other:?}"),
+            }
+            assert!(bytes.is_empty(), "nothing written");
+        }
+    }
+
+    #[test]
+    fn files_over_4_gib_are_refused() {
+        // The largest mesh that fits: 24 bytes per vertex, 12 per triangle.
+        let json = 1001;
+        let fixed = 12 + 8 + 1004 + 8;
+        let triangles = (u64::from(u32::MAX) - fixed) / 12;
+        let fits = lengths(json, 0, triangles).unwrap();
+        assert_eq!(fits.json, json);
+        assert_eq!(fits.bin, 12 * triangles);
+        assert_eq!(u64::from(fits.total), fixed + 12 * triangles);
+        match lengths(json, 1, triangles) {
+            Err(Error::Parameter(ParameterError::FileTooLarge { format, bytes, max })) => {
+                assert_eq!((format, max), ("GLB", u64::from(u32::MAX)));
+                assert_eq!(bytes, fixed + 24 + 12 * triangles);
+            }
+            other => panic!("{other:?}"),
+        }
+        // No triangles: no BIN chunk, whatever the vertex count.
+        let empty = lengths(json, u64::MAX / 64, 0).unwrap();
+        assert_eq!((empty.bin, empty.total), (0, 12 + 8 + 1004));
+    }
+
+    #[test]
+    fn deterministic() {
+        assert_eq!(glb(&sample()), glb(&sample()));
+    }
+}
