@@ -42,6 +42,7 @@ pub mod metrics;
 pub mod post;
 #[cfg(feature = "encoder")]
 mod retile;
+mod stream;
 mod swing;
 mod varint;
 
@@ -68,6 +69,7 @@ pub use mesh::{
 pub use post::bend::{bend, Bent};
 pub use post::sharpen::{sharpen, SharpenOptions, SharpenReport, Sharpened, Unmoved};
 pub use post::SharpEdges;
+pub use stream::StreamDecoder;
 
 #[cfg(feature = "encoder")]
 pub use mesh::clean::{clean, CleanOptions, CleanReport, Cleaned};

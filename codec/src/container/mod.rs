@@ -78,6 +78,7 @@ pub(crate) fn with_section(bytes: &[u8], tag: Tag, payload: &[u8]) -> Vec<u8> {
 pub use crate::error::{UnsupportedError, UnsupportedFeature};
 pub use count::check_count_fits;
 pub use crc::{crc32, Crc32};
+pub(crate) use header::malformed;
 pub use header::{Header, Mode, FLAGS_OPTIONAL, FLAGS_REQUIRED, KNOWN_FLAGS};
 pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
 pub use read::{parse_container, Container, Section, Sections};

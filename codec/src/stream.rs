@@ -1,0 +1,177 @@
+//! Decoding a `.swm` file that arrives in pieces (a network download, a
+//! pipe): [`StreamDecoder`] takes the bytes as they come, rejects a file
+//! as soon as its frame says it cannot be decoded, and decodes once the
+//! last byte is in.
+//!
+//! The frame tells its own length: after the fixed header and the section
+//! table, `total = table end + Σ section lengths + 4` (format-spec
+//! 01-container.md). So the decoder buffers exactly `total` bytes, checked
+//! against `Limits::max_alloc_bytes` before it reserves them, and refuses
+//! a byte past the end.
+//!
+//! ```text
+//! bytes in   0    4                27        table end              total
+//!            |magic|  fixed header  | table    |   payloads     | CRC |
+//! checks:         ^ magic           ^ header   ^ length vs limits     ^ whole file:
+//!                                     (version, flags, mode,             `decode`
+//!                                      counts vs limits)
+//! ```
+//!
+//! Invariant: the outcome depends only on the bytes, never on how they
+//! were cut into pieces. Each check runs when the buffered prefix reaches
+//! its fixed length (a piece that crosses several of them is split at
+//! each), so every cut sees the same prefixes. A file that [`decode`]
+//! accepts whole, the stream accepts and decodes to the same mesh. A
+//! damaged file can be refused earlier, and for a different reason, than
+//! whole: the early checks read the header before the CRC can vouch for
+//! it, which is the point of them (a header claiming a billion triangles
+//! stops the download at byte 27).
+
+use crate::prelude::*;
+
+use byteorder::{ByteOrder, LittleEndian as LE};
+
+use crate::container::{malformed, Header, MAGIC};
+use crate::{decode, DecodeOptions, Error, Malformed, TriMesh};
+
+/// The fixed header plus four bytes: what every 1.x file has, and what
+/// `Header::read` needs.
+const HEADER_END: usize = 27;
+/// Where the section table starts and its entry size.
+const TABLE: usize = 23;
+const ENTRY: usize = 8;
+
+/// A `.swm` file being received; see the module documentation.
+///
+/// ```
+/// # fn demo(pieces: &[&[u8]]) -> Result<swm::TriMesh, swm::Error> {
+/// let mut stream = swm::StreamDecoder::new(swm::DecodeOptions::default());
+/// for piece in pieces {
+///     stream = stream.push(piece)?; // stops at the first sign of trouble
+/// }
+/// stream.finish()
+/// # }
+/// ```
+#[derive(Debug)]
+pub struct StreamDecoder {
+    options: DecodeOptions,
+    buf: Vec<u8>,
+    /// The file's length, once the section table is in.
+    total: Option<usize>,
+}
+
+impl StreamDecoder {
+    /// A decoder that will decode with `options` (and buffer no more than
+    /// `options.limits.max_alloc_bytes`).
+    pub fn new(options: DecodeOptions) -> Self {
+        StreamDecoder {
+            options,
+            buf: Vec::new(),
+            total: None,
+        }
+    }
+
+    /// Bytes received so far.
+    pub fn received(&self) -> usize {
+        self.buf.len()
+    }
+
+    /// The file's length in bytes, known once its section table is in.
+    pub fn expected_len(&self) -> Option<usize> {
+        self.total
+    }
+
+    /// Takes the next piece of the file.
+    ///
+    /// # Errors
+    /// As soon as the bytes so far show the file cannot decode: a wrong
+    /// magic, an unsupported version, flags or mode, counts above the
+    /// limits or inconsistent ([`decode`]'s errors for these), a file
+    /// longer than `max_alloc_bytes` ([`Error::LimitExceeded`]), or a
+    /// byte past the file's end ([`Malformed::TrailingData`]).
+    pub fn push(mut self, mut piece: &[u8]) -> Result<Self, Error> {
+        while !piece.is_empty() {
+            let Some(next) = self.next_check() else {
+                let at = self.buf.len();
+                return Err(malformed(Malformed::TrailingData, at));
+            };
+            let take = (next - self.buf.len()).min(piece.len());
+            self.buf.extend_from_slice(&piece[..take]);
+            piece = &piece[take..];
+            if self.buf.len() == next {
+                self.check(next)?;
+            }
+        }
+        Ok(self)
+    }
+
+    /// Decodes the file once every byte is in.
+    ///
+    /// # Errors
+    /// [`Malformed::Empty`] or [`Malformed::Truncated`] if bytes are
+    /// missing, then whatever [`decode`] reports.
+    pub fn finish(self) -> Result<TriMesh, Error> {
+        if self.buf.is_empty() {
+            return Err(malformed(Malformed::Empty, 0));
+        }
+        if Some(self.buf.len()) != self.total {
+            return Err(malformed(Malformed::Truncated, self.buf.len()));
+        }
+        decode(&self.buf, &self.options)
+    }
+
+    /// The buffer length at which the next check runs; `None` once the
+    /// whole file is in.
+    fn next_check(&self) -> Option<usize> {
+        let n = self.buf.len();
+        match self.total {
+            Some(total) if n >= total => None,
+            Some(total) => Some(total),
+            None if n < MAGIC.len() => Some(MAGIC.len()),
+            None if n < HEADER_END => Some(HEADER_END),
+            None => Some(table_end(&self.buf).max(HEADER_END)),
+        }
+    }
+
+    /// The check for a prefix of length `len`.
+    fn check(&mut self, len: usize) -> Result<(), Error> {
+        if Some(len) == self.total {
+            return Ok(());
+        }
+        if len == MAGIC.len() {
+            return if self.buf[..] == MAGIC[..] {
+                Ok(())
+            } else {
+                Err(malformed(Malformed::BadMagic, 0))
+            };
+        }
+        if len == HEADER_END {
+            Header::read(&self.buf, &self.options.limits)?;
+        }
+        if len == table_end(&self.buf).max(HEADER_END) {
+            let end = table_end(&self.buf);
+            let payload: u64 = self.buf[TABLE..end]
+                .chunks_exact(ENTRY)
+                .map(|e| u64::from(LE::read_u32(&e[4..])))
+                .sum();
+            let total = end as u64 + payload + 4;
+            self.options.limits.check_alloc(total)?;
+            let total = usize::try_from(total).map_err(|_| {
+                Error::LimitExceeded(crate::LimitError {
+                    what: crate::Limited::AllocBytes,
+                    requested: total,
+                    limit: usize::MAX as u64,
+                })
+            })?;
+            // total ≥ table end + 4 ≥ the 27 bytes in hand.
+            self.buf.reserve_exact(total - self.buf.len());
+            self.total = Some(total);
+        }
+        Ok(())
+    }
+}
+
+/// Where the section table ends, from the count in the fixed header.
+fn table_end(header: &[u8]) -> usize {
+    TABLE + ENTRY * usize::from(LE::read_u16(&header[TABLE - 2..]))
+}
