@@ -105,30 +105,22 @@ fn buffers_limits_and_damage_have_their_codes() {
         assert!(size.exact);
         let mut p = vec![0f32; 3 * size.vertex_count];
         let mut i = vec![0u32; 3 * size.triangle_count - 1];
-        let rc = swm_decode_into(
-            bytes.as_ptr(),
-            bytes.len(),
-            ptr::null(),
-            p.as_mut_ptr(),
-            p.len(),
-            i.as_mut_ptr(),
-            i.len(),
-            &mut size,
-        );
-        assert_eq!(rc, SWM_ERROR_BUFFER);
+        let mut into = |i: &mut Vec<u32>, out: *mut swm_decoded_size| {
+            swm_decode_into(
+                bytes.as_ptr(),
+                bytes.len(),
+                ptr::null(),
+                p.as_mut_ptr(),
+                p.len(),
+                i.as_mut_ptr(),
+                i.len(),
+                out,
+            )
+        };
+        assert_eq!(into(&mut i, &mut size), SWM_ERROR_BUFFER);
         assert!(last_error().contains("indices"), "{}", last_error());
         i.push(0);
-        let rc = swm_decode_into(
-            bytes.as_ptr(),
-            bytes.len(),
-            ptr::null(),
-            p.as_mut_ptr(),
-            p.len(),
-            i.as_mut_ptr(),
-            i.len(),
-            ptr::null_mut(),
-        );
-        assert_eq!(rc, SWM_OK);
+        assert_eq!(into(&mut i, ptr::null_mut()), SWM_OK);
 
         let mut o = swm_decode_options_default();
         o.max_vertices = 10;
