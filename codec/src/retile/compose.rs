@@ -109,10 +109,10 @@ pub fn retile_pieces(pieces: &[Piece], opt: &RetileOptions) -> Result<Composed, 
             outcome,
         });
     }
-    let Some(l) = fixed else {
-        // Nothing retiled: a SwingWrapper file needs one component for L.
-        return Err(Failure::BadInput);
-    };
+    // Nothing retiled (every piece below the size worth retiling): the
+    // whole mesh goes to REST, which 05-swing.md allows; REST's
+    // quantization still follows the requested L.
+    let l = fixed.unwrap_or(opt.edge_length);
     out.edge_length = l;
     if out.hole_mask.iter().all(|&m| !m) {
         out.hole_mask.clear();
