@@ -92,9 +92,11 @@ fn weighted(at: impl Fn(u32) -> Option<[f32; 3]>, t: [u32; 3]) -> Option<[DVec3;
         return None;
     }
     let n = cross / len;
+    // |u × v| is twice the triangle's area at every corner, so only the
+    // dot product differs between the three angles.
     let angle = |k: usize| {
         let (u, v) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-        math::atan2(math::sqrt(u.cross(v).length_squared()), u.dot(v))
+        math::atan2(len, u.dot(v))
     };
     Some([n * angle(0), n * angle(1), n * angle(2)])
 }
