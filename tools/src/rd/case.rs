@@ -11,7 +11,8 @@ use crate::rd::source::Source;
 use crate::CliError;
 use std::collections::HashMap;
 use std::path::PathBuf;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::Instant;
 use swm::metrics::{DistanceOptions, Surface};
 use swm::TriMesh;
 
@@ -27,6 +28,9 @@ pub struct Case {
     pub reference: Surface,
     /// Lossless file sizes of `mesh` by qp.
     lossless_sizes: Mutex<HashMap<u8, u64>>,
+    /// SwingWrapper files by (byte budget, angle bits): the swing
+    /// configurations differ only in how they decode the same file.
+    swing_files: Mutex<HashMap<(u64, u8), Arc<OnceLock<SwingFile>>>>,
     /// The welded input the baseline simplifies, and its sizes.
     pub simplifier: Simplifier,
 }
@@ -43,6 +47,7 @@ impl Case {
             mesh,
             reference,
             lossless_sizes: Mutex::new(HashMap::new()),
+            swing_files: Mutex::new(HashMap::new()),
             simplifier,
         })
     }
@@ -75,6 +80,25 @@ impl Case {
         Ok(n)
     }
 
+    /// The SwingWrapper file of the whole mesh asked for `budget` bytes
+    /// (also its cap) at `bits` angle bits, encoded once per key: a job
+    /// that asks while another encodes waits for that result.
+    pub fn swing_file(&self, budget: u64, bits: u8) -> Arc<OnceLock<SwingFile>> {
+        let cell = Arc::clone(
+            self.swing_files
+                .lock()
+                .expect("cache lock")
+                .entry((budget, bits))
+                .or_default(),
+        );
+        cell.get_or_init(|| {
+            let start = Instant::now();
+            swm::encode(&self.mesh, &swing_options(budget, bits))
+                .map(|e| (e.bytes, start.elapsed().as_secs_f64()))
+        });
+        cell
+    }
+
     /// L2 and Hausdorff distances from the reference to `other`, in units
     /// of 1e-4 of the reference's diagonal, from `samples` area-uniform
     /// face samples on each surface (the thesis's L2 and the shared
@@ -88,6 +112,22 @@ impl Case {
         )
         .map_err(|e| self.err(e))?;
         Ok((1e4 * d.l2_relative(), 1e4 * d.hausdorff_relative()))
+    }
+}
+
+/// A SwingWrapper encode's outcome: the file and the seconds it took.
+pub type SwingFile = Result<(Vec<u8>, f64), swm::Error>;
+
+/// What the rd harness asks the SwingWrapper encoder for: `budget` bytes,
+/// never more.
+pub fn swing_options(budget: u64, bits: u8) -> swm::EncodeOptions {
+    swm::EncodeOptions {
+        mode: swm::EncodeMode::Swing {
+            target: swm::SwingTarget::Bytes(budget),
+            angle_bits: bits,
+            max_bytes: Some(budget),
+        },
+        ..Default::default()
     }
 }
 

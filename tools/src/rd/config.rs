@@ -6,10 +6,11 @@
 //! name, and the function its `run` arm calls; [`measure`] does the timing and measuring that every
 //! configuration shares.
 
-use crate::rd::case::{encode, Case};
+use crate::rd::case::{encode, swing_options, Case};
 use crate::rd::table::{Coded, Outcome};
 use crate::CliError;
 use std::borrow::Cow;
+use std::sync::Arc;
 use std::time::Instant;
 use swm::TriMesh;
 
@@ -126,19 +127,10 @@ fn swing(
     let mut best: Option<Coded> = None;
     let mut first_error = None;
     for bits in SWING_ANGLE_BITS {
-        let options = swm::EncodeOptions {
-            mode: swm::EncodeMode::Swing {
-                target: swm::SwingTarget::Bytes(budget),
-                angle_bits: bits,
-                max_bytes: Some(budget),
-            },
-            ..Default::default()
-        };
-        let start = Instant::now();
-        match swm::encode(&case.mesh, &options) {
-            Ok(encoded) => {
-                let encode_s = start.elapsed().as_secs_f64();
-                let coded = measure(case, bits, samples, &encoded.bytes, encode_s, post)?;
+        let cell = case.swing_file(budget, bits);
+        match cell.get().expect("swing_file fills its cell") {
+            Ok((bytes, encode_s)) => {
+                let coded = measure(case, bits, samples, bytes, *encode_s, post)?;
                 if best.as_ref().is_none_or(|b| coded.l2_rel < b.l2_rel) {
                     best = Some(coded);
                 }
@@ -149,7 +141,7 @@ fn swing(
                     e,
                     swm::Error::Topology(swm::TopologyError::NotASphere { .. })
                 );
-                first_error.get_or_insert(e);
+                first_error.get_or_insert((bits, Arc::clone(&cell)));
                 if not_applicable {
                     break;
                 }
@@ -159,14 +151,25 @@ fn swing(
     if let Some(coded) = best {
         return Ok(Outcome::Coded(coded));
     }
-    Ok(match first_error {
+    let Some((bits, cell)) = first_error else {
+        return Ok(Outcome::Infeasible);
+    };
+    Ok(match cell.get().and_then(|r| r.as_ref().err()) {
         Some(swm::Error::Topology(e @ swm::TopologyError::NotASphere { .. })) => {
             Outcome::NotApplicable { why: e.to_string() }
         }
         Some(swm::Error::Retile(e)) if e.successes > 0 => Outcome::Infeasible,
         Some(e @ swm::Error::Retile(_)) => Outcome::Failed { why: e.to_string() },
-        Some(e) => return Err(case.err(e)),
-        None => Outcome::Infeasible,
+        // Anything else is a bug that stops the run; the cache holds the
+        // error by reference, so encode again (deterministically) to own it.
+        _ => {
+            return match swm::encode(&case.mesh, &swing_options(budget, bits)) {
+                Err(e) => Err(case.err(e)),
+                Ok(_) => Ok(Outcome::Failed {
+                    why: "the encoder failed, then succeeded on the same input".into(),
+                }),
+            };
+        }
     })
 }
 
