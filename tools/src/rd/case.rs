@@ -30,7 +30,7 @@ pub struct Case {
     lossless_sizes: Mutex<HashMap<u8, u64>>,
     /// SwingWrapper files by (byte budget, angle bits): the swing
     /// configurations differ only in how they decode the same file.
-    swing_files: Mutex<HashMap<(u64, u8), Arc<OnceLock<SwingFile>>>>,
+    swing_files: Mutex<HashMap<(u64, u8), SwingCell>>,
     /// The welded input the baseline simplifies, and its sizes.
     pub simplifier: Simplifier,
 }
@@ -83,7 +83,7 @@ impl Case {
     /// The SwingWrapper file of the whole mesh asked for `budget` bytes
     /// (also its cap) at `bits` angle bits, encoded once per key: a job
     /// that asks while another encodes waits for that result.
-    pub fn swing_file(&self, budget: u64, bits: u8) -> Arc<OnceLock<SwingFile>> {
+    pub fn swing_file(&self, budget: u64, bits: u8) -> SwingCell {
         let cell = Arc::clone(
             self.swing_files
                 .lock()
@@ -117,6 +117,9 @@ impl Case {
 
 /// A SwingWrapper encode's outcome: the file and the seconds it took.
 pub type SwingFile = Result<(Vec<u8>, f64), swm::Error>;
+
+/// One entry of the swing cache, filled by the first job that asks.
+pub type SwingCell = Arc<OnceLock<SwingFile>>;
 
 /// What the rd harness asks the SwingWrapper encoder for: `budget` bytes,
 /// never more.
