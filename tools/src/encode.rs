@@ -95,15 +95,24 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         crate::report::print_json(&json);
         return Ok(());
     }
+    // A swing file whose every component went to REST has no retiled
+    // triangle to count bits against.
+    let per_triangle = if triangles == 0 {
+        "no bits/triangle (nothing retiled)".to_string()
+    } else {
+        format!(
+            "{:.3} bits/triangle",
+            8.0 * encoded.bytes.len() as f64 / triangles as f64
+        )
+    };
     say!(
-        "{} -> {}: {} bytes ({:.3} bits/input vertex), {} vertices, {} triangles, {:.3} bits/triangle, {:.3} s",
+        "{} -> {}: {} bytes ({:.3} bits/input vertex), {} vertices, {} triangles, {per_triangle}, {:.3} s",
         args.input.display(),
         args.output.display(),
         encoded.bytes.len(),
         8.0 * encoded.bytes.len() as f64 / mesh.vertex_count().max(1) as f64,
         vertices,
         triangles,
-        8.0 * encoded.bytes.len() as f64 / triangles.max(1) as f64,
         seconds
     );
     if let Some(r) = &stats.rate {
