@@ -325,3 +325,38 @@ fn bad_swing_options_are_usage_errors() {
     }
     assert_no_output(&output);
 }
+
+/// A tetrahedron at 4 b/v is below what retiling is worth: the file keeps
+/// it whole in `REST`, decodes to it, and neither `encode` nor `info`
+/// invents a bits-per-triangle figure for the empty retiled mesh.
+#[test]
+fn a_mesh_too_small_to_retile_is_kept_in_rest() {
+    let dir = scratch("swing_all_rest");
+    let input = dir.join("tet.obj");
+    std::fs::write(
+        &input,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    let file = dir.join("tet.swm");
+    let out = swm(&["encode", s(&input), "-o", s(&file)]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        summary.contains("0 triangles, no bits/triangle"),
+        "{summary}"
+    );
+    let info = swm(&["info", s(&file)]);
+    let text = String::from_utf8_lossy(&info.stdout).into_owned();
+    assert!(text.contains("kept losslessly       4 triangles"), "{text}");
+    assert!(!text.contains("bits/triangle"), "{text}");
+    let obj = dir.join("tet.obj.out.obj");
+    let out = swm(&["decode", s(&file), "-o", s(&obj)]);
+    assert!(out.status.success());
+    let decoded = swm::io::read_mesh(&obj).unwrap();
+    assert_eq!((decoded.vertex_count(), decoded.face_count()), (4, 4));
+}

@@ -120,13 +120,24 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     Ok(())
 }
 
+/// `", x bits/triangle"` for `bits` over `triangles`, or nothing when
+/// there is no triangle to count against (a swing file whose whole mesh
+/// is in `REST`).
+fn per_triangle(bits: f64, triangles: u64) -> String {
+    if triangles == 0 {
+        String::new()
+    } else {
+        format!(", {:.3} bits/triangle", bits / triangles as f64)
+    }
+}
+
 /// Section sizes and the CLERS histogram, shared by both modes' output.
 fn print_sections_and_clers(sections: &[([u8; 4], usize)], triangles: u64, clers: [u64; 5]) {
     for (tag, n) in sections {
-        let bpt = 8.0 * *n as f64 / triangles.max(1) as f64;
         say!(
-            "    section {:<4}        {n} bytes, {bpt:.3} bits/triangle",
-            String::from_utf8_lossy(tag)
+            "    section {:<4}        {n} bytes{}",
+            String::from_utf8_lossy(tag),
+            per_triangle(8.0 * *n as f64, triangles)
         );
     }
     let total: u64 = clers.iter().sum::<u64>().max(1);
@@ -173,20 +184,25 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
     say!("  triangles             {}", s.triangles);
     say!("  components            {}", s.components);
     say!("  handle events         {}", s.handle_events);
-    say!(
-        "  bytes                 {} ({:.3} bits/triangle)",
-        s.file_bytes,
-        8.0 * s.file_bytes as f64 / t
-    );
-    say!(
-        "  connectivity          {:.3} bits/triangle",
-        s.connectivity_bits_per_triangle
-    );
-    say!(
-        "  geometry              {:.3} bits/triangle, {:.3} bits/angle",
-        s.geometry_bits_per_triangle,
-        s.bits_per_angle
-    );
+    if s.triangles == 0 {
+        // Nothing retiled: the whole mesh is in REST (below).
+        say!("  bytes                 {}", s.file_bytes);
+    } else {
+        say!(
+            "  bytes                 {} ({:.3} bits/triangle)",
+            s.file_bytes,
+            8.0 * s.file_bytes as f64 / t
+        );
+        say!(
+            "  connectivity          {:.3} bits/triangle",
+            s.connectivity_bits_per_triangle
+        );
+        say!(
+            "  geometry              {:.3} bits/triangle, {:.3} bits/angle",
+            s.geometry_bits_per_triangle,
+            s.bits_per_angle
+        );
+    }
     if s.holes_masked_triangles > 0 || s.hole_bytes > 0 {
         say!(
             "  holes                 {} masked triangles, {} bytes ({:.1}% of the file)",
