@@ -228,6 +228,30 @@ pub(crate) mod swm_corpus_like {
         (p, f)
     }
 
+    /// The six vertices `(±1, 0, 0)`, `(0, ±1, 0)`, `(0, 0, ±1)` and the
+    /// eight outward faces of a regular octahedron.
+    pub fn octahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        let p = vec![
+            [1., 0., 0.],
+            [-1., 0., 0.],
+            [0., 1., 0.],
+            [0., -1., 0.],
+            [0., 0., 1.],
+            [0., 0., -1.],
+        ];
+        let f = vec![
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ];
+        (p, f)
+    }
+
     /// Splits every triangle into four, `levels` times; the vertex on edge
     /// `ab` is `mid(a, b)`, made once per edge.
     pub fn subdivided(

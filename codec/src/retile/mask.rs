@@ -119,17 +119,8 @@ mod tests {
 
     /// An octahedron: 8 faces around 6 vertices.
     fn octahedron() -> CornerTable {
-        let t = [
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ];
-        CornerTable::new(&t, 6).unwrap()
+        let (p, f) = crate::edgebreaker::tests_support::octahedron();
+        CornerTable::new(&f, p.len()).unwrap()
     }
 
     /// V − E + F of the masked triangles (1 for a disk).

@@ -7,6 +7,7 @@ use glam::DVec3;
 
 use super::snap::{snap_corner, snap_edge, Refusal};
 use super::{sharpen, SharpenOptions, Sharpened};
+use crate::edgebreaker::tests_support::{octahedron, subdivided};
 use crate::mesh::test_rng::Rng;
 use crate::mesh::CornerTable;
 use crate::{Error, TriMesh};
@@ -339,45 +340,10 @@ fn sharpening_twice_finds_nothing_new_on_the_ridge() {
 
 /// A sphere: an octahedron subdivided `levels` times, projected.
 fn octasphere(levels: u32) -> TriMesh {
-    let mut positions: Vec<[f32; 3]> = vec![
-        [1.0, 0.0, 0.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, -1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [0.0, 0.0, -1.0],
-    ];
-    let mut triangles: Vec<[u32; 3]> = vec![
-        [0, 2, 4],
-        [2, 1, 4],
-        [1, 3, 4],
-        [3, 0, 4],
-        [2, 0, 5],
-        [1, 2, 5],
-        [3, 1, 5],
-        [0, 3, 5],
-    ];
-    for _ in 0..levels {
-        let mut mids = std::collections::BTreeMap::new();
-        let mut mid = |a: u32, b: u32, positions: &mut Vec<[f32; 3]>| {
-            *mids.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                let m = (d3(positions[a as usize]) + d3(positions[b as usize])).normalize();
-                positions.push(m.as_vec3().to_array());
-                positions.len() as u32 - 1
-            })
-        };
-        let mut next = Vec::new();
-        for [a, b, c] in triangles {
-            let (ab, bc, ca) = (
-                mid(a, b, &mut positions),
-                mid(b, c, &mut positions),
-                mid(c, a, &mut positions),
-            );
-            next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-        }
-        triangles = next;
-    }
-    TriMesh::new(positions, triangles)
+    let (p, f) = subdivided(octahedron(), levels, |a, b| {
+        (DVec3::from(a) + DVec3::from(b)).normalize().to_array()
+    });
+    TriMesh::new(p.iter().map(|q| q.map(|c| c as f32)).collect(), f)
 }
 
 #[test]
