@@ -404,9 +404,18 @@ impl Dynamic {
     /// edge and a is not on the boundary, the face is removed instead
     /// (and returned).
     fn flip(&mut self, f: usize, k: usize, positions: &[[f32; 3]]) -> Option<u32> {
-        let [mut fb, mut fa, mut fx] = core::mem::take(&mut self.scratch);
-        let result = self.try_flip(f, k, positions, &mut fb, &mut fa, &mut fx);
-        self.scratch = [fb, fa, fx];
+        self.with_scratch(|this, fb, fa, fx| this.try_flip(f, k, positions, fb, fa, fx))
+    }
+
+    /// Runs `op` with the three reusable face lists, lent out of `self`
+    /// for the call so that `op` can also borrow `self` mutably.
+    fn with_scratch<R>(
+        &mut self,
+        op: impl FnOnce(&mut Self, &mut Vec<u32>, &mut Vec<u32>, &mut Vec<u32>) -> R,
+    ) -> R {
+        let [mut a, mut b, mut c] = core::mem::take(&mut self.scratch);
+        let result = op(self, &mut a, &mut b, &mut c);
+        self.scratch = [a, b, c];
         result
     }
 
@@ -501,10 +510,7 @@ impl Dynamic {
 
     /// Collapses `remove` into `keep` if that is valid (module docs).
     fn collapse(&mut self, remove: u32, keep: u32, positions: &[[f32; 3]]) -> bool {
-        let [mut fu, mut fv, mut fx] = core::mem::take(&mut self.scratch);
-        let ok = self.try_collapse(remove, keep, positions, &mut fu, &mut fv, &mut fx);
-        self.scratch = [fu, fv, fx];
-        ok
+        self.with_scratch(|this, fu, fv, fx| this.try_collapse(remove, keep, positions, fu, fv, fx))
     }
 
     fn try_collapse(
