@@ -65,13 +65,7 @@ fn swm_decode_counts(file: &Path, extra: &[&str]) -> (u64, u64) {
         obj.to_str().unwrap(),
     ];
     args.extend_from_slice(extra);
-    let out = common::swm(&args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let line = String::from_utf8_lossy(&out.stdout).into_owned();
+    let line = common::ok(&common::swm(&args));
     let counts = line.split(": ").nth(1).unwrap();
     let n: Vec<u64> = counts
         .split(", ")

@@ -71,12 +71,14 @@ fn encoded_cube(name: &str) -> (PathBuf, PathBuf) {
     let input = dir.join("cube.obj");
     swm::io::write_mesh(&input, &swm_corpus::cube(16)).unwrap();
     let file = dir.join("cube.swm");
-    let out = swm(&["encode", s(&input), "-o", s(&file), "--edge-length", "0.08"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ok(&swm(&[
+        "encode",
+        s(&input),
+        "-o",
+        s(&file),
+        "--edge-length",
+        "0.08",
+    ]));
     (dir, file)
 }
 

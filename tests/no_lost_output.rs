@@ -46,12 +46,14 @@ fn good_files(dir: &Path) -> (PathBuf, PathBuf) {
     let mesh = dir.join("good.obj");
     swm::io::write_mesh(&mesh, &swm_corpus::icosphere(1.0, 1)).unwrap();
     let swm_file = dir.join("good.swm");
-    let out = swm(&["encode", s(&mesh), "-o", s(&swm_file), "--mode", "lossless"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ok(&swm(&[
+        "encode",
+        s(&mesh),
+        "-o",
+        s(&swm_file),
+        "--mode",
+        "lossless",
+    ]));
     (mesh, swm_file)
 }
 
@@ -118,19 +120,14 @@ fn an_existing_output_survives_a_failure() {
     assert_eq!(std::fs::read(&old_obj).unwrap(), b"# previous contents\n");
     assert_eq!(listing(&dir), before);
     // And the same commands succeed on good input, replacing the file.
-    let out = swm(&[
+    ok(&swm(&[
         "decode",
         s(&good_swm),
         "-o",
         s(&old_obj),
         "--max-faces",
         "80",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ]));
     assert!(swm::io::read_mesh(&old_obj).is_ok());
     let _ = good_mesh;
 }

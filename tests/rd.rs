@@ -12,16 +12,6 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
-fn ok(out: &Output) -> String {
-    assert!(
-        out.status.success(),
-        "swm failed: {}\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
 /// The one line of a failed run's stderr.
 fn one_line_error(out: &Output, code: i32) -> String {
     assert_eq!(out.status.code(), Some(code), "{out:?}");

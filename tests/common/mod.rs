@@ -52,13 +52,19 @@ pub fn swm_capped(args: &[&str], max_kib: u64) -> Output {
 
 /// Parses `swm ... --json` output, failing the test with stderr on error.
 pub fn json(out: &Output) -> serde_json::Value {
+    ok(out);
+    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
+}
+
+/// The stdout of a successful run, failing the test with stderr otherwise.
+pub fn ok(out: &Output) -> String {
     assert!(
         out.status.success(),
         "swm failed: {}\n{}",
         out.status,
         String::from_utf8_lossy(&out.stderr)
     );
-    serde_json::from_slice(&out.stdout).expect("valid JSON on stdout")
+    String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
 /// Meshes of the shared corpus that the README lists as manifold, with the
