@@ -43,7 +43,7 @@ mod walk;
 #[cfg(test)]
 mod pieces_tests;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 use crate::edgebreaker::Symbol;
 use crate::swing::Retiled;

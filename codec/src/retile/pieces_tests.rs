@@ -2,7 +2,7 @@
 
 use super::compose::{retile_pieces, PieceOutcome};
 use super::fill::pieces;
-use super::tests::sphere;
+use super::tests::{retiled, sphere};
 use super::RetileOptions;
 use crate::{CornerTable, TriMesh};
 use glam::DVec3;
@@ -261,16 +261,7 @@ fn euler(m: &TriMesh) -> i64 {
 }
 
 fn encode_decode(m: &TriMesh, l: f64) -> TriMesh {
-    let options = crate::EncodeOptions {
-        mode: crate::EncodeMode::Swing {
-            target: crate::SwingTarget::EdgeLength(l),
-            angle_bits: 8,
-            max_bytes: None,
-        },
-        ..Default::default()
-    };
-    let e = crate::encode(m, &options).unwrap();
-    crate::decode(&e.bytes, &Default::default()).unwrap()
+    retiled(m, crate::SwingTarget::EdgeLength(l))
 }
 
 #[test]

@@ -17,6 +17,21 @@ pub fn sphere(levels: u32) -> TriMesh {
     TriMesh::new(p, f)
 }
 
+/// `mesh` through the SwingWrapper encoder (8 angle bits, aiming at
+/// `target`) and back through the decoder: what a user of the codec gets.
+pub fn retiled(mesh: &TriMesh, target: crate::SwingTarget) -> TriMesh {
+    let options = crate::EncodeOptions {
+        mode: crate::EncodeMode::Swing {
+            target,
+            angle_bits: 8,
+            max_bytes: None,
+        },
+        ..Default::default()
+    };
+    let encoded = crate::encode(mesh, &options).unwrap();
+    crate::decode(&encoded.bytes, &Default::default()).unwrap()
+}
+
 /// An ellipsoid with semi-axes 1, 0.7, 0.45: curvature varies.
 fn ellipsoid(levels: u32) -> TriMesh {
     let mut m = sphere(levels);

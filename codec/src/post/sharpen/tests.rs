@@ -10,6 +10,8 @@ use super::{sharpen, SharpenOptions, Sharpened};
 use crate::edgebreaker::tests_support::{octahedron, subdivided};
 use crate::mesh::test_rng::Rng;
 use crate::mesh::CornerTable;
+#[cfg(all(feature = "io", feature = "encoder"))]
+use crate::retile::tests::retiled;
 use crate::{Error, TriMesh};
 
 fn d3(p: [f32; 3]) -> DVec3 {
@@ -543,21 +545,6 @@ fn random_degenerate_meshes_never_break_the_invariants() {
 }
 
 // --- Corpus meshes through the codec (the generated corpus: tests/post_generated.rs) ---
-
-/// Encodes with SwingWrapper and decodes.
-#[cfg(all(feature = "io", feature = "encoder"))]
-fn retiled(mesh: &TriMesh, target: crate::SwingTarget) -> TriMesh {
-    let options = crate::EncodeOptions {
-        mode: crate::EncodeMode::Swing {
-            target,
-            angle_bits: 8,
-            max_bytes: None,
-        },
-        ..Default::default()
-    };
-    let encoded = crate::encode(mesh, &options).unwrap();
-    crate::decode(&encoded.bytes, &Default::default()).unwrap()
-}
 
 /// The measurement of the issue: relative L2 and Hausdorff (in 10⁻⁴ of
 /// the diagonal) against the original, of plain decoding, of decoding
