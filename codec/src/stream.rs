@@ -29,17 +29,8 @@
 
 use crate::prelude::*;
 
-use byteorder::{ByteOrder, LittleEndian as LE};
-
-use crate::container::{malformed, Header, MAGIC};
+use crate::container::{check_magic, declared_len, malformed, table_end, Header, MAGIC, MIN_LEN};
 use crate::{decode, DecodeOptions, Error, Malformed, TriMesh};
-
-/// The fixed header plus four bytes: what every 1.x file has, and what
-/// `Header::read` needs.
-const HEADER_END: usize = 27;
-/// Where the section table starts and its entry size.
-const TABLE: usize = 23;
-const ENTRY: usize = 8;
 
 /// A `.swm` file being received; see the module documentation.
 ///
@@ -128,8 +119,8 @@ impl StreamDecoder {
             Some(total) if n >= total => None,
             Some(total) => Some(total),
             None if n < MAGIC.len() => Some(MAGIC.len()),
-            None if n < HEADER_END => Some(HEADER_END),
-            None => Some(table_end(&self.buf).max(HEADER_END)),
+            None if n < MIN_LEN => Some(MIN_LEN),
+            None => Some(table_end(&self.buf).max(MIN_LEN)),
         }
     }
 
@@ -139,22 +130,12 @@ impl StreamDecoder {
             return Ok(());
         }
         if len == MAGIC.len() {
-            return if self.buf[..] == MAGIC[..] {
-                Ok(())
-            } else {
-                Err(malformed(Malformed::BadMagic, 0))
-            };
+            return check_magic(&self.buf);
         }
-        if len == HEADER_END {
+        if len == MIN_LEN {
             Header::read(&self.buf, &self.options.limits)?;
         }
-        if len == table_end(&self.buf).max(HEADER_END) {
-            let end = table_end(&self.buf);
-            let payload: u64 = self.buf[TABLE..end]
-                .chunks_exact(ENTRY)
-                .map(|e| u64::from(LE::read_u32(&e[4..])))
-                .sum();
-            let total = end as u64 + payload + 4;
+        if let Some(total) = declared_len(&self.buf) {
             self.options.limits.check_alloc(total)?;
             let total = usize::try_from(total).map_err(|_| {
                 Error::LimitExceeded(crate::LimitError {
@@ -169,9 +150,4 @@ impl StreamDecoder {
         }
         Ok(())
     }
-}
-
-/// Where the section table ends, from the count in the fixed header.
-fn table_end(header: &[u8]) -> usize {
-    TABLE + ENTRY * usize::from(LE::read_u16(&header[TABLE - 2..]))
 }

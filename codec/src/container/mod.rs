@@ -78,9 +78,10 @@ pub(crate) fn with_section(bytes: &[u8], tag: Tag, payload: &[u8]) -> Vec<u8> {
 pub use crate::error::{UnsupportedError, UnsupportedFeature};
 pub use count::check_count_fits;
 pub use crc::{crc32, Crc32};
-pub(crate) use header::malformed;
+pub(crate) use header::{malformed, MIN_LEN};
 pub use header::{Header, Mode, FLAGS_OPTIONAL, FLAGS_REQUIRED, KNOWN_FLAGS};
 pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
+pub(crate) use read::{check_magic, declared_len, table_end};
 pub use read::{parse_container, Container, Section, Sections};
 pub use tag::Tag;
 pub use write::{container_len, write_container, write_container_into};

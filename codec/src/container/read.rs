@@ -167,8 +167,7 @@ pub fn parse_container<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container
 
     let header = Header::read(bytes, limits)?;
 
-    let count = usize::from(LE::read_u16(&bytes[at::SECTION_COUNT..]));
-    let table_end = at::TABLE + count * TABLE_ENTRY_LEN;
+    let table_end = table_end(bytes);
     if table_end > crc_at {
         // The table alone runs into the CRC.
         return Err(malformed(Malformed::Truncated, at::SECTION_COUNT));
@@ -226,7 +225,26 @@ pub fn parse_container<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container
     })
 }
 
-fn check_magic(bytes: &[u8]) -> Result<(), Error> {
+/// Where the section table ends, from the section count of a 1.x fixed
+/// header (`bytes` holds at least `at::TABLE` bytes).
+pub(crate) fn table_end(bytes: &[u8]) -> usize {
+    at::TABLE + TABLE_ENTRY_LEN * usize::from(LE::read_u16(&bytes[at::SECTION_COUNT..]))
+}
+
+/// The length a 1.x file declares: its section table's end, the sections'
+/// lengths and the CRC; `None` while the table is not all in `bytes`.
+/// Unverified: the CRC vouches for it only once the whole file is in.
+pub(crate) fn declared_len(bytes: &[u8]) -> Option<u64> {
+    let table = bytes.get(at::TABLE..table_end(bytes))?;
+    let payload: u64 = table
+        .chunks_exact(TABLE_ENTRY_LEN)
+        .map(|e| u64::from(LE::read_u32(&e[4..])))
+        .sum();
+    Some((at::TABLE + table.len()) as u64 + payload + CRC_LEN as u64)
+}
+
+/// The magic, or the error every reader of `.swm` bytes gives for it.
+pub(crate) fn check_magic(bytes: &[u8]) -> Result<(), Error> {
     if bytes.is_empty() {
         return Err(malformed(Malformed::Empty, 0));
     }
@@ -250,14 +268,7 @@ fn valid_prefix_len(bytes: &[u8]) -> Option<usize> {
     if bytes[at::MAJOR] != FORMAT_MAJOR || bytes.len() < MIN_LEN {
         return None;
     }
-    let count = usize::from(LE::read_u16(&bytes[at::SECTION_COUNT..]));
-    let table_end = at::TABLE + count * TABLE_ENTRY_LEN;
-    let table = bytes.get(at::TABLE..table_end)?;
-    let payload: u64 = table
-        .chunks_exact(TABLE_ENTRY_LEN)
-        .map(|e| u64::from(LE::read_u32(&e[4..])))
-        .sum();
-    let end = usize::try_from(table_end as u64 + payload + CRC_LEN as u64).ok()?;
+    let end = usize::try_from(declared_len(bytes)?).ok()?;
     if end >= bytes.len() {
         return None;
     }
