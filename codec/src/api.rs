@@ -226,10 +226,18 @@ fn encode_swing(
 /// file gives an error, never a panic, and nothing beyond `options.limits`
 /// is allocated.
 pub fn decode(bytes: &[u8], options: &DecodeOptions) -> Result<TriMesh, Error> {
-    let file = parse_container(bytes, &options.limits)?;
+    decode_container(&parse_container(bytes, &options.limits)?, options)
+}
+
+/// [`decode`] of a container already parsed (and checked) with
+/// `options.limits`.
+pub(crate) fn decode_container(
+    file: &crate::container::Container<'_>,
+    options: &DecodeOptions,
+) -> Result<TriMesh, Error> {
     let mesh = match file.header.mode {
-        Mode::Lossless => crate::lossless::decode(&file, &options.limits)?,
-        Mode::Swing => crate::swing::decode(&file, &options.limits)?,
+        Mode::Lossless => crate::lossless::decode(file, &options.limits)?,
+        Mode::Swing => crate::swing::decode(file, &options.limits)?,
     };
     sharpen_and_bend(mesh, options)
 }

@@ -26,8 +26,9 @@
 //! each Bender step         + E ≤ + 3T             4T
 //! ```
 
-use crate::container::{parse_container, Mode, Tag};
-use crate::{decode, DecodeOptions, Error, ParameterError, TriMesh};
+use crate::api::decode_container;
+use crate::container::{parse_container, Container, Mode, Tag};
+use crate::{DecodeOptions, Error, ParameterError, TriMesh};
 
 /// How big the output of [`decode_into`] may be.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -60,15 +61,19 @@ impl DecodedLen {
 /// table and counts are checked, against `options.limits` too).
 ///
 /// # Errors
-/// Whatever [`decode`] reports for a damaged container or a count above
+/// Whatever [`decode`](crate::decode) reports for a damaged container or a count above
 /// the limits.
 pub fn decoded_len(bytes: &[u8], options: &DecodeOptions) -> Result<DecodedLen, Error> {
-    let file = parse_container(bytes, &options.limits)?;
+    bounds(&parse_container(bytes, &options.limits)?, options)
+}
+
+/// [`decoded_len`] of a parsed container.
+fn bounds(file: &Container<'_>, options: &DecodeOptions) -> Result<DecodedLen, Error> {
     let h = file.header;
     let (mut v, mut t) = (u64::from(h.vertex_count), u64::from(h.triangle_count));
     let mut exact = true;
     if h.mode == Mode::Swing {
-        let (rv, rt) = crate::swing::rest_counts(&file, &options.limits)?;
+        let (rv, rt) = crate::swing::rest_counts(file, &options.limits)?;
         v += rv;
         t += rt;
         exact = file.find(Tag::HOLE).is_none();
@@ -112,17 +117,19 @@ pub fn decode_into(
 ///
 /// # Errors
 /// [`ParameterError::BufferTooSmall`] (before decoding) and everything
-/// [`decode`] reports.
+/// [`decode`](crate::decode) reports.
 pub fn decode_into_with(
     bytes: &[u8],
     options: &DecodeOptions,
     positions: &mut [f32],
     indices: &mut [u32],
 ) -> Result<DecodedLen, Error> {
-    let bound = decoded_len(bytes, options)?;
+    // One parse (and CRC pass) serves the bound and the decode.
+    let file = parse_container(bytes, &options.limits)?;
+    let bound = bounds(&file, options)?;
     fits("positions", bound.position_floats(), positions.len())?;
     fits("indices", bound.index_count(), indices.len())?;
-    let mesh = decode(bytes, options)?;
+    let mesh = decode_container(&file, options)?;
     Ok(copy_out(&mesh, positions, indices))
 }
 
