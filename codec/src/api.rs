@@ -65,6 +65,9 @@ pub struct EncodeOptions {
     pub mode: EncodeMode,
     /// How the input is cleaned first. Default: everything on.
     pub clean: CleanOptions,
+    /// Caps on the encoder's work, memory and time. Default: see
+    /// [`EncodeLimits`].
+    pub limits: crate::EncodeLimits,
 }
 
 /// Options for [`decode`].
@@ -180,18 +183,19 @@ fn encode_swing(
     };
     let cleaned = crate::clean(mesh, &options.clean)?;
     let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
+    let budget = crate::retile::Budget::new(options.limits);
     let bytes_for = |bpv: f64| (bpv * mesh.vertex_count() as f64 / 8.0).round() as u64;
     let chosen = match target {
         SwingTarget::EdgeLength(l) => {
-            rate::at_length(&pieces, positive("edge length", l)?, angle_bits)?
+            rate::at_length(&pieces, positive("edge length", l)?, angle_bits, &budget)?
         }
         SwingTarget::Bytes(b) => {
             let b = positive("size", b as f64)? as u64;
-            rate::at_size(&pieces, b, max_bytes, angle_bits)?
+            rate::at_size(&pieces, b, max_bytes, angle_bits, &budget)?
         }
         SwingTarget::BitsPerVertex(bpv) => {
             let b = bytes_for(positive("bits per vertex", bpv)?).max(1);
-            rate::at_size(&pieces, b, max_bytes, angle_bits)?
+            rate::at_size(&pieces, b, max_bytes, angle_bits, &budget)?
         }
     };
     if let Some(cap) = max_bytes {

@@ -60,6 +60,9 @@ pub enum RetileFailure {
     },
     /// The input is empty or L is not a positive finite number.
     BadInput,
+    /// The encoder's [`EncodeLimits`](crate::EncodeLimits) were reached
+    /// (the encode fails with the [`LimitError`]).
+    Limit,
 }
 
 impl fmt::Display for RetileFailure {
@@ -75,6 +78,7 @@ impl fmt::Display for RetileFailure {
                 write!(f, "{faces} faces of the surface were not covered")
             }
             RetileFailure::BadInput => write!(f, "empty mesh or invalid edge length"),
+            RetileFailure::Limit => write!(f, "the encoder's limits were reached"),
         }
     }
 }
@@ -391,9 +395,14 @@ pub enum Limited {
     Faces,
     /// Bytes of memory.
     AllocBytes,
+    /// Elementary steps of the encoder's searches ([`EncodeLimits`](crate::EncodeLimits)).
+    Work,
+    /// Milliseconds of encoding time ([`EncodeLimits`](crate::EncodeLimits)).
+    Milliseconds,
 }
 
-/// The input needs more than the [`Limits`](crate::Limits) allow.
+/// The input needs more than the [`Limits`](crate::Limits) (or, when
+/// encoding, the [`EncodeLimits`](crate::EncodeLimits)) allow.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LimitError {
     /// What was counted.
@@ -410,6 +419,8 @@ impl fmt::Display for LimitError {
             Limited::Vertices => "vertices",
             Limited::Faces => "faces",
             Limited::AllocBytes => "bytes of memory",
+            Limited::Work => "steps of retiling work",
+            Limited::Milliseconds => "milliseconds",
         };
         write!(
             f,

@@ -61,6 +61,8 @@ pub use error::{
     Error, FormatError, LimitError, Limited, Location, Malformed, ParameterError, RetileError,
     RetileFailure, TopologyError,
 };
+#[cfg(feature = "encoder")]
+pub use limits::EncodeLimits;
 pub use limits::Limits;
 pub use mesh::{
     vertex_normals, vertex_normals_into, CornerId, CornerTable, FaceId, MeshStats, TriMesh,

@@ -62,3 +62,39 @@ fn check(what: crate::Limited, requested: u64, limit: u64) -> Result<(), crate::
         Ok(())
     }
 }
+
+/// Caps on what one [`encode`](crate::encode) call may spend, for input
+/// from strangers (a server compressing uploads) or batch jobs that must
+/// not stall on one odd file. Reaching a cap ends the encode with a
+/// [`LimitError`](crate::LimitError); it never changes the bytes of a
+/// file that is written, so encoding stays deterministic.
+///
+/// Independently of these caps, every retiling run is bounded by its own
+/// size: a run that takes far more steps than its surface and its output
+/// explain fails like a run whose front does not close, and rate control
+/// moves on.
+#[cfg(feature = "encoder")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EncodeLimits {
+    /// Elementary steps of the retiler's searches (a turn around a vertex,
+    /// a step of a walk, a node of a shortest-path or nearest-vertex
+    /// search), summed over every run of rate control. Default: no cap.
+    pub max_work: u64,
+    /// Bytes the retiler's working surface and output may hold at once
+    /// (estimated from their buffers). Default: 8 GiB.
+    pub max_memory_bytes: u64,
+    /// Wall-clock time of the encode in milliseconds, checked between
+    /// retiling steps. Default: no cap.
+    pub max_milliseconds: Option<u64>,
+}
+
+#[cfg(feature = "encoder")]
+impl Default for EncodeLimits {
+    fn default() -> Self {
+        EncodeLimits {
+            max_work: u64::MAX,
+            max_memory_bytes: 8 << 30,
+            max_milliseconds: None,
+        }
+    }
+}

@@ -43,9 +43,31 @@ pub struct Args {
     /// Lossless: bits per coordinate.
     #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u8).range(6..=24))]
     qp: u8,
+    /// Swing: stop with an error after this many steps of retiling work
+    /// (walks and searches on the surface, over every run of rate
+    /// control; bunny at 1 b/v takes about 10^8). Default: no cap.
+    #[arg(long, value_name = "STEPS", value_parser = clap::value_parser!(u64).range(1..))]
+    max_work: Option<u64>,
+    /// Swing: stop with an error when the retiler's working meshes would
+    /// hold more than this many bytes. Default: 8 GiB.
+    #[arg(long, value_name = "BYTES", value_parser = clap::value_parser!(u64).range(1..))]
+    max_memory: Option<u64>,
+    /// Swing: stop with an error after this many seconds (checked between
+    /// retiling steps; the bytes of a file that is written never depend
+    /// on it). Default: no limit.
+    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
+    time_limit: Option<f64>,
     /// Print statistics as JSON.
     #[arg(long)]
     json: bool,
+}
+
+/// A positive, finite number of seconds.
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err("expected a positive number of seconds, such as 30 or 0.5".into()),
+    }
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
@@ -63,8 +85,17 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             max_bytes: args.max_size,
         },
     };
+    let defaults = swm::EncodeLimits::default();
+    let limits = swm::EncodeLimits {
+        max_work: args.max_work.unwrap_or(defaults.max_work),
+        max_memory_bytes: args.max_memory.unwrap_or(defaults.max_memory_bytes),
+        max_milliseconds: args
+            .time_limit
+            .map(|s| (s * 1000.0).ceil().min(u64::MAX as f64) as u64),
+    };
     let options = swm::EncodeOptions {
         mode,
+        limits,
         ..Default::default()
     };
     let start = Instant::now();

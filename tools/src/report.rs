@@ -111,6 +111,7 @@ pub fn rate_json(r: &swm::RateReport) -> Value {
         "edge_length": r.edge_length,
         "reduced": r.reduced,
         "within_tolerance": r.within_tolerance,
+        "work": r.work,
         "attempts": attempts,
     })
 }

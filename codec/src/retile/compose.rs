@@ -10,7 +10,7 @@
 //! part of the input disappears. Every component's fate is reported.
 
 use super::fill::Piece;
-use super::{mask, retile_piece, Failure, RetileOptions};
+use super::{mask, retile_piece, Budget, Failure, RetileOptions};
 use crate::swing::Retiled;
 use crate::{CornerTable, TriMesh};
 
@@ -63,8 +63,12 @@ pub struct Composed {
 }
 
 /// Retiles every piece at `opt.edge_length` (the first retiled piece
-/// fixes the exact L, as in a one-piece file).
-pub fn retile_pieces(pieces: &[Piece], opt: &RetileOptions) -> Result<Composed, Failure> {
+/// fixes the exact L, as in a one-piece file), charging `budget`.
+pub fn retile_pieces(
+    pieces: &[Piece],
+    opt: &RetileOptions,
+    budget: &Budget,
+) -> Result<Composed, Failure> {
     let mut out = Retiled {
         angle_bits: opt.angle_bits,
         first: Vec::new(),
@@ -84,7 +88,7 @@ pub fn retile_pieces(pieces: &[Piece], opt: &RetileOptions) -> Result<Composed, 
         let tri_area = l * l * 3f64.sqrt() / 4.0;
         let mut outcome = PieceOutcome::Lossless;
         if p.area >= TINY_TRIANGLES * tri_area {
-            match retile_tries(p, opt, fixed) {
+            match retile_tries(p, opt, fixed, budget) {
                 Ok((r, cover)) => {
                     let (mask, lost) = piece_mask(&r, &cover, p.holes)?;
                     outcome = PieceOutcome::Retiled {
@@ -95,7 +99,9 @@ pub fn retile_pieces(pieces: &[Piece], opt: &RetileOptions) -> Result<Composed, 
                     fixed.get_or_insert(r.edge_length);
                     append(&mut out, r, mask);
                 }
-                Err(f) if p.area >= SMALL_TRIANGLES * tri_area => return Err(f),
+                Err(f) if f == Failure::Limit || p.area >= SMALL_TRIANGLES * tri_area => {
+                    return Err(f)
+                }
                 Err(_) => {}
             }
         }
@@ -138,6 +144,7 @@ fn retile_tries(
     p: &Piece,
     opt: &RetileOptions,
     fixed: Option<f64>,
+    budget: &Budget,
 ) -> Result<(Retiled, Vec<mask::Cover>), Failure> {
     let mut result = Err(Failure::BadInput);
     for k in 0..PIECE_TRIES {
@@ -145,8 +152,16 @@ fn retile_tries(
             start_rank: opt.start_rank + k,
             ..opt.clone()
         };
-        result = retile_piece(&p.mesh, &p.table, Some(&p.patch), &o, fixed, p.genus > 0);
-        if result.is_ok() || opt.start_vertex.is_some() {
+        result = retile_piece(
+            &p.mesh,
+            &p.table,
+            Some(&p.patch),
+            &o,
+            fixed,
+            p.genus > 0,
+            budget,
+        );
+        if result.is_ok() || result == Err(Failure::Limit) || opt.start_vertex.is_some() {
             break;
         }
     }

@@ -32,6 +32,11 @@ use super::surface::NONE;
 
 /// Rings of a patch at most (the centre included).
 const MAX_RINGS: usize = 24;
+/// New vertices a patch or shell wall may add beyond its loop's own: a
+/// loop of n vertices gets at most this many over n rows (but at least
+/// one), so a 100,000-gon's patch stays linear in its loop, not 24 or 96
+/// times it. Only loops of more than about 680 vertices are affected.
+const PATCH_VERTICES: usize = 1 << 16;
 /// Relaxation sweeps over the patch's inner vertices.
 const SWEEPS: usize = 60;
 /// Height of the patch's dome over its membrane, in loop radii. A flat
@@ -109,6 +114,7 @@ fn piece(mesh: &TriMesh, faces: &[u32]) -> Result<Piece, TopologyError> {
         patch.resize(closed.face_count(), NONE);
         patch[before..].iter_mut().for_each(|p| *p = h as u32);
     }
+    super::valence::cap(&mut closed, &mut patch);
     let table = CornerTable::new(&closed.triangles, closed.vertex_count())?;
     if table.opposites().iter().any(|o| o.is_none()) {
         let edges = table.opposites().iter().filter(|o| o.is_none()).count() as u64;
@@ -216,7 +222,7 @@ fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
     let lp = Loop::new(mesh, ring);
     let (n, outer) = (ring.len(), &lp.outer);
     let depth = SHELL * lp.radius;
-    let rows = lp.steps(depth, 4 * MAX_RINGS);
+    let rows = lp.steps(depth, (4 * MAX_RINGS).min(PATCH_VERTICES / n).max(1));
     let disk_vertices = mesh.vertex_count() as u32;
     let disk_faces = mesh.face_count();
     // The copy: vertex v becomes v + disk_vertices.
@@ -259,7 +265,7 @@ fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
 fn add_patch(mesh: &mut TriMesh, ring: &[u32]) {
     let lp = Loop::new(mesh, ring);
     let (n, outer, centre, radius) = (ring.len(), &lp.outer, lp.centre, lp.radius);
-    let rings = lp.steps(radius, MAX_RINGS);
+    let rings = lp.steps(radius, MAX_RINGS.min(PATCH_VERTICES / n).max(1));
     // grid[k][i]: ring k (0 = the loop), i around; ring `rings` is the
     // centre alone.
     let mut grid: Vec<Vec<DVec3>> = (0..rings)

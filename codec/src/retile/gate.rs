@@ -44,7 +44,7 @@ pub(super) const SNAP_TRIES: usize = 6;
 /// vertex this far from the tip could not make a usable triangle anyway.
 pub(super) const FORCED_SNAP: f64 = 3.0;
 
-impl Retiler {
+impl Retiler<'_> {
     /// One gate: tip, snap, label, paths, triangloid, loops.
     pub(super) fn step(
         &mut self,

@@ -28,6 +28,7 @@
 //! `region`); there is no spatial index, so self-intersecting input
 //! cannot confuse them.
 
+mod budget;
 pub mod compose;
 pub mod fill;
 mod front;
@@ -38,6 +39,7 @@ pub mod rate;
 mod region;
 mod snap;
 mod surface;
+mod valence;
 mod walk;
 
 #[cfg(test)]
@@ -49,6 +51,7 @@ use crate::edgebreaker::Symbol;
 use crate::swing::Retiled;
 use crate::swing::{first_edge_length, tip_radius, AngleTable};
 use crate::{CornerTable, TriMesh};
+pub use budget::Budget;
 use front::Front;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -76,7 +79,8 @@ pub use crate::error::RetileFailure as Failure;
 /// Retiles one closed piece. `patch` labels the faces that close a hole
 /// (`fill`); `fixed` is the L of an earlier component of the same file,
 /// which this one must use as it is (the decoder has one radius per
-/// file); `handles`: M has genus > 0. Returns the piece as a one-component [`Retiled`] without mask,
+/// file); `handles`: M has genus > 0; the run's work is charged to
+/// `budget`. Returns the piece as a one-component [`Retiled`] without mask,
 /// and per triangle the hole patch that covers most of its triangloid.
 fn retile_piece(
     mesh: &TriMesh,
@@ -85,6 +89,7 @@ fn retile_piece(
     opt: &RetileOptions,
     fixed: Option<f64>,
     handles: bool,
+    budget: &Budget,
 ) -> Result<(Retiled, Vec<mask::Cover>), Failure> {
     if mesh.face_count() == 0
         || !(opt.edge_length.is_finite() && opt.edge_length > 0.0)
@@ -126,6 +131,9 @@ fn retile_piece(
         codes: Vec::new(),
         scratch: path::Scratch::default(),
         flood: region::Flood::default(),
+        run_steps: budget::RUN_STEPS_PER_ELEMENT
+            .saturating_mul(3 * (mesh.face_count() + cap) as u64),
+        budget,
         cap,
     };
     let start = opt
@@ -161,7 +169,7 @@ fn f32_exact(p: DVec3) -> DVec3 {
 /// A gate to process: the node of GR (GL follows it) and the previous tip.
 type Gate = (u32, u32);
 
-struct Retiler {
+struct Retiler<'b> {
     s: Surface,
     table: AngleTable,
     l: f64,
@@ -187,9 +195,12 @@ struct Retiler {
     scratch: path::Scratch,
     flood: region::Flood,
     cap: usize,
+    /// Steps this run may still take before it counts as running away.
+    run_steps: u64,
+    budget: &'b Budget,
 }
 
-impl Retiler {
+impl Retiler<'_> {
     fn add_vertex(&mut self, xhat: DVec3, m: u32) -> u32 {
         let id = self.xhat.len() as u32;
         self.xhat.push(xhat);
@@ -472,6 +483,7 @@ impl Retiler {
             if self.triangles.len() > self.cap {
                 return Err(Failure::Runaway);
             }
+            self.account()?;
             let (next, push) = self.step(gr, tip)?;
             if let Some(g) = push {
                 let ends = [
@@ -492,6 +504,23 @@ impl Retiler {
             }
         }
         Ok(())
+    }
+
+    /// Hands the steps taken since the last call to the budget.
+    fn account(&mut self) -> Result<(), Failure> {
+        let steps = self.s.work.replace(0);
+        self.run_steps = self.run_steps.checked_sub(steps).ok_or(Failure::Runaway)?;
+        if self.budget.charge(steps, self.memory()) {
+            Ok(())
+        } else {
+            Err(Failure::Limit)
+        }
+    }
+
+    /// Bytes held by the run: the surface, and about 150 per M′ triangle
+    /// (position, adjacency, paths, half-edge map, symbols).
+    fn memory(&self) -> u64 {
+        self.s.memory() + 150 * self.triangles.capacity() as u64
     }
 }
 

@@ -259,6 +259,7 @@ fn dijkstra(s: &Surface, a: u32, b: u32, scratch: &mut Scratch) -> Option<Vec<Po
     let limit = 4.0 * pa.distance(s.pos[b as usize]);
     let mut end = None;
     while let Some(Near(d, f)) = heap.pop() {
+        s.tick(1);
         if d > limit {
             break;
         }
@@ -318,6 +319,10 @@ pub fn insert(s: &mut Surface, pts: &[Point]) -> Option<Vec<u32>> {
 }
 
 fn insert_into(s: &mut Surface, pts: &[Point], chain: &mut Vec<u32>) -> bool {
+    // Membership in the chain, in O(1): a path across a finely split
+    // region has thousands of points.
+    let mut seen: std::collections::HashSet<u32> =
+        std::collections::HashSet::with_capacity(pts.len());
     for (i, &p) in pts.iter().enumerate() {
         let last = i + 1 == pts.len();
         let v = match p {
@@ -349,7 +354,7 @@ fn insert_into(s: &mut Surface, pts: &[Point], chain: &mut Vec<u32>) -> bool {
         if chain.last() == Some(&v) {
             continue;
         }
-        if (i > 0 && !last && chain.contains(&v)) || (last && chain.contains(&v)) {
+        if (i > 0 || last) && seen.contains(&v) {
             return false;
         }
         if let Some(&u) = chain.last() {
@@ -361,6 +366,7 @@ fn insert_into(s: &mut Surface, pts: &[Point], chain: &mut Vec<u32>) -> bool {
             }
             s.set_path(c);
         }
+        seen.insert(v);
         chain.push(v);
     }
     true

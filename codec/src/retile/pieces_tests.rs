@@ -72,7 +72,7 @@ fn patches_close_every_loop_into_a_sphere() {
 fn holes_come_back_as_one_boundary_loop_each() {
     let m = cut_sphere(5, |c| c.z > 0.7 || c.x > 0.85);
     for l in [0.1, 0.16] {
-        let c = retile_pieces(&prepared(&m), &options(l)).unwrap();
+        let c = retile_pieces(&prepared(&m), &options(l), &super::Budget::unlimited()).unwrap();
         let r = &c.retiled;
         assert_eq!(r.hole_mask.len(), r.triangles.len());
         let kept = kept(r);
@@ -109,7 +109,7 @@ fn components_are_retiled_in_order_and_tiny_ones_kept_losslessly() {
         m.triangles
             .extend(a.triangles.iter().map(|t| t.map(|v| v + base)));
     }
-    let c = retile_pieces(&prepared(&m), &options(0.15)).unwrap();
+    let c = retile_pieces(&prepared(&m), &options(0.15), &super::Budget::unlimited()).unwrap();
     let r = &c.retiled;
     assert_eq!(r.first.len(), 2);
     assert_eq!(r.symbols.len() + 2, r.triangles.len());
@@ -317,7 +317,15 @@ fn probe() {
                 start_rank: rank,
                 ..options(l)
             };
-            let r = super::retile_piece(&p.mesh, &p.table, Some(&p.patch), &opt, None, p.genus > 0);
+            let r = super::retile_piece(
+                &p.mesh,
+                &p.table,
+                Some(&p.patch),
+                &opt,
+                None,
+                p.genus > 0,
+                &super::Budget::unlimited(),
+            );
             println!(
                 "L {l:.4e} piece {i}: {} faces ({patch} patch), {} holes, genus {}, area {:.1} tri: {:?}",
                 p.mesh.face_count(),

@@ -18,7 +18,7 @@
 
 use super::compose::{retile_pieces, PieceReport};
 use super::fill::Piece;
-use super::{Failure, RetileOptions};
+use super::{Budget, Failure, RetileOptions};
 use crate::swing::SwingStats;
 use crate::Error;
 
@@ -51,6 +51,9 @@ pub struct RateReport {
     /// The size is within the tolerance of the request (always true when
     /// L was given).
     pub within_tolerance: bool,
+    /// Steps of retiling work over every run (what
+    /// [`EncodeLimits::max_work`](crate::EncodeLimits) caps).
+    pub work: u64,
 }
 
 /// A finished encoding.
@@ -65,30 +68,46 @@ pub struct Chosen {
 /// One written file: bytes, figures, and each component's fate.
 type Run = (Vec<u8>, SwingStats, Vec<PieceReport>);
 
-fn run(pieces: &[Piece], l: f64, bits: u8, start_rank: u32) -> Result<Result<Run, Failure>, Error> {
+/// One run; a run stopped by the encoder's limits ends the encode.
+fn run(
+    pieces: &[Piece],
+    l: f64,
+    bits: u8,
+    start_rank: u32,
+    budget: &Budget,
+) -> Result<Result<Run, Failure>, Error> {
     let opt = RetileOptions {
         edge_length: l,
         angle_bits: bits,
         start_vertex: None,
         start_rank,
     };
-    match retile_pieces(pieces, &opt) {
+    match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {
             let (bytes, stats) = crate::swing::write(&c.retiled)?;
             Ok(Ok((bytes, stats, c.report)))
         }
+        Err(Failure::Limit) => Err(budget.error().map_or(
+            Error::from(crate::error::RetileError {
+                attempts: 1,
+                successes: 0,
+                smallest_edge_length: l,
+                failure: Some(Failure::Limit),
+            }),
+            Error::from,
+        )),
         Err(f) => Ok(Err(f)),
     }
 }
 
 /// Encodes at the given L; if four runs from different start vertices
 /// fail, at the first L below it, in steps of 2%, where one works.
-pub fn at_length(pieces: &[Piece], l: f64, bits: u8) -> Result<Chosen, Error> {
+pub fn at_length(pieces: &[Piece], l: f64, bits: u8, budget: &Budget) -> Result<Chosen, Error> {
     let mut attempts = Vec::new();
     let mut next = l;
     let mut fails = 0u32;
     for _ in 0..MAX_RUNS {
-        match run(pieces, next, bits, fails % 4)? {
+        match run(pieces, next, bits, fails % 4, budget)? {
             Ok((bytes, stats, report)) => {
                 attempts.push(Attempt {
                     edge_length: next,
@@ -103,6 +122,7 @@ pub fn at_length(pieces: &[Piece], l: f64, bits: u8) -> Result<Chosen, Error> {
                         edge_length: next,
                         reduced: next != l,
                         within_tolerance: true,
+                        work: budget.used(),
                         attempts,
                     },
                 });
@@ -128,6 +148,7 @@ pub fn at_size(
     target: u64,
     max_bytes: Option<u64>,
     bits: u8,
+    budget: &Budget,
 ) -> Result<Chosen, Error> {
     // A cap below the target is the real target.
     let target = max_bytes.map_or(target, |cap| target.min(cap));
@@ -163,7 +184,7 @@ pub fn at_size(
     let mut fails = 0u32;
     let mut failing_from: Option<f64> = None;
     for _ in 0..MAX_RUNS {
-        match run(pieces, l, bits, fails)? {
+        match run(pieces, l, bits, fails, budget)? {
             Ok(done) => {
                 fails = 0;
                 failing_from = None;
@@ -227,6 +248,7 @@ pub fn at_size(
             edge_length,
             reduced: first_failed,
             within_tolerance: (size - target as f64).abs() <= TOLERANCE * target as f64,
+            work: budget.used(),
             attempts,
         },
         bytes,

@@ -74,6 +74,7 @@ pub fn claim(
     let mut boundary_edges = 0usize;
     let mut area2 = 0.0;
     while let Some(f) = fl.stack.pop() {
+        s.tick(1);
         fl.faces.push(f);
         area2 += s.double_area(f);
         if area2 > 2.0 * max_area {

@@ -37,6 +37,7 @@ pub fn nearest(
         }
     }
     while let Some(Near(d, x)) = heap.pop() {
+        s.tick(1);
         if d > limit || found.len() >= count {
             break;
         }

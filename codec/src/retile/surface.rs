@@ -55,6 +55,10 @@ pub struct Surface {
     pub sample: Vec<u32>,
     /// Per vertex: number of path edges incident to it.
     pub on_path: Vec<u32>,
+    /// Elementary steps taken on this surface since the retiler last
+    /// collected them (`budget`): turns around vertices here, walk steps,
+    /// search pops and floods in the other modules.
+    pub work: std::cell::Cell<u64>,
 }
 
 #[inline]
@@ -111,6 +115,7 @@ impl Surface {
             corner_of,
             sample: vec![NONE; nv],
             on_path: vec![0; nv],
+            work: std::cell::Cell::new(0),
         }
     }
 
@@ -120,6 +125,24 @@ impl Surface {
 
     pub fn vertex_count(&self) -> usize {
         self.pos.len()
+    }
+
+    /// Counts `n` elementary steps (see `work`).
+    #[inline]
+    pub fn tick(&self, n: u64) {
+        self.work.set(self.work.get() + n);
+    }
+
+    /// Bytes held by the surface's buffers.
+    pub fn memory(&self) -> u64 {
+        use core::mem::size_of;
+        let per_corner = self.v.capacity() * 4 + self.opp.capacity() * 4 + self.path.capacity();
+        let per_face = self.normal.capacity() * size_of::<DVec3>()
+            + self.owner.capacity() * 4
+            + self.patch.capacity() * 4;
+        let per_vertex = self.pos.capacity() * size_of::<DVec3>()
+            + (self.corner_of.capacity() + self.sample.capacity() + self.on_path.capacity()) * 4;
+        (per_corner + per_face + per_vertex) as u64
     }
 
     /// The three corners of face `f`.
@@ -388,6 +411,7 @@ impl Iterator for Fan<'_> {
             return None;
         }
         self.left -= 1;
+        self.s.tick(1);
         let here = self.at;
         self.at = self.s.swing(here);
         self.done = self.at == self.start;

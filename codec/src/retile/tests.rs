@@ -47,7 +47,16 @@ fn ellipsoid(levels: u32) -> TriMesh {
 fn retile(mesh: &TriMesh, table: &CornerTable, opt: &RetileOptions) -> Result<Retiled, Failure> {
     let (v, f) = (mesh.vertex_count() as i64, mesh.face_count() as i64);
     let handles = v - f / 2 < 2;
-    retile_piece(mesh, table, None, opt, None, handles).map(|(r, _)| r)
+    retile_piece(
+        mesh,
+        table,
+        None,
+        opt,
+        None,
+        handles,
+        &super::Budget::unlimited(),
+    )
+    .map(|(r, _)| r)
 }
 
 fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
@@ -258,7 +267,7 @@ fn rate_control_lands_within_three_percent_and_under_the_cap() {
     let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
     let pieces = fill::pieces(&m, &table).unwrap();
     for target in [1500u64, 4000] {
-        let chosen = rate::at_size(&pieces, target, None, 8).unwrap();
+        let chosen = rate::at_size(&pieces, target, None, 8, &super::Budget::unlimited()).unwrap();
         let size = chosen.bytes.len() as f64;
         assert!(chosen.report.within_tolerance);
         assert!(
@@ -267,7 +276,7 @@ fn rate_control_lands_within_three_percent_and_under_the_cap() {
         );
         // A cap just below what the free search found is still honoured.
         let cap = chosen.bytes.len() as u64 - 1;
-        match rate::at_size(&pieces, target, Some(cap), 8) {
+        match rate::at_size(&pieces, target, Some(cap), 8, &super::Budget::unlimited()) {
             Ok(c) => assert!(c.bytes.len() as u64 <= cap),
             Err(e) => assert!(matches!(e, crate::Error::Retile(_)), "{e}"),
         }

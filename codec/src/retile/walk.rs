@@ -113,6 +113,7 @@ impl<'a> Walker<'a> {
             return None;
         }
         self.budget -= 1;
+        self.s.tick(1);
         let out = exit(self.s, &self.plane, self.entry)?;
         let (_, point) = self.plane.crossing(self.s, out);
         self.entry = self.s.opp[out as usize];

@@ -1,0 +1,125 @@
+//! The encoder's work and memory accounting ([`EncodeLimits`]).
+//!
+//! The retiler's searches count their elementary steps on the surface
+//! (`Surface::work`: turns around a vertex, walk steps, search pops and
+//! floods); after every gate the retiler hands the count to the
+//! [`Budget`] with an estimate of its memory. Two bounds apply:
+//! * the caller's [`EncodeLimits`], over the whole encode: passing one
+//!   ends the encode with a [`LimitError`];
+//! * a per-run bound, `RUN_STEPS_PER_ELEMENT` steps per corner of the
+//!   surface and per corner of the largest output the run may make: a run
+//!   beyond it is running away (the valence cap and the searches' own
+//!   radius bounds keep ordinary runs two orders of magnitude below), and
+//!   fails like a front that does not close.
+//!
+//! Counting never influences a decision of the retiler, so the bytes of
+//! a file do not depend on the limits, only whether it is written.
+
+use crate::{EncodeLimits, LimitError, Limited};
+use std::cell::Cell;
+use std::time::Instant;
+
+/// Steps per element (surface corner or output corner) allowed to one
+/// retiling run. Measured on the shared corpus at 0.5-8 b/v: at most
+/// about 300 (BENCHMARKS.md, "Encoder work bounds").
+pub const RUN_STEPS_PER_ELEMENT: u64 = 20_000;
+
+/// The running account of one encode.
+#[derive(Debug)]
+pub struct Budget {
+    limits: EncodeLimits,
+    used: Cell<u64>,
+    start: Instant,
+    exceeded: Cell<Option<(Limited, u64, u64)>>,
+}
+
+impl Budget {
+    pub fn new(limits: EncodeLimits) -> Budget {
+        Budget {
+            limits,
+            used: Cell::new(0),
+            start: Instant::now(),
+            exceeded: Cell::new(None),
+        }
+    }
+
+    /// No cap (tests and trusted callers).
+    #[cfg(test)]
+    pub fn unlimited() -> Budget {
+        Budget::new(EncodeLimits {
+            max_work: u64::MAX,
+            max_memory_bytes: u64::MAX,
+            max_milliseconds: None,
+        })
+    }
+
+    /// Adds `steps` of work and checks `memory` bytes in use against the
+    /// limits; `false` once any limit is passed (the first one is kept).
+    pub fn charge(&self, steps: u64, memory: u64) -> bool {
+        if self.exceeded.get().is_some() {
+            return false;
+        }
+        let used = self.used.get().saturating_add(steps);
+        self.used.set(used);
+        let over = if used > self.limits.max_work {
+            Some((Limited::Work, used, self.limits.max_work))
+        } else if memory > self.limits.max_memory_bytes {
+            Some((Limited::AllocBytes, memory, self.limits.max_memory_bytes))
+        } else if let Some(ms) = self.limits.max_milliseconds {
+            let elapsed = self.start.elapsed().as_millis() as u64;
+            (elapsed > ms).then_some((Limited::Milliseconds, elapsed, ms))
+        } else {
+            None
+        };
+        self.exceeded.set(over);
+        over.is_none()
+    }
+
+    /// Work charged so far.
+    pub fn used(&self) -> u64 {
+        self.used.get()
+    }
+
+    /// The limit that was passed, if any.
+    pub fn error(&self) -> Option<LimitError> {
+        self.exceeded
+            .get()
+            .map(|(what, requested, limit)| LimitError {
+                what,
+                requested,
+                limit,
+            })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_limit_passed_is_reported_and_stays() {
+        let b = Budget::new(EncodeLimits {
+            max_work: 100,
+            ..EncodeLimits::default()
+        });
+        assert!(b.charge(60, 0));
+        assert!(!b.charge(60, 0));
+        assert!(!b.charge(0, 0), "a budget once exceeded stays exceeded");
+        let e = b.error().unwrap();
+        assert_eq!((e.what, e.requested, e.limit), (Limited::Work, 120, 100));
+        let m = Budget::new(EncodeLimits {
+            max_memory_bytes: 10,
+            ..EncodeLimits::default()
+        });
+        assert!(m.charge(1, 10));
+        assert!(!m.charge(1, 11));
+        assert_eq!(m.error().unwrap().what, Limited::AllocBytes);
+        let t = Budget::new(EncodeLimits {
+            max_milliseconds: Some(0),
+            ..EncodeLimits::default()
+        });
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        assert!(!t.charge(0, 0));
+        assert_eq!(t.error().unwrap().what, Limited::Milliseconds);
+    }
+}

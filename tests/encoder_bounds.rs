@@ -1,0 +1,133 @@
+//! The encoder's work is bounded by its input (issue 18): one huge polygon
+//! face and a double fan of very high valence encode with work linear in
+//! the input, and `--max-work` / `--time-limit` end a run with a clear
+//! limit error instead of letting it run away.
+//!
+//! Work is the encoder's own deterministic count of retiling steps
+//! (`rate_control.work` in `swm encode --json`), so these bounds are exact
+//! and do not depend on the machine's speed.
+
+mod common;
+use common::{json, scratch, swm};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// One OBJ face with `n` vertices on the unit circle.
+fn polygon(dir: &Path, n: u32) -> String {
+    let mut s = String::new();
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        writeln!(s, "v {} {} 0", a.cos(), a.sin()).unwrap();
+    }
+    s.push('f');
+    for i in 1..=n {
+        write!(s, " {i}").unwrap();
+    }
+    s.push('\n');
+    let path = dir.join(format!("polygon-{n}.obj"));
+    std::fs::write(&path, s).unwrap();
+    path.to_str().unwrap().to_owned()
+}
+
+/// Two cones over one ring of `n` vertices: both apexes have valence n.
+fn double_fan(dir: &Path, n: u32) -> String {
+    let mut s = String::from("v 0 0 1\nv 0 0 -1\n");
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        writeln!(s, "v {} {} 0", a.cos(), a.sin()).unwrap();
+    }
+    for i in 0..n {
+        let (a, b) = (3 + i, 3 + (i + 1) % n);
+        writeln!(s, "f 1 {a} {b}\nf 2 {b} {a}").unwrap();
+    }
+    let path = dir.join(format!("fan-{n}.obj"));
+    std::fs::write(&path, s).unwrap();
+    path.to_str().unwrap().to_owned()
+}
+
+fn work(input: &str, out: &Path, target: &[&str]) -> u64 {
+    let mut args = vec!["encode", input, "-o", out.to_str().unwrap(), "--json"];
+    args.extend_from_slice(target);
+    let j = json(&swm(&args));
+    j["rate_control"]["work"]
+        .as_u64()
+        .expect("work in the report")
+}
+
+#[test]
+fn a_polygon_face_of_thousands_of_vertices_costs_work_linear_in_it() {
+    let dir = scratch("bounds-polygon");
+    let out = dir.join("p.swm");
+    for n in [1000, 4000] {
+        let w = work(&polygon(&dir, n), &out, &["--size", "400"]);
+        // Fanned by the reader, the polygon's spokes once cost every path
+        // across it n crossings: about 31,000 steps per input corner at
+        // n = 1000. Rebuilt as a graded mesh, a few hundred.
+        assert!(w <= 3000 * 3 * u64::from(n), "n = {n}: {w} steps");
+    }
+}
+
+#[test]
+fn a_double_fan_of_high_valence_costs_the_same_at_four_times_the_valence() {
+    let dir = scratch("bounds-fan");
+    let out = dir.join("f.swm");
+    let small = work(&double_fan(&dir, 1000), &out, &["--edge-length", "0.3"]);
+    let large = work(&double_fan(&dir, 4000), &out, &["--edge-length", "0.3"]);
+    assert!(
+        large < 2 * small,
+        "valence 1000: {small} steps, 4000: {large}"
+    );
+    // And at a requested size, 20,000 faces around each apex.
+    let j = json(&swm(&[
+        "encode",
+        &double_fan(&dir, 20_000),
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "1000",
+        "--json",
+    ]));
+    assert!(j["rate_control"]["work"].as_u64().unwrap() < 200_000_000);
+}
+
+#[test]
+fn encode_limits_end_a_run_with_a_clear_error_and_no_file() {
+    let dir = scratch("bounds-limits");
+    let input = double_fan(&dir, 2000);
+    let out = dir.join("x.swm");
+    for (flag, value, says) in [
+        (
+            "--max-work",
+            "1000",
+            "steps of retiling work, more than the limit of 1000",
+        ),
+        (
+            "--max-memory",
+            "1000",
+            "bytes of memory, more than the limit of 1000",
+        ),
+        (
+            "--time-limit",
+            "0.001",
+            "milliseconds, more than the limit of 1",
+        ),
+    ] {
+        let r = swm(&["encode", &input, "-o", out.to_str().unwrap(), flag, value]);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{flag}: {err}");
+        assert!(
+            err.contains(says) && err.contains("fan-2000.obj"),
+            "{flag}: {err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{flag}: {err}");
+        assert!(!out.exists(), "{flag}: a file was written");
+    }
+    for bad in [
+        ("--max-work", "0"),
+        ("--time-limit", "-1"),
+        ("--time-limit", "nan"),
+    ] {
+        let r = swm(&["encode", &input, "-o", out.to_str().unwrap(), bad.0, bad.1]);
+        assert_eq!(r.status.code(), Some(2), "{bad:?}");
+    }
+}
