@@ -58,8 +58,14 @@ fn refused(args: &[&str], file: &Path, why: &str) {
     assert!(stderr.starts_with("swm: error:"), "{args:?}: {stderr}");
     assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
     let named = format!("swm: error: {}: ", file.to_str().unwrap());
-    assert!(stderr.starts_with(&named), "{args:?}: not about {file:?}: {stderr}");
-    assert!(stderr.contains(why), "{args:?}: expected \"{why}\": {stderr}");
+    assert!(
+        stderr.starts_with(&named),
+        "{args:?}: not about {file:?}: {stderr}"
+    );
+    assert!(
+        stderr.contains(why),
+        "{args:?}: expected \"{why}\": {stderr}"
+    );
 }
 
 fn s(p: &Path) -> &str {
@@ -126,13 +132,22 @@ fn dev_zero_is_refused_at_once_under_every_name() {
     for ext in ["obj", "ply", "off", "stl", "swm"] {
         let zero = dir.join(format!("zero.{ext}"));
         std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
-        all_refuse(&zero, &mesh, ext == "swm", "a character device, not a regular file");
+        all_refuse(
+            &zero,
+            &mesh,
+            ext == "swm",
+            "a character device, not a regular file",
+        );
     }
     // Named directly, too (`decode` reads its input as `.swm` whatever
     // its name).
     let out = dir.join("out.obj");
     let dev_zero = Path::new("/dev/zero");
-    refused(&["decode", "/dev/zero", "-o", s(&out)], dev_zero, "a character device");
+    refused(
+        &["decode", "/dev/zero", "-o", s(&out)],
+        dev_zero,
+        "a character device",
+    );
     assert!(!out.exists());
 }
 
@@ -147,7 +162,12 @@ fn a_fifo_is_refused_without_waiting_for_a_writer() {
             println!("skipped: mkfifo not found");
             return;
         }
-        all_refuse(&fifo, &mesh, ext == "swm", "a FIFO (named pipe), not a regular file");
+        all_refuse(
+            &fifo,
+            &mesh,
+            ext == "swm",
+            "a FIFO (named pipe), not a regular file",
+        );
         // Through a symbolic link, the target is judged.
         let link = dir.join(format!("link-to-fifo.{ext}"));
         std::os::unix::fs::symlink(&fifo, &link).unwrap();
@@ -181,7 +201,14 @@ fn decode_refuses_a_file_longer_than_max_input() {
     let len = std::fs::metadata(&swm_file).unwrap().len();
     let out = dir.join("out.obj");
     let exact = len.to_string();
-    ok(&run(&["decode", s(&swm_file), "-o", s(&out), "--max-input", &exact]));
+    ok(&run(&[
+        "decode",
+        s(&swm_file),
+        "-o",
+        s(&out),
+        "--max-input",
+        &exact,
+    ]));
     std::fs::remove_file(&out).unwrap();
     let less = (len - 1).to_string();
     let why = format!("at least {len} bytes, more than the input limit of {less}");
@@ -206,7 +233,11 @@ fn the_default_limit_refuses_a_huge_file_unread() {
             println!("skipped: this file system has no 20 GiB sparse files");
             return;
         }
-        let why = format!("at least {} bytes, more than the input limit of {}", 20u64 << 30, 16u64 << 30);
+        let why = format!(
+            "at least {} bytes, more than the input limit of {}",
+            20u64 << 30,
+            16u64 << 30
+        );
         refused(&["info", s(&huge)], &huge, &why);
     }
 }

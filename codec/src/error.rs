@@ -433,10 +433,9 @@ pub enum InputError {
 impl fmt::Display for InputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            InputError::NotARegularFile { kind } => write!(
-                f,
-                "{kind}, not a regular file; only regular files are read"
-            ),
+            InputError::NotARegularFile { kind } => {
+                write!(f, "{kind}, not a regular file; only regular files are read")
+            }
         }
     }
 }

@@ -51,8 +51,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         max_input_bytes: args.max_input.unwrap_or(default.max_input_bytes),
     };
     // Mapped when large: the decoder reads the file once, front to back.
-    let bytes = swm::io::read_file_with(&args.input, &limits)
-        .map_err(|e| CliError::new(&args.input, e))?;
+    let bytes =
+        swm::io::read_file_with(&args.input, &limits).map_err(|e| CliError::new(&args.input, e))?;
     let options = swm::DecodeOptions {
         sharpen: args.sharpen,
         bend_steps: args.bend,

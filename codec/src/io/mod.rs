@@ -44,8 +44,8 @@ mod stl;
 mod text;
 
 use crate::{Error, FormatError, LimitError, Limited, Limits, Malformed, ParameterError, TriMesh};
-use output::write_atomic;
 pub use output::discard_unfinished;
+use output::write_atomic;
 use std::io::{self, BufWriter, Write};
 use std::ops::Deref;
 use std::path::Path;

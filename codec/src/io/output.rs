@@ -42,7 +42,9 @@ impl Registry {
     /// The list, even if a thread panicked while holding it: it is a plain
     /// list of paths, valid at every step.
     fn lock(&self) -> MutexGuard<'_, Vec<PathBuf>> {
-        self.0.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+        self.0
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
     }
 
     fn discard<R>(&self, then: impl FnOnce() -> R) -> R {

@@ -98,11 +98,10 @@ fn open_nonblocking(path: &Path) -> std::io::Result<File> {
 /// it once it turns out to hold more than `limit`.
 fn read_bounded(file: File, len: u64, limit: u64) -> Result<Vec<u8>, Error> {
     let mut bytes = Vec::new();
-    bytes.try_reserve_exact(len as usize).map_err(|_| {
-        Error::Io(std::io::Error::from(std::io::ErrorKind::OutOfMemory))
-    })?;
-    file.take(limit.saturating_add(1))
-        .read_to_end(&mut bytes)?;
+    bytes
+        .try_reserve_exact(len as usize)
+        .map_err(|_| Error::Io(std::io::Error::from(std::io::ErrorKind::OutOfMemory)))?;
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
     let read = bytes.len() as u64;
     if read > limit {
         return Err(too_long(read, limit));

@@ -159,7 +159,10 @@ fn reads_stop_at_the_input_limit() {
     for len in [100u64, (1 << 20) + 7] {
         let path = dir.join(format!("f{len}.obj"));
         fs::write(&path, garbage(len as usize, len)).unwrap();
-        assert_eq!(read_file_with(&path, &limits(len)).unwrap().len() as u64, len);
+        assert_eq!(
+            read_file_with(&path, &limits(len)).unwrap().len() as u64,
+            len
+        );
         let e = input_limit(read_file_with(&path, &limits(len - 1)));
         assert_eq!((e.requested, e.limit), (len, len - 1));
         input_limit(read_mesh_with(&path, &limits(len - 1)));
