@@ -3,9 +3,10 @@
 //! over the target in one step.
 //!
 //! Invariants:
-//! - the temporary file is created exclusively (`O_CREAT | O_EXCL`, by
-//!   the `tempfile` crate) under an unpredictable name
-//!   `.{name}.XXXXXX.tmp` in the target's directory: it never opens,
+//! - the temporary file is created exclusively (`O_CREAT | O_EXCL`)
+//!   under an unpredictable name `.{name}.XXXXXX.tmp` in the target's
+//!   directory (the `tempfile` crate draws the name, retries on a
+//!   collision and removes the file when dropped): it never opens,
 //!   follows or replaces anything that was there, symbolic links
 //!   included, and nobody can plant a file at a name it will use;
 //! - it gets the permissions `File::create` would give (`0o666` less the
@@ -25,7 +26,7 @@
 
 use crate::Error;
 use std::ffi::OsString;
-use std::fs::File;
+use std::fs::{File, OpenOptions};
 use std::io;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
@@ -93,17 +94,28 @@ impl<'r> Unfinished<'r> {
         let mut prefix = OsString::from(".");
         prefix.push(name);
         prefix.push(".");
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(&prefix).suffix(".tmp");
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            builder.permissions(std::fs::Permissions::from_mode(0o666));
-        }
+        // Opened here rather than by `Builder::tempfile_in`, which would
+        // add its hidden name to every error message (the caller names
+        // the output) and give the file mode 0o600.
+        let open = |name: &Path| {
+            let mut options = OpenOptions::new();
+            // `create_new` is `O_CREAT | O_EXCL`: never an existing entry,
+            // never through a symbolic link.
+            options.write(true).create_new(true);
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::OpenOptionsExt;
+                options.mode(0o666);
+            }
+            options.open(name)
+        };
         // Created and listed under the lock, so that `discard` sees every
         // file that exists.
         let mut live = registry.lock();
-        let file = builder.tempfile_in(dir)?;
+        let file = tempfile::Builder::new()
+            .prefix(&prefix)
+            .suffix(".tmp")
+            .make_in(dir, open)?;
         live.push(file.path().to_owned());
         Ok(Unfinished {
             file: Some(file),
@@ -191,6 +203,15 @@ mod tests {
             .collect();
         names.sort();
         names
+    }
+
+    #[test]
+    fn a_missing_directory_is_reported_without_the_temporary_name() {
+        let dir = scratch("missing");
+        let e = write_atomic(&dir.join("no/out.bin"), |_| Ok(())).unwrap_err();
+        let Error::Io(io) = &e else { panic!("{e:?}") };
+        assert_eq!(io.kind(), io::ErrorKind::NotFound);
+        assert!(!e.to_string().contains(".tmp"), "{e}");
     }
 
     #[test]
