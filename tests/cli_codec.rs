@@ -62,13 +62,9 @@ fn encode_decode_info_roundtrip() {
         let v = json(&swm(&["info", output.to_str().unwrap(), "--json"]));
         assert_eq!(v["genus"], 1, "the decoded torus keeps its handle");
     }
-    let leftovers = std::fs::read_dir(&dir).unwrap().filter(|e| {
-        e.as_ref()
-            .unwrap()
-            .file_name()
-            .to_string_lossy()
-            .contains(".tmp-")
-    });
+    let leftovers = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| is_temporary(&e.as_ref().unwrap().file_name().to_string_lossy()));
     assert_eq!(leftovers.count(), 0, "temporary files left behind");
 }
 

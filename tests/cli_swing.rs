@@ -65,7 +65,7 @@ fn files_but(dir: &Path, keep: impl Fn(&str) -> bool) -> Vec<String> {
 /// Neither `output` nor a temporary file of any output is in its folder.
 fn assert_no_output(output: &Path) {
     assert!(!output.exists(), "{} was written", output.display());
-    let left = files_but(output.parent().unwrap(), |f| !f.contains(".tmp-"));
+    let left = files_but(output.parent().unwrap(), |f| !is_temporary(f));
     assert!(left.is_empty(), "temporary files left behind: {left:?}");
 }
 
@@ -181,7 +181,7 @@ fn the_three_targets_decode_and_inspect() {
     ] {
         assert!(text.contains(needle), "no `{needle}` in:\n{text}");
     }
-    let left = files_but(&dir, |f| !f.contains(".tmp-"));
+    let left = files_but(&dir, |f| !is_temporary(f));
     assert!(left.is_empty(), "temporary files left behind: {left:?}");
 }
 

@@ -1,5 +1,6 @@
-//! Errors, split by cause: I/O, malformed data, bad parameter, limit
-//! exceeded, topology the encoder cannot handle, unsupported version.
+//! Errors, split by cause: I/O, an input that is not a regular file,
+//! malformed data, bad parameter, limit exceeded, topology the encoder
+//! cannot handle, unsupported version.
 //!
 //! Errors carry data, never formatted strings, so callers can match on
 //! them; `Display` gives the one-line message the CLI prints after the
@@ -15,6 +16,10 @@ pub enum Error {
     #[cfg(feature = "std")]
     #[error("{0}")]
     Io(#[from] std::io::Error),
+    /// An input path names something other than a regular file (a FIFO,
+    /// a device, a directory), which is refused rather than read.
+    #[error("{0}")]
+    Input(#[from] InputError),
     /// The data is malformed or corrupt.
     #[error("{0}")]
     Format(#[from] FormatError),
@@ -385,6 +390,62 @@ impl fmt::Display for ParameterError {
 
 impl core::error::Error for ParameterError {}
 
+/// What kind of file an input path names, when it is not a regular file
+/// (symbolic links are followed: this is the kind of their target).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum FileKind {
+    /// A directory.
+    Directory,
+    /// A FIFO (named pipe): reading it could block or never end.
+    Fifo,
+    /// A character device such as `/dev/zero`: reading it could never end.
+    CharDevice,
+    /// A block device.
+    BlockDevice,
+    /// A Unix domain socket.
+    Socket,
+    /// Anything else that is not a regular file.
+    Other,
+}
+
+impl fmt::Display for FileKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            FileKind::Directory => "a directory",
+            FileKind::Fifo => "a FIFO (named pipe)",
+            FileKind::CharDevice => "a character device",
+            FileKind::BlockDevice => "a block device",
+            FileKind::Socket => "a socket",
+            FileKind::Other => "a special file",
+        })
+    }
+}
+
+/// An input path that is refused before anything is read from it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum InputError {
+    /// The path names something other than a regular file: its length is
+    /// unknown or unbounded, or opening and reading it could block.
+    NotARegularFile {
+        /// What it is.
+        kind: FileKind,
+    },
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InputError::NotARegularFile { kind } => {
+                write!(f, "{kind}, not a regular file; only regular files are read")
+            }
+        }
+    }
+}
+
+impl core::error::Error for InputError {}
+
 /// What a [`LimitError`] counts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -399,6 +460,8 @@ pub enum Limited {
     Work,
     /// Milliseconds of encoding time ([`EncodeLimits`](crate::EncodeLimits)).
     Milliseconds,
+    /// Bytes of an input file.
+    InputBytes,
 }
 
 /// The input needs more than the [`Limits`](crate::Limits) (or, when
@@ -421,6 +484,15 @@ impl fmt::Display for LimitError {
             Limited::AllocBytes => "bytes of memory",
             Limited::Work => "steps of retiling work",
             Limited::Milliseconds => "milliseconds",
+            Limited::InputBytes => {
+                // `requested` is a lower bound when the file was cut off
+                // while read (it grew, or its length was not known).
+                return write!(
+                    f,
+                    "the file holds at least {} bytes, more than the input limit of {}",
+                    self.requested, self.limit
+                );
+            }
         };
         write!(
             f,

@@ -58,8 +58,8 @@ pub use api::{
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::Mode;
 pub use error::{
-    Error, FormatError, LimitError, Limited, Location, Malformed, ParameterError, RetileError,
-    RetileFailure, TopologyError,
+    Error, FileKind, FormatError, InputError, LimitError, Limited, Location, Malformed,
+    ParameterError, RetileError, RetileFailure, TopologyError,
 };
 #[cfg(feature = "encoder")]
 pub use limits::EncodeLimits;

@@ -15,6 +15,11 @@ pub struct Limits {
     /// Largest number of bytes a single reader or decoder may allocate for
     /// its output and working buffers. Default: 16 GiB.
     pub max_alloc_bytes: u64,
+    /// Largest input file, in bytes, that the file readers of `swm::io`
+    /// open (`read_file`, `read_mesh`; larger files are refused before
+    /// they are mapped or read). Default: 16 GiB. Decoding from bytes in
+    /// memory does not use it.
+    pub max_input_bytes: u64,
 }
 
 impl Default for Limits {
@@ -23,6 +28,7 @@ impl Default for Limits {
             max_vertices: 1 << 28,
             max_faces: 1 << 29,
             max_alloc_bytes: 16 << 30,
+            max_input_bytes: 16 << 30,
         }
     }
 }
@@ -33,6 +39,7 @@ impl Limits {
         max_vertices: u64::MAX,
         max_faces: u64::MAX,
         max_alloc_bytes: u64::MAX,
+        max_input_bytes: u64::MAX,
     };
 
     /// Checks a declared vertex count.
@@ -43,6 +50,11 @@ impl Limits {
     /// Checks a declared face count.
     pub fn check_faces(&self, n: u64) -> Result<(), crate::LimitError> {
         check(crate::Limited::Faces, n, self.max_faces)
+    }
+
+    /// Checks the length of an input file in bytes.
+    pub fn check_input(&self, bytes: u64) -> Result<(), crate::LimitError> {
+        check(crate::Limited::InputBytes, bytes, self.max_input_bytes)
     }
 
     /// Checks a planned allocation in bytes.

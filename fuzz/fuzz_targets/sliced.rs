@@ -17,6 +17,7 @@ const OPTIONS: DecodeOptions = DecodeOptions {
         max_vertices: 1 << 16,
         max_faces: 1 << 17,
         max_alloc_bytes: 64 << 20,
+        ..Limits::UNLIMITED
     },
     sharpen: false,
     bend_steps: 0,

@@ -11,6 +11,7 @@ pub fn check_reader(data: &[u8], format: MeshFormat) {
         max_vertices: 1 << 20,
         max_faces: 1 << 20,
         max_alloc_bytes: 256 << 20,
+        ..swm::Limits::UNLIMITED
     };
     if let Ok(mesh) = swm::io::read_mesh_bytes(data, format, &limits) {
         // The readers promise indices in range and finite positions.

@@ -18,6 +18,12 @@ pub fn shared_corpus() -> Option<PathBuf> {
     }
 }
 
+/// Whether a file name is that of an output's temporary file,
+/// `.NAME.XXXXXX.tmp` (see `swm::io::write_mesh`).
+pub fn is_temporary(name: &str) -> bool {
+    name.starts_with('.') && name.ends_with(".tmp")
+}
+
 /// A fresh, empty scratch directory for one test.
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("swm-test-{}-{name}", std::process::id()));

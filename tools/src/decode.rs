@@ -1,5 +1,6 @@
 //! `swm decode IN.swm -o OUT.(obj|ply|off|stl|glb) [--sharpen] [--bend N]
-//! [--max-vertices N] [--max-faces N] [--max-alloc BYTES] [--json]`.
+//! [--max-vertices N] [--max-faces N] [--max-alloc BYTES] [--max-input BYTES]
+//! [--json]`.
 
 use crate::CliError;
 use std::path::PathBuf;
@@ -30,6 +31,9 @@ pub struct Args {
     /// many bytes at once.
     #[arg(long, value_name = "BYTES")]
     max_alloc: Option<u64>,
+    /// Refuse input files longer than this many bytes (default 16 GiB).
+    #[arg(long, value_name = "BYTES")]
+    max_input: Option<u64>,
     /// Print statistics as JSON.
     #[arg(long)]
     json: bool,
@@ -39,14 +43,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
     // Refuse an unknown output format before doing any work.
     swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::new(&args.output, e))?;
-    // Mapped when large: the decoder reads the file once, front to back.
-    let bytes = swm::io::read_file(&args.input).map_err(|e| CliError::new(&args.input, e))?;
     let default = swm::Limits::default();
     let limits = swm::Limits {
         max_vertices: args.max_vertices.unwrap_or(default.max_vertices),
         max_faces: args.max_faces.unwrap_or(default.max_faces),
         max_alloc_bytes: args.max_alloc.unwrap_or(default.max_alloc_bytes),
+        max_input_bytes: args.max_input.unwrap_or(default.max_input_bytes),
     };
+    // Mapped when large: the decoder reads the file once, front to back.
+    let bytes =
+        swm::io::read_file_with(&args.input, &limits).map_err(|e| CliError::new(&args.input, e))?;
     let options = swm::DecodeOptions {
         sharpen: args.sharpen,
         bend_steps: args.bend,

@@ -89,7 +89,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
 /// `swm info FILE.swm`: the file's header, sections and CLERS histogram.
 fn run_swm(args: &Args) -> Result<(), CliError> {
     let err = |e: swm::Error| CliError::new(&args.file, e);
-    let bytes = std::fs::read(&args.file).map_err(|e| err(e.into()))?;
+    // Regular files only, within `max_input_bytes`.
+    let bytes = swm::io::read_file(&args.file).map_err(err)?;
     let info = swm::inspect(&bytes, &swm::Limits::default()).map_err(err)?;
     if let Some(swing) = &info.swing {
         return print_swing(args, &info, swing);

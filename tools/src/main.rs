@@ -2,7 +2,8 @@
 //!
 //! Exit status: 0 on success, 1 when an input is bad or an operation
 //! fails, 2 on bad usage (clap's convention). Every failure prints one line
-//! on stderr, `swm: error: FILE: what is wrong`.
+//! on stderr, `swm: error: FILE: what is wrong`. SIGINT and SIGTERM exit
+//! 130 and 143 after removing unfinished outputs (see `signals`).
 
 /// `println!` that ignores a closed stdout (`swm info x | head`): the
 /// reader has what it wanted, which is no reason to panic.
@@ -20,6 +21,7 @@ mod info;
 mod rd;
 mod report;
 mod sharpen;
+mod signals;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -77,13 +79,7 @@ impl CliError {
 /// output is written in full before it replaces anything, but a command
 /// that replaced its own input would still destroy the original.
 pub fn refuse_same_file(input: &Path, output: &Path) -> Result<(), CliError> {
-    // Canonical paths see through `./a.obj`, symlinks and hard-to-spot
-    // spellings; an output that does not exist yet cannot be the input.
-    let same = match (std::fs::canonicalize(input), std::fs::canonicalize(output)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
+    if same_file(input, output) {
         let e = std::io::Error::new(
             std::io::ErrorKind::InvalidInput,
             "the output is the input file; refusing to overwrite it",
@@ -93,8 +89,31 @@ pub fn refuse_same_file(input: &Path, output: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Whether two paths name the same existing file: on Unix the same device
+/// and inode, which sees through `./a.obj`, symbolic links and hard
+/// links; elsewhere the same canonical path. An output that does not
+/// exist yet cannot be the input.
+fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (std::fs::metadata(a), std::fs::metadata(b)) {
+            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    signals::install();
     let result = match cli.command {
         Command::Encode(args) => encode::run(&args),
         Command::Decode(args) => decode::run(&args),

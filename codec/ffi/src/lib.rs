@@ -336,6 +336,8 @@ fn decode_options(o: &swm_decode_options) -> DecodeOptions {
             max_vertices: o.max_vertices,
             max_faces: o.max_faces,
             max_alloc_bytes: o.max_alloc_bytes,
+            // Only file readers use it; the C interface decodes buffers.
+            ..Limits::default()
         },
         sharpen: o.sharpen,
         bend_steps: o.bend_steps,

@@ -23,23 +23,32 @@
 //! triangles, and angle-weighted unit normals for shading. [`write_mesh`]
 //! replaces its target only once the whole file is written.
 //!
-//! One file per format; `source` maps or reads input files, `text` holds
-//! the ASCII scanning the text formats share.
+//! Files are read only if they are regular files no longer than
+//! [`Limits::max_input_bytes`]: a FIFO, a device such as `/dev/zero` or a
+//! directory is refused before anything is read ([`InputError`](crate::InputError)).
+//! Outputs go through an exclusive, unpredictably named temporary file
+//! that is renamed into place; [`discard_unfinished`] removes those of
+//! writes in progress, for programs that end on a signal.
+//!
+//! One file per format; `source` maps or reads input files, `output`
+//! writes output files, `text` holds the ASCII scanning the text formats
+//! share.
 
 mod gltf;
 mod obj;
 mod off;
+mod output;
 mod ply;
 mod source;
 mod stl;
 mod text;
 
 use crate::{Error, FormatError, LimitError, Limited, Limits, Malformed, ParameterError, TriMesh};
-use std::ffi::OsString;
-use std::fs::{self, File};
+pub use output::discard_unfinished;
+use output::write_atomic;
 use std::io::{self, BufWriter, Write};
 use std::ops::Deref;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// What every reader is: the bytes of a whole file to its raw mesh.
 type Reader = fn(&[u8], &Limits) -> Result<TriMesh, Error>;
@@ -108,15 +117,24 @@ impl MeshFormat {
     }
 }
 
-/// The whole content of a file, as [`read_mesh_with`] gets it: files of
-/// 1 MiB or more are memory-mapped, smaller ones read into memory. For
-/// inputs other than meshes, e.g. `.swm` files.
+/// The whole content of a file, as [`read_mesh_with`] gets it, with the
+/// default [`Limits`]. For inputs other than meshes, e.g. `.swm` files.
+pub fn read_file(path: &Path) -> Result<impl Deref<Target = [u8]>, Error> {
+    read_file_with(path, &Limits::default())
+}
+
+/// The whole content of a file, as [`read_mesh_with`] gets it: only a
+/// regular file is read (symbolic links are followed), anything else is
+/// [`InputError::NotARegularFile`](crate::InputError::NotARegularFile);
+/// a file longer than `limits.max_input_bytes` is a [`LimitError`] (of
+/// [`Limited::InputBytes`]) before anything is read. Files of 1 MiB or
+/// more are memory-mapped, smaller ones read into memory.
 ///
 /// As with [`read_mesh_with`], if another process truncates a mapped file
 /// while the bytes are in use, the operating system may kill this one
 /// (`SIGBUS`); use `std::fs::read` when that matters.
-pub fn read_file(path: &Path) -> Result<impl Deref<Target = [u8]>, Error> {
-    Ok(source::Source::open(path)?)
+pub fn read_file_with(path: &Path, limits: &Limits) -> Result<impl Deref<Target = [u8]>, Error> {
+    source::Source::open(path, limits)
 }
 
 /// Reads a mesh file, its format given by the extension, with the default
@@ -127,7 +145,8 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, Error> {
 
 /// Reads a mesh file, its format given by the extension.
 ///
-/// Files of 1 MiB or more are memory-mapped: if another process truncates
+/// Only a regular file no longer than `limits.max_input_bytes` is read
+/// (see [`read_file_with`]). Files of 1 MiB or more are memory-mapped: if another process truncates
 /// the file while it is read, the operating system may kill this one
 /// (`SIGBUS`). Read the bytes yourself and call [`read_mesh_bytes`] when
 /// that matters.
@@ -135,7 +154,7 @@ pub fn read_mesh_with(path: &Path, limits: &Limits) -> Result<TriMesh, Error> {
     let format = MeshFormat::from_path(path)?;
     // Before opening: a write-only format is refused without reading.
     format.reader()?;
-    let bytes = source::Source::open(path)?;
+    let bytes = source::Source::open(path, limits)?;
     read_mesh_bytes(&bytes, format, limits)
 }
 
@@ -160,11 +179,14 @@ pub fn read_mesh_bytes(
 
 /// Writes a mesh file, its format given by the extension.
 ///
-/// The mesh is written to a temporary file next to `path` (named
-/// `.{name}.tmp-{pid}`), flushed to disk, and renamed over `path` only
-/// when complete, so `path` holds either its old content or the whole new
-/// file. An invalid mesh (see [`TriMesh::validate`]) is refused before
-/// anything is created.
+/// The mesh is written to a temporary file next to `path`, created
+/// exclusively under an unpredictable name (`.{name}.XXXXXX.tmp`, never
+/// following a symbolic link), flushed to disk, and renamed over `path`
+/// only when complete, so `path` holds either its old content or the
+/// whole new file; on an error the temporary file is removed. The rename
+/// replaces whatever entry `path` is: a symbolic link at `path` is
+/// replaced, not followed. An invalid mesh (see [`TriMesh::validate`]) is
+/// refused before anything is created.
 pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), Error> {
     let format = MeshFormat::from_path(path)?;
     mesh.validate()?;
@@ -175,37 +197,6 @@ pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), Error> {
 /// does: complete or not at all.
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     write_atomic(path, |file| Ok(file.write_all(bytes)?))
-}
-
-/// Runs `fill` on a temporary file next to `path` and renames it over
-/// `path` only if `fill` succeeded and the data reached the disk.
-fn write_atomic(
-    path: &Path,
-    fill: impl FnOnce(&mut File) -> Result<(), Error>,
-) -> Result<(), Error> {
-    let temp = temp_path(path);
-    let result = File::create(&temp)
-        .map_err(Error::from)
-        .and_then(|mut file| {
-            fill(&mut file)?;
-            // On disk before the rename, so that a crash cannot leave
-            // `path` naming a file whose blocks were never written.
-            file.sync_all()?;
-            Ok(())
-        })
-        .and_then(|()| Ok(fs::rename(&temp, path)?));
-    if result.is_err() {
-        let _ = fs::remove_file(&temp);
-    }
-    result
-}
-
-/// `.{name}.tmp-{pid}` in the directory of `path`.
-fn temp_path(path: &Path) -> PathBuf {
-    let mut name = OsString::from(".");
-    name.push(path.file_name().unwrap_or_default());
-    name.push(format!(".tmp-{}", std::process::id()));
-    path.with_file_name(name)
 }
 
 /// Writes a mesh in `format` to `w` (buffered here; no need to pass a

@@ -3,7 +3,8 @@
 
 use super::*;
 use crate::Location;
-use std::path::PathBuf;
+use std::fs;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 pub(super) fn read(bytes: &[u8], format: MeshFormat) -> Result<TriMesh, Error> {
@@ -134,6 +135,113 @@ fn read_file_maps_or_reads() {
         assert_eq!(&*read_file(&path).unwrap(), &bytes[..], "{len}");
     }
     assert!(matches!(read_file(&dir.join("missing")), Err(Error::Io(_))));
+    let _ = fs::remove_dir_all(&dir);
+}
+
+/// The `InputBytes` limit error of a read, or a panic.
+fn input_limit<T>(result: Result<T, Error>) -> LimitError {
+    match result {
+        Err(Error::LimitExceeded(e)) if e.what == Limited::InputBytes => e,
+        Err(e) => panic!("expected an input limit error, got {e:?}"),
+        Ok(_) => panic!("expected an input limit error, got a file"),
+    }
+}
+
+#[test]
+fn reads_stop_at_the_input_limit() {
+    let dir = scratch("input-limit");
+    let limits = |max_input_bytes| Limits {
+        max_input_bytes,
+        ..Limits::default()
+    };
+    // Read into memory, then mapped: exactly the limit passes, one byte
+    // more is refused, naming the file's length.
+    for len in [100u64, (1 << 20) + 7] {
+        let path = dir.join(format!("f{len}.obj"));
+        fs::write(&path, garbage(len as usize, len)).unwrap();
+        assert_eq!(
+            read_file_with(&path, &limits(len)).unwrap().len() as u64,
+            len
+        );
+        let e = input_limit(read_file_with(&path, &limits(len - 1)));
+        assert_eq!((e.requested, e.limit), (len, len - 1));
+        input_limit(read_mesh_with(&path, &limits(len - 1)));
+    }
+    // A sparse file longer than the default limit is refused by its
+    // length, before a byte of it is read (scanning 20 GiB of zeros would
+    // take minutes).
+    let huge = dir.join("huge.obj");
+    let file = fs::File::create(&huge).unwrap();
+    if file.set_len(20 << 30).is_ok() {
+        let e = input_limit(read_mesh(&huge));
+        assert_eq!((e.requested, e.limit), (20 << 30, 16 << 30));
+        assert!(e.to_string().contains("input limit"), "{e}");
+    } else {
+        println!("skipped: this file system has no 20 GiB sparse files");
+    }
+    drop(file);
+    let _ = fs::remove_dir_all(&dir);
+}
+
+/// A regular file that holds more than its length says (files under
+/// `/proc` say 0) is cut off one byte past the limit.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_file_longer_than_its_length_is_cut_off_at_the_limit() {
+    let path = Path::new("/proc/self/status");
+    assert_eq!(fs::metadata(path).unwrap().len(), 0);
+    let limits = Limits {
+        max_input_bytes: 10,
+        ..Limits::default()
+    };
+    let e = input_limit(read_file_with(path, &limits));
+    assert_eq!((e.requested, e.limit), (11, 10));
+    assert!(read_file(path).unwrap().len() > 11);
+}
+
+/// The kind of a refused input, or a panic.
+fn refused_kind<T>(result: Result<T, Error>) -> crate::FileKind {
+    match result {
+        Err(Error::Input(crate::InputError::NotARegularFile { kind })) => kind,
+        Err(e) => panic!("expected a refused input, got {e:?}"),
+        Ok(_) => panic!("expected a refused input, got a file"),
+    }
+}
+
+#[test]
+fn only_regular_files_are_read() {
+    use crate::FileKind;
+    let dir = scratch("not-regular");
+    let sub = dir.join("sub.obj");
+    fs::create_dir(&sub).unwrap();
+    assert_eq!(refused_kind(read_mesh(&sub)), FileKind::Directory);
+    assert_eq!(refused_kind(read_file(&sub)), FileKind::Directory);
+    #[cfg(unix)]
+    {
+        // Symbolic links are followed and their target judged.
+        for ext in ["obj", "ply", "off", "stl", "swm"] {
+            let zero = dir.join(format!("zero.{ext}"));
+            std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+            assert_eq!(refused_kind(read_file(&zero)), FileKind::CharDevice);
+            if ext != "swm" {
+                assert_eq!(refused_kind(read_mesh(&zero)), FileKind::CharDevice);
+            }
+        }
+        let message = read_file(Path::new("/dev/zero")).err().unwrap().to_string();
+        assert_eq!(
+            message,
+            "a character device, not a regular file; only regular files are read"
+        );
+        // A FIFO without a writer: opening it must not wait for one.
+        let fifo = dir.join("fifo.ply");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            assert_eq!(refused_kind(read_mesh(&fifo)), FileKind::Fifo);
+            assert_eq!(refused_kind(read_file(&fifo)), FileKind::Fifo);
+        } else {
+            println!("skipped: mkfifo not found");
+        }
+    }
     let _ = fs::remove_dir_all(&dir);
 }
 

@@ -142,8 +142,15 @@ pub fn verdict_line(old: &Row, new: &Row, regressions: &[Regression]) -> String 
 /// `swm rd --check TABLE`: re-runs the rows (those of `--only` meshes),
 /// prints a verdict per row, and fails naming the first regression.
 pub fn run(args: &Args, table_path: &Path) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(table_path).map_err(|e| CliError::new(table_path, e))?;
-    let mut old = table::from_csv(&text).map_err(|e| CliError::new(table_path, e))?;
+    // Regular files only, within `max_input_bytes`, as every input.
+    let bytes = swm::io::read_file(table_path).map_err(|e| CliError::new(table_path, e))?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        CliError::new(
+            table_path,
+            std::io::Error::new(std::io::ErrorKind::InvalidData, e),
+        )
+    })?;
+    let mut old = table::from_csv(text).map_err(|e| CliError::new(table_path, e))?;
     let table_dir = table_path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
