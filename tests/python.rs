@@ -86,5 +86,8 @@ fn pytest_suite() {
     println!("{}", String::from_utf8_lossy(&out.stdout));
     eprintln!("{}", String::from_utf8_lossy(&out.stderr));
     let _ = std::fs::remove_dir_all(&generated);
-    assert!(out.status.success(), "the Python suite failed (report above)");
+    assert!(
+        out.status.success(),
+        "the Python suite failed (report above)"
+    );
 }

@@ -41,7 +41,11 @@ struct Limits {
 impl Limits {
     #[new]
     #[pyo3(signature = (*, max_vertices=None, max_faces=None, max_alloc_bytes=None))]
-    fn new(max_vertices: Option<u64>, max_faces: Option<u64>, max_alloc_bytes: Option<u64>) -> Self {
+    fn new(
+        max_vertices: Option<u64>,
+        max_faces: Option<u64>,
+        max_alloc_bytes: Option<u64>,
+    ) -> Self {
         let d = swm::Limits::default();
         Limits {
             max_vertices: max_vertices.unwrap_or(d.max_vertices),

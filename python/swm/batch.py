@@ -247,7 +247,12 @@ def write_summary(rows: Sequence[Dict[str, Any]], csv_path: Path) -> List[Path]:
         import pyarrow.parquet as pq
     except ImportError:
         return written
-    table = pa.Table.from_pylist([{k: r.get(k) for k in COLUMNS} for r in rows])
+    # Typed columns, so that a run with nothing encoded (all `seconds`
+    # empty) gives the same schema as any other.
+    types = {"bytes": pa.int64(), "vertices": pa.int64(), "bits_per_vertex": pa.float64(),
+             "l2_estimate": pa.float64(), "seconds": pa.float64()}
+    schema = pa.schema([(k, types.get(k, pa.string())) for k in COLUMNS])
+    table = pa.Table.from_pylist([{k: r.get(k) for k in COLUMNS} for r in rows], schema=schema)
     sink = pa.BufferOutputStream()
     pq.write_table(table, sink)
     parquet = csv_path.with_suffix(".parquet")
@@ -281,8 +286,12 @@ def run(jobs: Sequence[Job], client: Any, retries: int) -> List[Dict[str, Any]]:
         i = index[future.key]
         if future.status == "finished":
             row = future.result()
-        else:
+        elif future.status == "error":
+            # Out of retries, or its worker died under it more often than
+            # the scheduler allows (`KilledWorker`).
             row = failed_row(jobs[i], future.exception())
+        else:
+            row = failed_row(jobs[i], RuntimeError(f"task {future.status}"))
         rows[i] = row
         _progress(done, len(jobs), row)
     return [r for r in rows if r is not None]
