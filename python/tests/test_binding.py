@@ -269,22 +269,20 @@ def test_the_gil_is_released_while_encoding(generated_corpus):
     ticks = 0
 
     def encode() -> None:
-        swm.encode(v, f, bpv=4)
+        for bpv in (4, 5, 6):
+            swm.encode(v, f, bpv=bpv)
         done.set()
 
     worker = threading.Thread(target=encode)
-    start = time.perf_counter()
     worker.start()
     # Python code runs in this thread while the other one is inside the
-    # library; with the GIL held it would not advance until the encode ended.
+    # library. Were the GIL held there, this loop could not run again
+    # before the encodes ended: a tick or two at most.
     while not done.is_set():
         ticks += 1
         time.sleep(0.001)
     worker.join()
-    elapsed = time.perf_counter() - start
-    assert elapsed > 0.05, "encode too quick to tell"
-    # Most of the 1 ms sleeps ran during the encode.
-    assert ticks > elapsed / 0.001 / 4, (ticks, elapsed)
+    assert ticks >= 20, ticks
 
 
 # -- trimesh -----------------------------------------------------------------
