@@ -47,7 +47,7 @@ import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, Iterable, List, Optional, Sequence
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
 import swm
 
@@ -167,17 +167,17 @@ def write_atomic(path: Path, data: bytes) -> None:
         os.close(dir_fd)
 
 
-def verified(path: Path) -> Optional[bytes]:
-    """The bytes of ``path`` if it exists and decodes, else ``None``."""
+def verified(path: Path) -> Optional[Tuple[bytes, Any]]:
+    """The bytes of ``path`` and their decoded mesh if it exists and
+    decodes, else ``None``."""
     try:
         data = path.read_bytes()
     except FileNotFoundError:
         return None
     try:
-        swm.decode(data)
+        return data, swm.decode(data)
     except swm.SwmError:
         return None
-    return data
 
 
 def compress(job: Job) -> Dict[str, Any]:
@@ -190,8 +190,9 @@ def compress(job: Job) -> Dict[str, Any]:
     output = Path(job.output)
     try:
         vertices, faces = swm.read(job.input)
-        data = verified(output)
-        if data is not None:
+        found = verified(output)
+        if found is not None:
+            data, decoded = found
             row["status"] = "skipped"
         else:
             start = time.perf_counter()
@@ -204,7 +205,7 @@ def compress(job: Job) -> Dict[str, Any]:
             row["seconds"] = time.perf_counter() - start
             write_atomic(output, data)
             row["status"] = "encoded"
-        decoded = swm.decode(data)
+            decoded = swm.decode(data)
         d = swm.distance((vertices, faces), decoded, samples=job.samples, sampling="faces")
         row.update(
             method=swm.info(data)["mode"],
