@@ -1,0 +1,332 @@
+//! `swm._swm`: the Python extension module over the `swm` library.
+//!
+//! Each function here is one library call: arrays are copied into a
+//! `TriMesh` while the GIL is held, then the GIL is released
+//! (`Python::detach`, PyO3's name for `allow_threads` since 0.26) for the
+//! work itself, so other Python threads run while a mesh encodes. The
+//! public, documented face is `swm/__init__.py`, which normalizes NumPy
+//! inputs (dtype, shape, contiguity) before calling in here.
+//!
+//! Defaults are those of the `swm` command line, so that the same input
+//! and options give the same bytes as `swm encode`.
+
+mod arrays;
+mod errors;
+mod file_info;
+
+use errors::IntoPyResult;
+use numpy::{PyArray2, PyReadonlyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use std::path::PathBuf;
+
+/// Caps on what decoding or reading an untrusted file may allocate
+/// (`swm::Limits`); the defaults suit a desktop machine.
+#[pyclass(frozen, module = "swm", eq)]
+#[derive(Clone, PartialEq)]
+struct Limits {
+    /// Largest vertex count accepted.
+    #[pyo3(get)]
+    max_vertices: u64,
+    /// Largest triangle count accepted.
+    #[pyo3(get)]
+    max_faces: u64,
+    /// Largest allocation in bytes.
+    #[pyo3(get)]
+    max_alloc_bytes: u64,
+}
+
+#[pymethods]
+impl Limits {
+    #[new]
+    #[pyo3(signature = (*, max_vertices=None, max_faces=None, max_alloc_bytes=None))]
+    fn new(
+        max_vertices: Option<u64>,
+        max_faces: Option<u64>,
+        max_alloc_bytes: Option<u64>,
+    ) -> Self {
+        let d = swm::Limits::default();
+        Limits {
+            max_vertices: max_vertices.unwrap_or(d.max_vertices),
+            max_faces: max_faces.unwrap_or(d.max_faces),
+            max_alloc_bytes: max_alloc_bytes.unwrap_or(d.max_alloc_bytes),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Limits(max_vertices={}, max_faces={}, max_alloc_bytes={})",
+            self.max_vertices, self.max_faces, self.max_alloc_bytes
+        )
+    }
+}
+
+impl Limits {
+    fn to_swm(limits: Option<&Limits>) -> swm::Limits {
+        limits.map_or_else(swm::Limits::default, |l| swm::Limits {
+            max_vertices: l.max_vertices,
+            max_faces: l.max_faces,
+            max_alloc_bytes: l.max_alloc_bytes,
+        })
+    }
+}
+
+/// A positive count given as a Python int: negative values are the
+/// library's out-of-range error, as a zero would be.
+fn count(name: &'static str, value: i128) -> Result<u64, swm::Error> {
+    u64::try_from(value).map_err(|_| {
+        swm::ParameterError::OutOfRange {
+            name,
+            value: value as f64,
+            min: 0.0,
+            max: f64::MAX,
+        }
+        .into()
+    })
+}
+
+/// A bit count as `u8`. A value beyond `u8` is passed as the nearest end
+/// so that the library still names the option and its range, and the
+/// error is then given the value the caller wrote.
+fn bits(value: i64) -> u8 {
+    value.clamp(0, u8::MAX as i64) as u8
+}
+
+/// Puts the caller's value back into an out-of-range error about `name`.
+fn with_value(e: swm::Error, name: &str, value: i64) -> swm::Error {
+    match e {
+        swm::Error::Parameter(swm::ParameterError::OutOfRange {
+            name: n, min, max, ..
+        }) if n == name => swm::ParameterError::OutOfRange {
+            name: n,
+            value: value as f64,
+            min,
+            max,
+        }
+        .into(),
+        e => e,
+    }
+}
+
+/// Encodes a mesh into `.swm` bytes. See `swm/__init__.py` for the
+/// documented wrapper.
+#[pyfunction]
+#[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
+                    mode="swing", max_size=None, angle_bits=8, qp=12))]
+#[allow(clippy::too_many_arguments)]
+fn encode<'py>(
+    py: Python<'py>,
+    vertices: PyReadonlyArray2<'py, f32>,
+    faces: PyReadonlyArray2<'py, u32>,
+    bpv: Option<f64>,
+    size: Option<i128>,
+    edge_length: Option<f64>,
+    mode: &str,
+    max_size: Option<i128>,
+    angle_bits: i64,
+    qp: i64,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let targets = [bpv.is_some(), size.is_some(), edge_length.is_some()];
+    let mode = match mode {
+        "swing" => {
+            if targets.iter().filter(|&&t| t).count() > 1 {
+                return Err(PyValueError::new_err(
+                    "give at most one of bpv, size and edge_length",
+                ));
+            }
+            let target = match (bpv, size, edge_length) {
+                (_, Some(b), _) => swm::SwingTarget::Bytes(count("size", b).py_err(py)?),
+                (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
+                // `swm encode`'s default target: 2 bits per input vertex.
+                (bpv, _, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
+            };
+            let max_bytes = match max_size {
+                Some(m) => Some(count("max size", m).py_err(py)?),
+                None => None,
+            };
+            swm::EncodeMode::Swing {
+                target,
+                angle_bits: bits(angle_bits),
+                max_bytes,
+            }
+        }
+        "lossless" => {
+            if targets.contains(&true) || max_size.is_some() {
+                return Err(PyValueError::new_err(
+                    "bpv, size, edge_length and max_size apply to mode=\"swing\" only; \
+                     mode=\"lossless\" takes qp",
+                ));
+            }
+            swm::EncodeMode::Lossless { qp: bits(qp) }
+        }
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "mode must be \"swing\" or \"lossless\", got {other:?}"
+            )))
+        }
+    };
+    let mesh = arrays::mesh(&vertices, &faces)?;
+    let options = swm::EncodeOptions {
+        mode,
+        ..Default::default()
+    };
+    let encoded = py
+        .detach(|| swm::encode(&mesh, &options))
+        .map_err(|e| with_value(with_value(e, "angle bits", angle_bits), "qp", qp))
+        .py_err(py)?;
+    Ok(PyBytes::new(py, &encoded.bytes))
+}
+
+type Arrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
+
+/// Decodes `.swm` bytes: `(vertices, faces)` or, with `normals`,
+/// `(vertices, faces, normals)`.
+#[pyfunction]
+#[pyo3(signature = (data, *, sharpen=None, bend=None, normals=false, limits=None))]
+fn decode<'py>(
+    py: Python<'py>,
+    data: &[u8],
+    sharpen: Option<bool>,
+    bend: Option<u32>,
+    normals: bool,
+    limits: Option<PyRef<'py, Limits>>,
+) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
+    let options = swm::DecodeOptions {
+        limits: Limits::to_swm(limits.as_deref()),
+        sharpen: sharpen.unwrap_or(false),
+        bend_steps: bend.unwrap_or(0),
+    };
+    let (mesh, n) = py
+        .detach(|| {
+            let mesh = swm::decode(data, &options)?;
+            let n = normals.then(|| swm::vertex_normals(&mesh));
+            Ok::<_, swm::Error>((mesh, n))
+        })
+        .py_err(py)?;
+    let v = arrays::to_numpy(py, mesh.positions).into_any();
+    let f = arrays::to_numpy(py, mesh.triangles).into_any();
+    match n {
+        Some(n) => (v, f, arrays::to_numpy(py, n)).into_pyobject(py),
+        None => (v, f).into_pyobject(py),
+    }
+}
+
+/// A `.swm` file's figures, the keys and values of `swm info --json`.
+#[pyfunction]
+#[pyo3(signature = (data, *, limits=None))]
+fn info<'py>(
+    py: Python<'py>,
+    data: &[u8],
+    limits: Option<PyRef<'py, Limits>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let limits = Limits::to_swm(limits.as_deref());
+    let file = py.detach(|| swm::inspect(data, &limits)).py_err(py)?;
+    file_info::to_dict(py, &file)
+}
+
+/// Metro distance between meshes A (the reference) and B, as
+/// `swm distance --json` reports it.
+#[pyfunction]
+#[pyo3(signature = (a_vertices, a_faces, b_vertices, b_faces, *, samples=None, sampling="metro"))]
+fn distance<'py>(
+    py: Python<'py>,
+    a_vertices: PyReadonlyArray2<'py, f32>,
+    a_faces: PyReadonlyArray2<'py, u32>,
+    b_vertices: PyReadonlyArray2<'py, f32>,
+    b_faces: PyReadonlyArray2<'py, u32>,
+    samples: Option<u64>,
+    sampling: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let metro = match sampling {
+        "metro" => true,
+        "faces" => false,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "sampling must be \"metro\" or \"faces\", got {other:?}"
+            )))
+        }
+    };
+    if samples == Some(0) {
+        return Err(PyValueError::new_err("samples must be at least 1"));
+    }
+    let a = arrays::mesh(&a_vertices, &a_faces)?;
+    let b = arrays::mesh(&b_vertices, &b_faces)?;
+    let options = swm::metrics::DistanceOptions {
+        face_samples: samples,
+        vertex_samples: metro,
+        edge_samples: metro,
+        ..Default::default()
+    };
+    let d = py
+        .detach(|| {
+            // Each mesh is checked on its own, as `swm distance` reads them.
+            a.validate()?;
+            b.validate()?;
+            swm::metrics::distance(&a, &b, &options)
+        })
+        .py_err(py)?;
+    let side = |s: &swm::metrics::OneSided| -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        d.set_item("samples", s.samples)?;
+        d.set_item("mean", s.mean)?;
+        d.set_item("rms", s.rms)?;
+        d.set_item("max", s.max)?;
+        Ok(d)
+    };
+    let out = PyDict::new(py);
+    out.set_item("l2", d.l2())?;
+    out.set_item("hausdorff", d.hausdorff())?;
+    out.set_item("mean", d.mean())?;
+    out.set_item("l2_relative", d.l2_relative())?;
+    out.set_item("hausdorff_relative", d.hausdorff_relative())?;
+    out.set_item("diagonal", d.diagonal)?;
+    out.set_item("forward", side(&d.forward)?)?;
+    out.set_item("backward", side(&d.backward)?)?;
+    Ok(out)
+}
+
+/// Reads a mesh file (.obj, .ply, .off, .stl) as the command line does.
+#[pyfunction]
+#[pyo3(signature = (path, *, limits=None))]
+fn read<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    limits: Option<PyRef<'py, Limits>>,
+) -> PyResult<Arrays<'py>> {
+    let limits = Limits::to_swm(limits.as_deref());
+    let mesh = py
+        .detach(|| swm::io::read_mesh_with(&path, &limits))
+        .py_err_file(py, &path.to_string_lossy())?;
+    Ok((
+        arrays::to_numpy(py, mesh.positions),
+        arrays::to_numpy(py, mesh.triangles),
+    ))
+}
+
+/// Writes a mesh file (.obj, .ply, .off, .stl, .glb), complete or not at
+/// all (the library writes a temporary file and renames it).
+#[pyfunction]
+fn write<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    vertices: PyReadonlyArray2<'py, f32>,
+    faces: PyReadonlyArray2<'py, u32>,
+) -> PyResult<()> {
+    let mesh = arrays::mesh(&vertices, &faces)?;
+    py.detach(|| swm::io::write_mesh(&path, &mesh))
+        .py_err_file(py, &path.to_string_lossy())
+}
+
+#[pymodule]
+fn _swm(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Limits>()?;
+    m.add_function(wrap_pyfunction!(encode, m)?)?;
+    m.add_function(wrap_pyfunction!(decode, m)?)?;
+    m.add_function(wrap_pyfunction!(info, m)?)?;
+    m.add_function(wrap_pyfunction!(distance, m)?)?;
+    m.add_function(wrap_pyfunction!(read, m)?)?;
+    m.add_function(wrap_pyfunction!(write, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,246 @@
+"""swm: lossy triangle-mesh compression by SwingWrapper remeshing.
+
+The functions call the Rust library directly (the extension module
+``swm._swm``), not the command line; the GIL is released while they work.
+Meshes are NumPy arrays: vertices ``(n, 3)`` float32, faces ``(m, 3)``
+uint32. Inputs of another float or integer dtype are converted (float64
+positions are rounded to float32, as the codec stores them); other dtypes
+and shapes raise ``TypeError`` / ``ValueError`` saying what was expected.
+
+Defaults are those of ``swm encode``: the same mesh and options give the
+same ``.swm`` bytes as the command line, and :func:`decode` gives the mesh
+``swm decode`` writes, bit for bit.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _swm
+from ._swm import Limits
+from .errors import (
+    FormatError,
+    IoError,
+    LimitError,
+    ParameterError,
+    RetileError,
+    SwmError,
+    TopologyError,
+    UnsupportedError,
+)
+
+__version__: str = _swm.__version__
+
+Vertices = npt.NDArray[np.float32]
+Faces = npt.NDArray[np.uint32]
+Normals = npt.NDArray[np.float32]
+#: A mesh as ``(vertices, faces)``, or any object with ``vertices`` and
+#: ``faces`` attributes (a ``trimesh.Trimesh``, for one).
+MeshLike = Any
+BytesLike = Union[bytes, bytearray, memoryview]
+PathLike = Union[str, "os.PathLike[str]"]
+
+_U32_MAX = np.iinfo(np.uint32).max
+
+
+def _vertices(array: Any, what: str = "vertices") -> Vertices:
+    """``array`` as C-contiguous float32 ``(n, 3)``, or a clear error."""
+    a = np.asarray(array)
+    if a.dtype.kind != "f":
+        raise TypeError(
+            f"{what} must be a floating-point array of shape (n, 3) "
+            f"(float32 preferred), got dtype {a.dtype}"
+        )
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{what} must have shape (n, 3), got shape {a.shape}")
+    return np.ascontiguousarray(a, dtype=np.float32)
+
+
+def _faces(array: Any, what: str = "faces") -> Faces:
+    """``array`` as C-contiguous uint32 ``(m, 3)``, or a clear error."""
+    a = np.asarray(array)
+    if a.dtype.kind not in "iu":
+        raise TypeError(
+            f"{what} must be an integer array of shape (m, 3) "
+            f"(uint32 preferred), got dtype {a.dtype}"
+        )
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{what} must have shape (m, 3), got shape {a.shape}")
+    if a.dtype != np.uint32 and a.size:
+        low, high = int(a.min()), int(a.max())
+        if low < 0 or high > _U32_MAX:
+            bad = low if low < 0 else high
+            raise ValueError(f"{what} holds vertex index {bad}, outside 0..{_U32_MAX}")
+    return np.ascontiguousarray(a, dtype=np.uint32)
+
+
+def _bytes(data: Any) -> bytes:
+    if isinstance(data, bytes):
+        return data
+    if isinstance(data, (bytearray, memoryview)):
+        return bytes(data)
+    raise TypeError(f"data must be bytes, bytearray or memoryview, got {type(data).__name__}")
+
+
+def _mesh(mesh: MeshLike, what: str) -> Tuple[Vertices, Faces]:
+    if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
+        v, f = mesh.vertices, mesh.faces
+    else:
+        try:
+            v, f = mesh
+        except (TypeError, ValueError):
+            raise TypeError(
+                f"{what} must be a (vertices, faces) pair or have .vertices and .faces, "
+                f"got {type(mesh).__name__}"
+            ) from None
+    return _vertices(v, f"{what} vertices"), _faces(f, f"{what} faces")
+
+
+def encode(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "swing",
+    max_size: Optional[int] = None,
+    angle_bits: int = 8,
+    qp: int = 12,
+) -> bytes:
+    """Cleans and encodes a mesh into the bytes of a ``.swm`` file.
+
+    ``mode`` is ``"swing"`` (SwingWrapper retiling, the default, as for
+    ``swm encode``) or ``"lossless"`` (the input's triangles, positions on
+    ``qp`` bits). A swing encode aims at one of ``bpv`` (bits per input
+    vertex; 2 when no target is given), ``size`` (bytes, met within 3%) or
+    ``edge_length`` (the retiling edge L), with ``angle_bits`` bits per
+    dihedral angle, and never exceeds ``max_size`` bytes when given.
+    Deterministic: the same arrays and options give the same bytes.
+    """
+    return _swm.encode(
+        _vertices(vertices),
+        _faces(faces),
+        bpv=bpv,
+        size=size,
+        edge_length=edge_length,
+        mode=mode,
+        max_size=max_size,
+        angle_bits=angle_bits,
+        qp=qp,
+    )
+
+
+def decode(
+    data: BytesLike,
+    *,
+    sharpen: Optional[bool] = None,
+    bend: Optional[int] = None,
+    normals: bool = False,
+    limits: Optional[Limits] = None,
+) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, Normals]]:
+    """Decodes ``.swm`` bytes into ``(vertices, faces)``.
+
+    ``sharpen=True`` restores the sharp edges and corners retiling
+    chamfered (EdgeSharpener); ``bend=N`` subdivides N times after that
+    (Bender, four times the triangles per step). ``normals=True`` adds a
+    third array of unit vertex normals. Every byte is treated as hostile:
+    a bad file raises :class:`FormatError` (or another :class:`SwmError`)
+    and nothing beyond ``limits`` is allocated.
+    """
+    return _swm.decode(_bytes(data), sharpen=sharpen, bend=bend, normals=normals, limits=limits)
+
+
+def info(data: BytesLike, *, limits: Optional[Limits] = None) -> "dict[str, Any]":
+    """A ``.swm`` file's figures without decoding its geometry: the keys
+    and values ``swm info --json`` prints (mode, version, counts, bits per
+    triangle and per vertex, sections, CLERS histogram, ...)."""
+    return _swm.info(_bytes(data), limits=limits)
+
+
+def distance(
+    a: MeshLike,
+    b: MeshLike,
+    *,
+    samples: Optional[int] = None,
+    sampling: str = "metro",
+) -> "dict[str, Any]":
+    """Metro distance between mesh ``a`` (the reference) and mesh ``b``,
+    with the keys of ``swm distance --json``: ``l2``, ``hausdorff``,
+    ``mean``, ``l2_relative``, ``hausdorff_relative`` (over a's bounding
+    box diagonal), ``diagonal``, and the one-sided ``forward`` (a to b) and
+    ``backward`` figures. ``samples`` is the number of face samples per
+    surface (default: ten per face of the larger mesh); ``sampling`` is
+    ``"metro"`` (vertices, edges and faces) or ``"faces"`` (area-uniform
+    face samples only)."""
+    av, af = _mesh(a, "a")
+    bv, bf = _mesh(b, "b")
+    return _swm.distance(av, af, bv, bf, samples=samples, sampling=sampling)
+
+
+def read(path: PathLike, *, limits: Optional[Limits] = None) -> Tuple[Vertices, Faces]:
+    """Reads a mesh file (.obj, .ply, .off, .stl; the extension picks the
+    format) as ``swm encode`` reads it: the raw mesh, polygons
+    fan-triangulated, nothing merged."""
+    return _swm.read(os.fspath(path), limits=limits)
+
+
+def write(path: PathLike, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> None:
+    """Writes a mesh file (.obj, .ply, .off, .stl or .glb, by extension).
+    The file is written in full under a temporary name and then renamed,
+    so ``path`` never holds half a file."""
+    _swm.write(os.fspath(path), _vertices(vertices), _faces(faces))
+
+
+def _trimesh() -> Any:
+    try:
+        import trimesh
+    except ImportError:
+        raise ImportError(
+            "trimesh is not installed (pip install trimesh, or pip install 'swm[trimesh]')"
+        ) from None
+    return trimesh
+
+
+def to_trimesh(vertices: npt.ArrayLike, faces: npt.ArrayLike, normals: Any = None) -> Any:
+    """A ``trimesh.Trimesh`` of the arrays, as they are (``process=False``:
+    trimesh merges nothing and drops nothing)."""
+    trimesh = _trimesh()
+    return trimesh.Trimesh(
+        vertices=_vertices(vertices),
+        faces=_faces(faces),
+        vertex_normals=None if normals is None else _vertices(normals, "normals"),
+        process=False,
+    )
+
+
+def from_trimesh(mesh: Any) -> Tuple[Vertices, Faces]:
+    """``(vertices, faces)`` of a ``trimesh.Trimesh`` as float32 / uint32."""
+    _trimesh()
+    return _mesh(mesh, "mesh")
+
+
+__all__ = [
+    "encode",
+    "decode",
+    "info",
+    "distance",
+    "read",
+    "write",
+    "to_trimesh",
+    "from_trimesh",
+    "Limits",
+    "SwmError",
+    "IoError",
+    "FormatError",
+    "ParameterError",
+    "LimitError",
+    "TopologyError",
+    "UnsupportedError",
+    "RetileError",
+    "__version__",
+]

@@ -1,0 +1,63 @@
+"""Type stubs of the extension module ``swm._swm`` (see ``swm/__init__.py``
+for the documented wrappers, which normalize NumPy inputs first)."""
+
+from os import PathLike
+from typing import Any, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+_V = npt.NDArray[np.float32]
+_F = npt.NDArray[np.uint32]
+
+class Limits:
+    """Caps on what decoding or reading an untrusted file may allocate."""
+
+    @property
+    def max_vertices(self) -> int: ...
+    @property
+    def max_faces(self) -> int: ...
+    @property
+    def max_alloc_bytes(self) -> int: ...
+    def __init__(
+        self,
+        *,
+        max_vertices: Optional[int] = None,
+        max_faces: Optional[int] = None,
+        max_alloc_bytes: Optional[int] = None,
+    ) -> None: ...
+
+def encode(
+    vertices: _V,
+    faces: _F,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "swing",
+    max_size: Optional[int] = None,
+    angle_bits: int = 8,
+    qp: int = 12,
+) -> bytes: ...
+def decode(
+    data: bytes,
+    *,
+    sharpen: Optional[bool] = None,
+    bend: Optional[int] = None,
+    normals: bool = False,
+    limits: Optional[Limits] = None,
+) -> Union[Tuple[_V, _F], Tuple[_V, _F, _V]]: ...
+def info(data: bytes, *, limits: Optional[Limits] = None) -> dict[str, Any]: ...
+def distance(
+    a_vertices: _V,
+    a_faces: _F,
+    b_vertices: _V,
+    b_faces: _F,
+    *,
+    samples: Optional[int] = None,
+    sampling: str = "metro",
+) -> dict[str, Any]: ...
+def read(path: Union[str, PathLike[str]], *, limits: Optional[Limits] = None) -> Tuple[_V, _F]: ...
+def write(path: Union[str, PathLike[str]], vertices: _V, faces: _F) -> None: ...

@@ -1,0 +1,414 @@
+"""Batch compression of a mesh library on Dask distributed.
+
+    python -m swm.batch MANIFEST --out DIR [--bpv R | --size B | --edge-length L]
+                        [--mode swing|lossless] [--address tcp://HOST:8786]
+
+MANIFEST is a directory (every .obj, .ply, .off and .stl under it) or a
+text file listing one input path per line (blank lines and ``#`` comments
+skipped; relative paths are taken from the manifest's folder). Each input
+``base/a/b.obj`` becomes ``DIR/a/b.swm``, ``base`` being the manifest
+directory or the deepest folder common to the listed paths.
+
+Without ``--address`` the encodes run on a local cluster (``--workers``
+processes, one thread each); with it (or ``--scheduler-file``), on the
+existing Dask cluster it names, whose workers must have this package installed and see the
+inputs and DIR at the same paths (a shared file system).
+
+What a run guarantees:
+
+* Every output is written under a temporary name in its own folder,
+  synced, then renamed: a file at an output path is always complete,
+  whatever is killed when.
+* An input whose output exists and decodes is skipped, so a rerun after
+  an interruption encodes only what is missing (or damaged).
+* When the SwingWrapper encoder finds no retiling of a mesh
+  (``swm.RetileError``), the mesh is encoded lossless instead
+  (``--fallback lossless``, the default; ``--fallback none`` records the
+  failure); the ``method`` column says which coder made each file.
+* A task that fails for a reason outside the mesh (an I/O error, a worker
+  that died under it) is retried (``--retries``); one the library refuses
+  (a malformed file, a topology the codec cannot take) is recorded, not
+  retried, since it would fail the same way again.
+* A progress line per finished input, on stderr; at the end a summary
+  table (``DIR/summary.csv``, and ``DIR/summary.parquet`` when pyarrow is
+  installed) with the columns of :data:`COLUMNS`. The exit status is 0
+  when every input was encoded or skipped, 1 when some failed, 2 on bad
+  usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import os
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
+
+import swm
+
+#: Extensions of the mesh files a directory manifest takes.
+MESH_EXTENSIONS = (".obj", ".ply", ".off", ".stl")
+
+#: Columns of the summary table. ``status`` is ``encoded``, ``skipped``
+#: (a valid output was already there) or ``failed``; ``method`` is the
+#: file's coding mode; ``bits_per_vertex`` counts against the input's
+#: vertices; ``l2_estimate`` is the symmetric L2 distance between input
+#: and decoded mesh over the input's bounding-box diagonal, from
+#: area-uniform face samples (``--samples``); ``seconds`` is the encode
+#: time (empty for a skipped input); ``error`` the failure's message.
+COLUMNS = (
+    "input",
+    "output",
+    "status",
+    "method",
+    "bytes",
+    "vertices",
+    "bits_per_vertex",
+    "l2_estimate",
+    "seconds",
+    "error",
+)
+
+
+@dataclass(frozen=True)
+class Job:
+    """One input to encode: everything a worker needs, picklable."""
+
+    input: str
+    output: str
+    options: Dict[str, Any] = field(default_factory=dict)
+    samples: int = 10_000
+    #: Encode lossless when SwingWrapper retiling fails.
+    fallback: bool = True
+
+
+def find_inputs(manifest: Path) -> List[Path]:
+    """The inputs a manifest names, in order, without repeats."""
+    if manifest.is_dir():
+        found = [
+            p
+            for p in manifest.rglob("*")
+            if p.is_file() and p.suffix.lower() in MESH_EXTENSIONS
+        ]
+        return sorted(found)
+    paths: List[Path] = []
+    seen = set()
+    for line in manifest.read_text().splitlines():
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        p = Path(line)
+        if not p.is_absolute():
+            p = manifest.parent / p
+        p = Path(os.path.normpath(p.absolute()))
+        if p not in seen:
+            seen.add(p)
+            paths.append(p)
+    return paths
+
+
+def plan(
+    manifest: Path, out: Path, options: Dict[str, Any], samples: int, fallback: bool = True
+) -> List[Job]:
+    """One job per input, each with its output path under ``out``."""
+    inputs = find_inputs(manifest)
+    if manifest.is_dir():
+        base = manifest
+    elif inputs:
+        base = Path(os.path.commonpath([p.parent for p in inputs]))
+    else:
+        base = manifest.parent
+    jobs = []
+    for p in inputs:
+        rel = p.relative_to(base).with_suffix(".swm")
+        jobs.append(Job(str(p), str(out / rel), dict(options), samples, fallback))
+    return jobs
+
+
+def _temp_prefix(path: Path) -> str:
+    return f".{path.name}."
+
+
+def write_atomic(path: Path, data: bytes) -> None:
+    """Writes ``data`` to ``path`` complete or not at all: a temporary file
+    in the same folder (so the rename stays on one file system), synced,
+    then renamed over ``path``. Leftovers of an earlier attempt at the same
+    output (a worker killed while writing) are removed first."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    prefix = _temp_prefix(path)
+    for stale in path.parent.glob(prefix + "*.tmp"):
+        try:
+            stale.unlink()
+        except FileNotFoundError:
+            pass
+    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=prefix, suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(temp, path)
+    except BaseException:
+        try:
+            os.unlink(temp)
+        except FileNotFoundError:
+            pass
+        raise
+    # The rename itself reaches the disk with the folder's entry.
+    dir_fd = os.open(path.parent, os.O_RDONLY)
+    try:
+        os.fsync(dir_fd)
+    finally:
+        os.close(dir_fd)
+
+
+def verified(path: Path) -> Optional[Tuple[bytes, Any]]:
+    """The bytes of ``path`` and their decoded mesh if it exists and
+    decodes, else ``None``."""
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        return None
+    try:
+        return data, swm.decode(data)
+    except swm.SwmError:
+        return None
+
+
+def compress(job: Job) -> Dict[str, Any]:
+    """Encodes one input (on a worker) and returns its summary row.
+
+    Errors the library reports about the mesh are part of the row; any
+    other exception (I/O included) propagates so that Dask retries."""
+    row: Dict[str, Any] = {c: None for c in COLUMNS}
+    row.update(input=job.input, output=job.output, error="")
+    output = Path(job.output)
+    try:
+        vertices, faces = swm.read(job.input)
+        found = verified(output)
+        if found is not None:
+            data, decoded = found
+            row["status"] = "skipped"
+        else:
+            start = time.perf_counter()
+            try:
+                data = swm.encode(vertices, faces, **job.options)
+            except swm.RetileError:
+                if not job.fallback:
+                    raise
+                data = swm.encode(vertices, faces, mode="lossless")
+            row["seconds"] = time.perf_counter() - start
+            write_atomic(output, data)
+            row["status"] = "encoded"
+            decoded = swm.decode(data)
+        d = swm.distance((vertices, faces), decoded, samples=job.samples, sampling="faces")
+        row.update(
+            method=swm.info(data)["mode"],
+            bytes=len(data),
+            vertices=len(vertices),
+            bits_per_vertex=8 * len(data) / max(len(vertices), 1),
+            l2_estimate=d["l2_relative"],
+        )
+    except swm.IoError:
+        raise
+    except swm.SwmError as e:
+        row.update(status="failed", error=f"{type(e).__name__}: {e}")
+    return row
+
+
+def failed_row(job: Job, error: BaseException) -> Dict[str, Any]:
+    """The row of a task that ran out of retries."""
+    row: Dict[str, Any] = {c: None for c in COLUMNS}
+    row.update(
+        input=job.input,
+        output=job.output,
+        status="failed",
+        error=f"{type(error).__name__}: {error}".replace("\n", " "),
+    )
+    return row
+
+
+def write_summary(rows: Sequence[Dict[str, Any]], csv_path: Path) -> List[Path]:
+    """Writes the CSV summary (and a Parquet copy when pyarrow is there),
+    atomically; returns the paths written."""
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=COLUMNS, lineterminator="\n")
+    writer.writeheader()
+    for row in rows:
+        writer.writerow({k: "" if row.get(k) is None else row[k] for k in COLUMNS})
+    write_atomic(csv_path, text.getvalue().encode())
+    written = [csv_path]
+    try:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+    except ImportError:
+        return written
+    # Typed columns, so that a run with nothing encoded (all `seconds`
+    # empty) gives the same schema as any other.
+    types = {"bytes": pa.int64(), "vertices": pa.int64(), "bits_per_vertex": pa.float64(),
+             "l2_estimate": pa.float64(), "seconds": pa.float64()}
+    schema = pa.schema([(k, types.get(k, pa.string())) for k in COLUMNS])
+    table = pa.Table.from_pylist([{k: r.get(k) for k in COLUMNS} for r in rows], schema=schema)
+    sink = pa.BufferOutputStream()
+    pq.write_table(table, sink)
+    parquet = csv_path.with_suffix(".parquet")
+    write_atomic(parquet, sink.getvalue().to_pybytes())
+    written.append(parquet)
+    return written
+
+
+def _progress(done: int, total: int, row: Dict[str, Any]) -> None:
+    width = len(str(total))
+    if row["status"] == "failed":
+        what = f"failed: {row['error']}"
+    else:
+        what = (
+            f"{row['status']}, {row['method']}, {row['bytes']} bytes, "
+            f"{row['bits_per_vertex']:.3f} bits/vertex, L2 {row['l2_estimate']:.3e}"
+        )
+    print(f"[{done:>{width}}/{total}] {row['input']}: {what}", file=sys.stderr, flush=True)
+
+
+def run(jobs: Sequence[Job], client: Any, retries: int) -> List[Dict[str, Any]]:
+    """Runs the jobs on a Dask client; rows in the order of ``jobs``."""
+    from distributed import as_completed
+
+    # `pure=False`: each run encodes anew (skipping is decided on the
+    # worker, from the file system, not from Dask's cache of results).
+    futures = [client.submit(compress, job, retries=retries, pure=False) for job in jobs]
+    index = {f.key: i for i, f in enumerate(futures)}
+    rows: List[Optional[Dict[str, Any]]] = [None] * len(jobs)
+    for done, future in enumerate(as_completed(futures), 1):
+        i = index[future.key]
+        if future.status == "finished":
+            row = future.result()
+        elif future.status == "error":
+            # Out of retries, or its worker died under it more often than
+            # the scheduler allows (`KilledWorker`).
+            row = failed_row(jobs[i], future.exception())
+        else:
+            row = failed_row(jobs[i], RuntimeError(f"task {future.status}"))
+        rows[i] = row
+        _progress(done, len(jobs), row)
+    return [r for r in rows if r is not None]
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="python -m swm.batch",
+        description="Encode a library of meshes into .swm files on Dask distributed.",
+    )
+    p.add_argument("manifest", type=Path, help="a directory of meshes or a file listing mesh paths")
+    p.add_argument("--out", type=Path, required=True, help="folder of the .swm files")
+    p.add_argument("--mode", choices=("swing", "lossless"), default="swing")
+    target = p.add_mutually_exclusive_group()
+    target.add_argument("--bpv", type=float, help="swing: bits per input vertex (default 2)")
+    target.add_argument("--size", type=int, help="swing: bytes per file")
+    target.add_argument("--edge-length", type=float, help="swing: the edge length L")
+    p.add_argument("--angle-bits", type=int, default=8, help="swing: bits per dihedral angle")
+    p.add_argument("--max-size", type=int, help="swing: never more bytes than this")
+    p.add_argument("--qp", type=int, default=12, help="lossless: bits per coordinate")
+    p.add_argument(
+        "--fallback",
+        choices=("lossless", "none"),
+        default="lossless",
+        help="swing: what to do with a mesh no retiling fits (default: encode it lossless)",
+    )
+    where = p.add_mutually_exclusive_group()
+    where.add_argument(
+        "--address", help="an existing Dask scheduler, tcp://HOST:PORT (default: a local cluster)"
+    )
+    where.add_argument(
+        "--scheduler-file", type=Path, help="an existing Dask scheduler, by its scheduler file"
+    )
+    p.add_argument("--workers", type=int, default=2, help="local cluster: worker processes")
+    p.add_argument("--threads", type=int, default=1, help="local cluster: threads per worker")
+    p.add_argument("--retries", type=int, default=2, help="retries of a failed task")
+    p.add_argument(
+        "--samples", type=int, default=10_000, help="face samples of the L2 estimate"
+    )
+    p.add_argument(
+        "--summary", type=Path, help="summary CSV (default OUT/summary.csv; .parquet beside it)"
+    )
+    return p
+
+
+def _options(args: argparse.Namespace) -> Dict[str, Any]:
+    if args.mode == "lossless":
+        swing_only = {"--bpv": args.bpv, "--size": args.size, "--edge-length": args.edge_length,
+                      "--max-size": args.max_size}
+        given = [k for k, v in swing_only.items() if v is not None]
+        if given:
+            raise ValueError(f"{', '.join(given)} apply to --mode swing only")
+        return {"mode": "lossless", "qp": args.qp}
+    options: Dict[str, Any] = {"mode": "swing", "angle_bits": args.angle_bits}
+    for key in ("bpv", "size", "edge_length", "max_size"):
+        if getattr(args, key) is not None:
+            options[key] = getattr(args, key)
+    return options
+
+
+def main(argv: Optional[Iterable[str]] = None) -> int:
+    parser = _parser()
+    args = parser.parse_args(None if argv is None else list(argv))
+    try:
+        options = _options(args)
+    except ValueError as e:
+        parser.error(str(e))
+    if not args.manifest.exists():
+        parser.error(f"{args.manifest}: no such file or directory")
+    if args.samples < 1:
+        parser.error("--samples must be at least 1")
+    out = args.out.absolute()
+    jobs = plan(args.manifest.absolute(), out, options, args.samples, args.fallback == "lossless")
+    if not jobs:
+        print(f"swm.batch: {args.manifest}: no mesh files", file=sys.stderr)
+        return 1
+    from distributed import Client, LocalCluster
+
+    start = time.perf_counter()
+    if args.address or args.scheduler_file:
+        if args.address:
+            client = Client(args.address)
+        else:
+            client = Client(scheduler_file=str(args.scheduler_file))
+        cluster = None
+    else:
+        cluster = LocalCluster(
+            n_workers=args.workers,
+            threads_per_worker=args.threads,
+            processes=True,
+            dashboard_address=None,
+        )
+        client = Client(cluster)
+    try:
+        where = (
+            f"the cluster at {client.scheduler.address}"
+            if cluster is None
+            else f"a local cluster of {args.workers} workers"
+        )
+        print(f"swm.batch: {len(jobs)} inputs on {where}", file=sys.stderr, flush=True)
+        rows = run(jobs, client, args.retries)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    summary = args.summary.absolute() if args.summary else out / "summary.csv"
+    written = write_summary(rows, summary)
+    counts = {s: sum(r["status"] == s for r in rows) for s in ("encoded", "skipped", "failed")}
+    print(
+        f"swm.batch: {counts['encoded']} encoded, {counts['skipped']} skipped, "
+        f"{counts['failed']} failed in {time.perf_counter() - start:.1f} s; "
+        f"summary {', '.join(str(p) for p in written)}",
+        file=sys.stderr,
+    )
+    return 1 if counts["failed"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,298 @@
+"""`python -m swm.batch` on Dask distributed: a run over the shared and the
+generated corpus on a local two-worker cluster with a worker killed
+mid-run, a rerun that encodes only what is missing or damaged, a run on an
+existing cluster started the way README describes for several machines,
+and the pieces (manifests, atomic writes, the worker task) on their own."""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+import subprocess
+import sys
+import time
+import warnings
+from pathlib import Path
+from typing import Dict, List, Optional
+
+import pytest
+
+import swm
+from swm import batch
+from conftest import ROOT, mesh_files
+
+pytest.importorskip("distributed", reason="Dask distributed not installed (pip install 'dask[distributed]')")
+psutil = pytest.importorskip("psutil", reason="psutil not installed (it comes with dask[distributed])")
+
+BPV = "1"  # a low rate: the cheapest retiling; cow.obj then needs the lossless fallback.
+SAMPLES = "2000"
+# Skipped from the shared corpus: a million vertices take minutes to retile.
+TOO_SLOW = {"bunny-1m.ply"}
+
+
+def read_summary(path: Path) -> Dict[str, Dict[str, str]]:
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert rows and tuple(rows[0].keys()) == batch.COLUMNS
+    return {Path(r["input"]).name: r for r in rows}
+
+
+def swm_files(out: Path) -> List[Path]:
+    return sorted(out.rglob("*.swm"))
+
+
+def leftovers(out: Path) -> List[Path]:
+    return sorted(p for p in out.rglob("*") if p.name.endswith(".tmp"))
+
+
+@pytest.fixture(scope="module")
+def library(tmp_path_factory, generated_corpus: Path) -> Dict[str, object]:
+    """A manifest over both corpora (the shared one when present) and one
+    malformed file, and where the inputs come from."""
+    root = tmp_path_factory.mktemp("library")
+    shared = os.environ.get("SWM_SHARED_CORPUS") or str(ROOT.parent / "shared" / "corpus")
+    inputs = list(mesh_files(generated_corpus))
+    if Path(shared, "README.md").is_file():
+        inputs += [p for p in mesh_files(Path(shared)) if p.name not in TOO_SLOW]
+    else:
+        warnings.warn("skipped: ../shared/corpus not found; the batch runs over the generated corpus only")
+    bad = root / "bad" / "bad.obj"
+    bad.parent.mkdir()
+    bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+    manifest = root / "manifest.txt"
+    manifest.write_text(
+        "# the corpora and one broken file\n" + "".join(f"{p}\n" for p in inputs) + f"\n{bad}\n{inputs[0]}\n"
+    )
+    return {"manifest": manifest, "inputs": inputs, "bad": bad, "root": root}
+
+
+def batch_command(manifest: Path, out: Path, *extra: str) -> List[str]:
+    return [sys.executable, "-m", "swm.batch", str(manifest), "--out", str(out), "--bpv", BPV,
+            "--samples", SAMPLES, *extra]
+
+
+def worker_processes(driver: int) -> List["psutil.Process"]:
+    """The Dask worker processes a local cluster started under `driver`."""
+    found = []
+    for p in psutil.Process(driver).children(recursive=True):
+        try:
+            cmd = " ".join(p.cmdline())
+        except psutil.NoSuchProcess:
+            continue
+        if "spawn_main" in cmd and "resource_tracker" not in cmd:
+            found.append(p)
+    return found
+
+
+def check_outputs(out: Path, names: List[str]) -> Dict[str, bytes]:
+    """Every expected output exists and decodes; nothing half-written.
+    Returns the files' bytes by name."""
+    files = {p.name: p.read_bytes() for p in swm_files(out)}
+    assert sorted(files) == sorted(names)
+    for name, data in files.items():
+        v, f = swm.decode(data)
+        assert len(f) > 0, name
+    assert leftovers(out) == []
+    return files
+
+
+def output_path(out: Path, name: str) -> Path:
+    (path,) = [p for p in swm_files(out) if p.name == name]
+    return path
+
+
+def test_batch_with_a_worker_killed_then_a_rerun(library, tmp_path):
+    manifest, inputs = library["manifest"], library["inputs"]
+    out = tmp_path / "out"
+    # Outputs keep each input's path below the folder common to all of
+    # them; the checks find them by name.
+    names = [Path(p).with_suffix(".swm").name for p in inputs]
+
+    # Run 1: kill one of the two workers once the first file is done.
+    proc = subprocess.Popen(batch_command(manifest, out, "--workers", "2"), stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
+    lines: List[str] = []
+    killed: Optional[int] = None
+    deadline = time.monotonic() + 600
+    assert proc.stderr is not None
+    for line in proc.stderr:
+        lines.append(line)
+        if killed is None and line.startswith("["):
+            workers = worker_processes(proc.pid)
+            assert len(workers) == 2, workers
+            killed = workers[0].pid
+            os.kill(killed, signal.SIGKILL)
+        assert time.monotonic() < deadline, "batch run too slow"
+    proc.wait(timeout=60)
+    log = "".join(lines)
+    assert killed is not None, log
+    # The nanny saw its worker die and started another while the run went on.
+    assert "Restarting worker" in log, log
+    # Exit 1: the broken file failed; every other input has its file.
+    assert proc.returncode == 1, log
+    rows = read_summary(out / "summary.csv")
+    assert len(rows) == len(inputs) + 1, log
+    assert rows["bad.obj"]["status"] == "failed"
+    assert rows["bad.obj"]["error"].startswith("FormatError: malformed OBJ file at line 4: vertex index"), rows["bad.obj"]
+    for name, row in rows.items():
+        if name == "bad.obj":
+            continue
+        # A task whose worker died after its rename finds its file there
+        # when it is run again: skipped, not lost.
+        assert row["status"] in ("encoded", "skipped"), row
+        assert row["error"] == "" and int(row["bytes"]) > 0
+        assert float(row["bits_per_vertex"]) == pytest.approx(8 * int(row["bytes"]) / int(row["vertices"]))
+        # Relative to the bounding-box diagonal; suzanne at 1 bit per
+        # vertex is the coarsest (about 0.12).
+        assert 0 < float(row["l2_estimate"]) < 0.2, row
+        assert row["method"] in ("swing", "lossless")
+    assert sum(r["status"] == "encoded" for r in rows.values()) >= len(inputs) - 2
+    if "cow.obj" in rows:  # no retiling of cow at 1 bit per vertex: lossless fallback
+        assert rows["cow.obj"]["method"] == "lossless"
+    assert rows["torus.obj"]["method"] == "swing"
+    files = check_outputs(out, names)
+    # The batch's files are those swm.encode makes (small inputs checked).
+    for p in inputs:
+        if p.name in ("torus.obj", "cube.obj", "icosphere.obj"):
+            assert files[p.with_suffix(".swm").name] == swm.encode(*swm.read(p), bpv=float(BPV))
+    pa = pytest.importorskip("pyarrow.parquet", reason="pyarrow not installed")
+    table = pa.read_table(out / "summary.parquet").to_pylist()
+    assert [r["input"] for r in table] == [r for r in (row["input"] for row in csv.DictReader(open(out / "summary.csv")))]
+
+    # Damage the output as an interrupted earlier run could have (or a
+    # careless hand): two files gone, one cut short, a stale temporary.
+    torus = output_path(out, "torus.swm")
+    for name in ("torus.swm", "uv-sphere.swm"):
+        output_path(out, name).unlink()
+    cut = output_path(out, "cube.swm")
+    cut.write_bytes(files["cube.swm"][: len(files["cube.swm"]) // 2])
+    (torus.parent / ".torus.swm.abc123.tmp").write_bytes(b"half")
+
+    # Run 2 encodes exactly those three, and gets the same bytes.
+    rerun = subprocess.run(batch_command(manifest, out), capture_output=True, text=True, timeout=600)
+    assert rerun.returncode == 1, rerun.stderr
+    rows = read_summary(out / "summary.csv")
+    encoded = sorted(n for n, r in rows.items() if r["status"] == "encoded")
+    assert encoded == ["cube.obj", "torus.obj", "uv-sphere.obj"], rerun.stderr
+    assert all(r["status"] == "skipped" for n, r in rows.items() if n not in encoded + ["bad.obj"])
+    assert "swm.batch: 3 encoded" in rerun.stderr
+    assert check_outputs(out, names) == files
+
+
+def test_batch_on_an_existing_cluster(generated_corpus, tmp_path):
+    """The multi-machine recipe of README.md, on one machine: a scheduler,
+    workers joining it through the scheduler file, the batch given its
+    address."""
+    dask = Path(sys.executable).parent / "dask"
+    if not dask.exists():
+        pytest.skip("the dask command not found beside the Python interpreter")
+    file = tmp_path / "scheduler.json"
+    scheduler = subprocess.Popen([str(dask), "scheduler", "--scheduler-file", str(file), "--port", "0",
+                                  "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = None
+    try:
+        for _ in range(300):
+            if file.exists() and file.stat().st_size > 0:
+                break
+            time.sleep(0.1)
+        worker = subprocess.Popen([str(dask), "worker", "--scheduler-file", str(file), "--nworkers", "1",
+                                   "--nthreads", "2", "--no-dashboard"],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        import json
+
+        address = json.loads(file.read_text())["address"]
+        out = tmp_path / "out"
+        run = subprocess.run([sys.executable, "-m", "swm.batch", str(generated_corpus), "--out", str(out),
+                              "--mode", "lossless", "--address", address], capture_output=True, text=True,
+                             timeout=300)
+        assert run.returncode == 0, run.stderr
+        assert f"on the cluster at {address}" in run.stderr
+        rows = read_summary(out / "summary.csv")
+        assert sorted(rows) == sorted(p.name for p in mesh_files(generated_corpus))
+        assert {r["method"] for r in rows.values()} == {"lossless"}
+        check_outputs(out, [p.with_suffix(".swm").name for p in mesh_files(generated_corpus)])
+    finally:
+        for p in (worker, scheduler):
+            if p is not None:
+                p.terminate()
+                try:
+                    p.wait(timeout=30)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+
+
+# -- the pieces ------------------------------------------------------------
+
+
+def test_manifests(tmp_path):
+    (tmp_path / "lib" / "a").mkdir(parents=True)
+    for name in ("a/x.obj", "a/y.PLY", "z.stl", "notes.txt", "w.swm"):
+        (tmp_path / "lib" / name).write_text("")
+    jobs = batch.plan(tmp_path / "lib", tmp_path / "out", {}, 10)
+    assert [(Path(j.input).relative_to(tmp_path), Path(j.output).relative_to(tmp_path)) for j in jobs] == [
+        (Path("lib/a/x.obj"), Path("out/a/x.swm")),
+        (Path("lib/a/y.PLY"), Path("out/a/y.swm")),
+        (Path("lib/z.stl"), Path("out/z.swm")),
+    ]
+    listing = tmp_path / "lib" / "list.txt"
+    listing.write_text("# comment\n\na/x.obj\n  a/y.PLY  \na/x.obj\n" + str(tmp_path / "lib" / "z.stl") + "\n")
+    jobs = batch.plan(listing, tmp_path / "out", {}, 10)
+    assert [Path(j.output).relative_to(tmp_path) for j in jobs] == [
+        Path("out/a/x.swm"), Path("out/a/y.swm"), Path("out/z.swm")
+    ]
+
+
+def test_write_atomic(tmp_path, monkeypatch):
+    target = tmp_path / "d" / "f.swm"
+    (tmp_path / "d").mkdir()
+    (tmp_path / "d" / ".f.swm.old.tmp").write_bytes(b"stale")
+    batch.write_atomic(target, b"new")
+    assert target.read_bytes() == b"new"
+    assert os.listdir(tmp_path / "d") == ["f.swm"]
+
+    class Boom(Exception):
+        pass
+
+    def failing_fsync(fd: int) -> None:
+        raise Boom()
+
+    # A write that fails midway leaves the old file and no temporary.
+    monkeypatch.setattr(os, "fsync", failing_fsync)
+    with pytest.raises(Boom):
+        batch.write_atomic(target, b"newer")
+    monkeypatch.undo()
+    assert target.read_bytes() == b"new"
+    assert os.listdir(tmp_path / "d") == ["f.swm"]
+
+
+def test_compress_task(generated_corpus, tmp_path):
+    mesh = generated_corpus / "torus.obj"
+    job = batch.Job(str(mesh), str(tmp_path / "t.swm"), {"bpv": 2.0}, 1000)
+    row = batch.compress(job)
+    assert row["status"] == "encoded" and row["method"] == "swing" and row["error"] == ""
+    assert (tmp_path / "t.swm").read_bytes() == swm.encode(*swm.read(mesh), bpv=2.0)
+    assert batch.compress(job)["status"] == "skipped"
+    # An unusable output is replaced.
+    (tmp_path / "t.swm").write_bytes(b"SWM garbage")
+    assert batch.compress(job)["status"] == "encoded"
+    # No retiling fits a size of 1 byte; with the fallback the mesh is
+    # stored lossless, without it the row records the library's error.
+    tiny = batch.Job(str(mesh), str(tmp_path / "u.swm"), {"max_size": 1}, 1000)
+    assert batch.compress(tiny)["method"] == "lossless"
+    no_fallback = batch.Job(str(mesh), str(tmp_path / "v.swm"), {"max_size": 1}, 1000, fallback=False)
+    row = batch.compress(no_fallback)
+    assert row["status"] == "failed" and row["error"].startswith("RetileError: ")
+    assert not (tmp_path / "v.swm").exists()
+    # An I/O error is not the mesh's fault: it propagates, for Dask to retry.
+    with pytest.raises(swm.IoError):
+        batch.compress(batch.Job(str(tmp_path / "missing.obj"), str(tmp_path / "m.swm")))
+
+
+def test_usage_errors(generated_corpus, tmp_path):
+    run = subprocess.run([sys.executable, "-m", "swm.batch", str(generated_corpus), "--out", str(tmp_path),
+                          "--mode", "lossless", "--bpv", "2"], capture_output=True, text=True)
+    assert run.returncode == 2 and "--bpv apply to --mode swing only" in run.stderr
+    run = subprocess.run([sys.executable, "-m", "swm.batch", str(tmp_path / "nope"), "--out", str(tmp_path)],
+                         capture_output=True, text=True)
+    assert run.returncode == 2 and "no such file or directory" in run.stderr

@@ -1,0 +1,302 @@
+"""The binding against the command line: same bytes, same meshes, same
+figures, same messages; errors by kind; array checks; the GIL."""
+
+from __future__ import annotations
+
+import errno
+import json
+import struct
+import threading
+import time
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import swm
+from conftest import cli_error, run_cli
+
+# (CLI arguments, the same options for swm.encode). Low rates keep the
+# retiling cheap; every target kind and both modes appear.
+OPTIONS = [
+    ([], {}),
+    (["--bpv", "3", "--angle-bits", "10"], {"bpv": 3.0, "angle_bits": 10}),
+    (["--size", "400"], {"size": 400}),
+    (["--mode", "lossless", "--qp", "14"], {"mode": "lossless", "qp": 14}),
+]
+
+
+@pytest.fixture(scope="session")
+def small_meshes(generated_corpus: Path) -> list:
+    return [generated_corpus / "torus.obj", generated_corpus / "cube.obj"]
+
+
+@pytest.fixture(scope="session")
+def torus(generated_corpus: Path):
+    return swm.read(generated_corpus / "torus.obj")
+
+
+def bits_equal(a: np.ndarray, b: np.ndarray) -> bool:
+    return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+@pytest.mark.parametrize("cli_args,options", OPTIONS)
+def test_encode_gives_the_cli_bytes(swm_bin, small_meshes, tmp_path, cli_args, options):
+    for mesh in small_meshes:
+        out = tmp_path / (mesh.stem + ".swm")
+        run_cli(swm_bin, "encode", mesh, "-o", out, *cli_args)
+        v, f = swm.read(mesh)
+        assert swm.encode(v, f, **options) == out.read_bytes(), (mesh, options)
+
+
+def test_encode_gives_the_cli_bytes_on_the_shared_corpus(swm_bin, shared_corpus, tmp_path):
+    mesh = shared_corpus / "woody.obj"
+    out = tmp_path / "woody.swm"
+    run_cli(swm_bin, "encode", mesh, "-o", out, "--bpv", "4")
+    assert swm.encode(*swm.read(mesh), bpv=4) == out.read_bytes()
+
+
+@pytest.mark.parametrize(
+    "cli_args,options",
+    [([], {}), (["--sharpen"], {"sharpen": True}), (["--sharpen", "--bend", "1"], {"sharpen": True, "bend": 1})],
+)
+def test_decode_equals_the_cli_decode_bit_for_bit(swm_bin, generated_corpus, tmp_path, cli_args, options):
+    mesh = generated_corpus / "cube.obj"
+    for mode_args, name in ((["--bpv", "3"], "swing"), (["--mode", "lossless"], "lossless")):
+        packed = tmp_path / f"{name}.swm"
+        run_cli(swm_bin, "encode", mesh, "-o", packed, *mode_args)
+        cli_ply = tmp_path / f"{name}-cli.ply"
+        run_cli(swm_bin, "decode", packed, "-o", cli_ply, *cli_args)
+        v, f = swm.decode(packed.read_bytes(), **options)
+        assert v.dtype == np.float32 and f.dtype == np.uint32
+        cv, cf = swm.read(cli_ply)
+        assert bits_equal(v, cv) and bits_equal(f, cf), (name, options)
+        # And the file the binding writes is the CLI's, byte for byte.
+        py_ply = tmp_path / f"{name}-py.ply"
+        swm.write(py_ply, v, f)
+        assert py_ply.read_bytes() == cli_ply.read_bytes()
+
+
+def test_decode_normals(torus):
+    data = swm.encode(*torus, bpv=4)
+    v, f, n = swm.decode(data, normals=True)
+    assert n.shape == v.shape and n.dtype == np.float32
+    assert np.allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-5)
+    # The normals point away from the torus' central circle (its axis is z).
+    radial = v.copy()
+    radial[:, 2] = 0
+    centre = radial / np.linalg.norm(radial, axis=1, keepdims=True) * np.linalg.norm(
+        torus[0][:, :2], axis=1
+    ).mean()
+    assert (np.sum((v - centre) * n, axis=1) > 0).mean() > 0.99
+
+
+@pytest.mark.parametrize("cli_args,options", [([], {}), (["--mode", "lossless"], {"mode": "lossless"})])
+def test_info_has_the_cli_json(swm_bin, generated_corpus, tmp_path, cli_args, options):
+    packed = tmp_path / "torus.swm"
+    run_cli(swm_bin, "encode", generated_corpus / "torus.obj", "-o", packed, *cli_args)
+    cli = json.loads(run_cli(swm_bin, "info", packed, "--json").stdout)
+    assert swm.info(packed.read_bytes()) == cli
+
+
+def test_distance_has_the_cli_json(swm_bin, generated_corpus, tmp_path):
+    a = generated_corpus / "torus.obj"
+    packed, b = tmp_path / "t.swm", tmp_path / "t.ply"
+    run_cli(swm_bin, "encode", a, "-o", packed)
+    run_cli(swm_bin, "decode", packed, "-o", b)
+    for cli_args, options in (
+        ([], {}),
+        (["--samples", "5000", "--sampling", "faces"], {"samples": 5000, "sampling": "faces"}),
+    ):
+        cli = json.loads(run_cli(swm_bin, "distance", a, b, "--json", *cli_args).stdout)
+        assert swm.distance(swm.read(a), swm.read(b), **options) == cli
+
+
+# -- errors: classes by kind, messages the library's ----------------------
+
+
+def test_malformed_files_raise_format_error_with_the_cli_message(swm_bin, torus, tmp_path):
+    data = swm.encode(*torus, bpv=3)
+    for name, bad in (("empty", b""), ("truncated", data[: len(data) // 2]), ("garbage", b"x" * 64)):
+        path = tmp_path / f"{name}.swm"
+        path.write_bytes(bad)
+        with pytest.raises(swm.FormatError) as e:
+            swm.decode(bad)
+        assert isinstance(e.value, ValueError) and isinstance(e.value, swm.SwmError)
+        assert str(e.value) == cli_error(swm_bin, "decode", path, "-o", tmp_path / "x.ply")
+        with pytest.raises(swm.FormatError):
+            swm.info(bad)
+
+
+def test_newer_version_raises_unsupported_error(torus):
+    data = bytearray(swm.encode(*torus, bpv=3))
+    data[4] = 9  # the major version (format-spec/01-container.md)
+    data[-4:] = struct.pack("<I", zlib.crc32(bytes(data[:-4])))
+    with pytest.raises(swm.UnsupportedError, match="version 9"):
+        swm.decode(bytes(data))
+
+
+def test_limits_raise_limit_error(torus):
+    data = swm.encode(*torus, mode="lossless")
+    with pytest.raises(swm.LimitError):
+        swm.decode(data, limits=swm.Limits(max_vertices=10))
+    v, _ = swm.decode(data, limits=swm.Limits(max_vertices=len(torus[0])))
+    assert len(v) == len(torus[0])
+    assert swm.Limits().max_faces == 1 << 29
+
+
+def test_file_errors(tmp_path):
+    with pytest.raises(swm.IoError) as e:
+        swm.read(tmp_path / "missing.obj")
+    assert isinstance(e.value, OSError) and e.value.errno == errno.ENOENT
+    assert e.value.filename == str(tmp_path / "missing.obj")
+    with pytest.raises(swm.ParameterError, match="unknown mesh format"):
+        swm.read(tmp_path / "mesh.xyz")
+    with pytest.raises(swm.ParameterError, match="written but not read"):
+        swm.read(tmp_path / "mesh.glb")
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
+    with pytest.raises(swm.FormatError, match="line 4"):
+        swm.read(bad)
+
+
+def test_non_orientable_mesh_raises_topology_error():
+    # A Möbius strip: a band of quads whose ends meet with a half twist.
+    n = 24
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    v = []
+    for s in (-0.3, 0.3):
+        v.append(
+            np.stack(
+                [
+                    (1 + s * np.cos(t / 2)) * np.cos(t),
+                    (1 + s * np.cos(t / 2)) * np.sin(t),
+                    s * np.sin(t / 2),
+                ],
+                axis=1,
+            )
+        )
+    vertices = np.concatenate(v).astype(np.float32)
+    faces = []
+    for i in range(n):
+        a, b = i, n + i
+        if i + 1 < n:
+            c, d = i + 1, n + i + 1
+        else:  # the twist: the far side's edge comes back reversed
+            c, d = n, 0
+        faces += [(a, c, b), (b, c, d)]
+    with pytest.raises(swm.TopologyError, match="not orientable"):
+        swm.encode(vertices, np.array(faces), mode="lossless")
+
+
+def test_bad_options():
+    v, f = np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], dtype=np.uint32)
+    with pytest.raises(ValueError, match=r'mode must be "swing" or "lossless", got "auto"'):
+        swm.encode(v, f, mode="auto")
+    with pytest.raises(ValueError, match="at most one of bpv, size and edge_length"):
+        swm.encode(v, f, bpv=2, size=100)
+    with pytest.raises(ValueError, match="swing"):
+        swm.encode(v, f, mode="lossless", bpv=2)
+    with pytest.raises(swm.ParameterError, match=r"angle bits = 1000 is out of range \[4, 12\]"):
+        swm.encode(v, f, angle_bits=1000)
+    with pytest.raises(swm.ParameterError, match=r"qp = 3 is out of range \[6, 24\]"):
+        swm.encode(v, f, mode="lossless", qp=3)
+    with pytest.raises(swm.ParameterError, match="size = -5"):
+        swm.encode(v, f, size=-5)
+    with pytest.raises(swm.ParameterError, match="bits per vertex"):
+        swm.encode(v, f, bpv=-1.0)
+    with pytest.raises(ValueError, match="sampling"):
+        swm.distance((v, f), (v, f), sampling="grid")
+    with pytest.raises(TypeError, match="bytes"):
+        swm.decode("not bytes")  # type: ignore[arg-type]
+
+
+# -- arrays: dtypes, shapes, layouts ----------------------------------------
+
+
+def test_wrong_dtypes_and_shapes_get_clear_errors(torus):
+    v, f = torus
+    with pytest.raises(TypeError, match=r"vertices must be a floating-point array.*got dtype int64"):
+        swm.encode(v.astype(np.int64), f)
+    with pytest.raises(TypeError, match=r"faces must be an integer array.*got dtype float32"):
+        swm.encode(v, f.astype(np.float32))
+    with pytest.raises(TypeError, match="got dtype <U1"):
+        swm.encode([["a", "b", "c"]], f)
+    with pytest.raises(ValueError, match=r"vertices must have shape \(n, 3\), got shape \(1536, 2\)"):
+        swm.encode(v[:, :2], f)
+    with pytest.raises(ValueError, match=r"faces must have shape \(m, 3\), got shape \(9216,\)"):
+        swm.encode(v, f.ravel())
+    with pytest.raises(ValueError, match="vertex index -1"):
+        swm.encode(v, np.array([[0, 1, -1]]))
+    with pytest.raises(ValueError, match=r"b vertices must have shape"):
+        swm.distance((v, f), (v.ravel(), f))
+    # An index past the last vertex is the library's error, as for a file.
+    with pytest.raises(swm.FormatError, match="vertex index 5000 is out of range"):
+        swm.encode(v, np.array([[0, 1, 5000]], dtype=np.uint32))
+    with pytest.raises(swm.FormatError, match="NaN or infinite"):
+        swm.encode(np.where(np.arange(len(v))[:, None] == 7, np.nan, v), f)
+
+
+def test_other_dtypes_and_layouts_give_the_same_bytes(torus):
+    v, f = torus
+    expected = swm.encode(v, f, bpv=3)
+    assert swm.encode(v.astype(np.float64), f.astype(np.int64), bpv=3) == expected
+    assert swm.encode(np.asfortranarray(v), np.asfortranarray(f), bpv=3) == expected
+    assert swm.encode(v.tolist(), f.tolist(), bpv=3) == expected
+    wide = np.zeros((len(v), 6), np.float32)
+    wide[:, ::2] = v
+    assert swm.encode(wide[:, ::2], f, bpv=3) == expected
+    assert swm.decode(bytearray(expected))[0].tobytes() == swm.decode(memoryview(expected))[0].tobytes()
+
+
+def test_outputs_are_plain_numpy_arrays(torus):
+    v, f = swm.decode(swm.encode(*torus, mode="lossless"))
+    for a, dtype in ((v, np.float32), (f, np.uint32)):
+        assert isinstance(a, np.ndarray) and a.dtype == dtype and a.flags.c_contiguous
+        assert a.ndim == 2 and a.shape[1] == 3
+    # Writable and owned by NumPy's memory management: no views into freed memory.
+    v += 1
+    del f
+
+
+# -- the GIL ---------------------------------------------------------------
+
+
+def test_the_gil_is_released_while_encoding(generated_corpus):
+    v, f = swm.read(generated_corpus / "double-torus.obj")
+    done = threading.Event()
+    ticks = 0
+
+    def encode() -> None:
+        for bpv in (4, 5, 6):
+            swm.encode(v, f, bpv=bpv)
+        done.set()
+
+    worker = threading.Thread(target=encode)
+    worker.start()
+    # Python code runs in this thread while the other one is inside the
+    # library. Were the GIL held there, this loop could not run again
+    # before the encodes ended: a tick or two at most.
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    assert ticks >= 20, ticks
+
+
+# -- trimesh -----------------------------------------------------------------
+
+
+def test_trimesh_round_trip(torus):
+    trimesh = pytest.importorskip("trimesh", reason="trimesh not installed (pip install trimesh)")
+    data = swm.encode(*torus, bpv=3)
+    v, f, n = swm.decode(data, normals=True)
+    mesh = swm.to_trimesh(v, f, n)
+    assert isinstance(mesh, trimesh.Trimesh)
+    assert len(mesh.vertices) == len(v) and len(mesh.faces) == len(f)
+    back_v, back_f = swm.from_trimesh(mesh)
+    assert bits_equal(back_v, v) and bits_equal(back_f, f)
+    # A trimesh works wherever a mesh is taken.
+    assert swm.distance(mesh, (v, f))["hausdorff_relative"] < 1e-12
+    assert swm.encode(*swm.from_trimesh(swm.to_trimesh(*torus)), bpv=3) == data

@@ -1,0 +1,93 @@
+//! The Python front door (python/): rebuilds the `swm` extension module
+//! into the project's virtual environment and runs its pytest suite, which
+//! compares the binding with the `swm` binary built here (same `.swm`
+//! bytes, same decoded meshes, same `info` and `distance` figures) and
+//! runs the batch encoder on a two-worker Dask cluster over the shared
+//! and the generated corpus.
+//!
+//! The environment is `target/pyenv` (made by `.ci/setup-python`), or the
+//! one `SWM_PYENV` names. Without it the test prints a `skipped:` line and
+//! passes, unless `SWM_CI=1`, where a missing toolchain is a failure.
+
+mod common;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tools/ has a parent")
+        .to_path_buf()
+}
+
+/// Skips (or, under `SWM_CI=1`, fails) for want of `what`.
+fn missing(what: &str) {
+    let how = "run .ci/setup-python, or see README.md, \"Use from Python\"";
+    if std::env::var("SWM_CI").is_ok_and(|v| v == "1") {
+        panic!("{what} not found ({how}); SWM_CI=1 requires it");
+    }
+    println!("skipped: {what} not found ({how})");
+}
+
+#[test]
+fn pytest_suite() {
+    let root = root();
+    let venv = std::env::var_os("SWM_PYENV")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("target/pyenv"));
+    let python = venv.join("bin/python");
+    if !python.is_file() {
+        return missing(&format!("Python environment {}", venv.display()));
+    }
+    let has = |module: &str| {
+        Command::new(&python)
+            .args(["-c", &format!("import {module}")])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    for module in ["maturin", "pytest", "numpy", "distributed"] {
+        if !has(module) {
+            return missing(&format!("Python module {module} in {}", venv.display()));
+        }
+    }
+
+    // The extension is rebuilt against the library as it is now, so the
+    // suite never tests a stale build (cargo makes this quick when
+    // nothing changed).
+    let build = Command::new(&python)
+        .args(["-m", "maturin", "develop", "--release", "--quiet", "-m"])
+        .arg(root.join("python/Cargo.toml"))
+        .env("VIRTUAL_ENV", &venv)
+        .output()
+        .expect("run maturin");
+    assert!(
+        build.status.success(),
+        "maturin develop failed:\n{}",
+        String::from_utf8_lossy(&build.stderr)
+    );
+
+    let generated = common::scratch("python-generated");
+    for (name, mesh) in swm_corpus::all() {
+        swm_corpus::save_obj(&mesh, &generated.join(format!("{name}.obj")))
+            .expect("write the generated corpus");
+    }
+    let mut pytest = Command::new(&python);
+    pytest
+        .args(["-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider"])
+        .arg(root.join("python/tests"))
+        .current_dir(root.join("python"))
+        .env("SWM_BIN", env!("CARGO_BIN_EXE_swm"))
+        .env("SWM_GENERATED_CORPUS", &generated);
+    if let Some(shared) = common::shared_corpus() {
+        pytest.env("SWM_SHARED_CORPUS", shared);
+    }
+    let out = pytest.output().expect("run pytest");
+    // The log shows pytest's report (skips included) whatever the outcome.
+    println!("{}", String::from_utf8_lossy(&out.stdout));
+    eprintln!("{}", String::from_utf8_lossy(&out.stderr));
+    let _ = std::fs::remove_dir_all(&generated);
+    assert!(
+        out.status.success(),
+        "the Python suite failed (report above)"
+    );
+}
