@@ -1,13 +1,19 @@
 //! The swm decoder as a WebAssembly module (issue 24), for the hand-kept
 //! JavaScript glue in `web/src/swm.js`. Built for `wasm32-unknown-unknown`
-//! with `web/scripts/build.mjs` (`--profile min-size`, then `wasm-opt`).
+//! by `web/scripts/build.mjs` (the workspace's `wasm` profile, then
+//! binaryen's `wasm-opt`).
 //!
-//! Why not the C ABI crate (`codec/ffi`): it links `std` for
-//! `catch_unwind` and its thread-local error message, and its structs
-//! carry `u64` fields that JavaScript can only write as `BigInt`s. This
-//! module is `no_std` on wasm32 (dlmalloc as the allocator, a trap as the
-//! panic), which is what keeps the optimized module under 100 KB gzip
-//! (BENCHMARKS.md, "Web").
+//! Why not the C ABI crate (`codec/ffi`): its options struct carries `u64`
+//! fields that JavaScript can only write as `BigInt`s through a
+//! `DataView`, its error message sits in a thread-local behind a second
+//! call, and it has no allocator a host can call. Here the options are
+//! plain arguments (limits as `f64`, JavaScript's number) and one flat
+//! struct of 32-bit fields carries the mesh, the error and the file's
+//! mode and version.
+//!
+//! `std` is linked (constriction enables its own `std` on every hosted
+//! target, wasm32 included); the `wasm` profile's `panic = "abort"` makes
+//! a panic a trap.
 //!
 //! The contract with the glue:
 //! - The host copies a file into memory from [`swm_alloc`], calls
