@@ -158,6 +158,32 @@ async function checkDecodes(page, data) {
       }
     });
   }
+  // SWMLoader as the README shows it, over HTTP, on the page's thread and
+  // with a worker; and its onError for a damaged file.
+  const loaded = await page.evaluate(async (name, bad) => {
+    const { SWMLoader } = await import('/src/three.js');
+    const { SWMWorker } = await import('/src/worker.js');
+    const loader = new SWMLoader().setDecodeOptions({ sharpen: true, bendSteps: 1 });
+    const g = await loader.loadAsync(`/cases/${name}`);
+    const worker = new SWMWorker();
+    const w = await loader.setWorker(worker).loadAsync(`/cases/${name}`);
+    const error = await new Promise((resolve) => loader.load(`/cases/${bad}`, () => resolve(null), undefined, resolve));
+    worker.terminate();
+    return {
+      positions: Array.from(g.getAttribute('position').array.slice(0, 6)),
+      triangles: g.getIndex().count / 3,
+      workerTriangles: w.getIndex().count / 3,
+      hasNormals: g.getAttribute('normal') !== undefined,
+      error: error && error.message,
+    };
+  }, data.cases[0].swm, data.corrupt.swm);
+  const first = data.cases[0];
+  assert.deepEqual(loaded.positions, Array.from(first.sharpened.positions.slice(0, 6)));
+  assert.equal(loaded.triangles, first.sharpened.indices.length / 3);
+  assert.equal(loaded.workerTriangles, first.sharpened.indices.length / 3);
+  assert.equal(loaded.hasNormals, true);
+  assert.equal(loaded.error, data.corrupt.message);
+
   // Errors cross the worker as SWMErrors with the decoder's message.
   const error = await page.evaluate(async (name) => {
     const { SWMWorker } = await import('/src/worker.js');
