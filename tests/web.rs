@@ -1,7 +1,8 @@
 //! The web front door (issue 24): builds `web/`'s WebAssembly package
 //! (`npm run build`: cargo for wasm32, then wasm-opt) and runs its Node
 //! test and its headless-Chromium test (`web/test/`) on `.swm` files of
-//! every mode, which must decode bit for bit as `swm decode` decodes them.
+//! every mode, which must decode bit for bit as `swm decode` decodes them;
+//! and type-checks the TypeScript declarations.
 //!
 //! Needs Node with `npm ci` done in `web/`, the `wasm32-unknown-unknown`
 //! Rust target and, for the browser test, Chromium (`/usr/bin/chromium`
@@ -194,6 +195,23 @@ fn node_package_decodes_as_the_cli() {
         Some(cases()),
     );
     println!("{out}");
+}
+
+/// The hand-written TypeScript declarations accept the README's usage and
+/// reject misuse (`web/test/types/usage.ts`, compiled with the lock
+/// file's TypeScript, never run).
+#[test]
+fn typescript_declarations_check() {
+    if !node_ready() {
+        return;
+    }
+    let tsc = web_dir().join("node_modules/typescript/bin/tsc");
+    assert!(
+        tsc.is_file(),
+        "{} missing: run `npm ci` in web/",
+        tsc.display()
+    );
+    run_in_web("node", &[tsc.to_str().unwrap(), "-p", "test/types"], None);
 }
 
 #[test]
