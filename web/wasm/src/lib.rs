@@ -126,8 +126,9 @@ pub unsafe extern "C" fn swm_free(p: *mut u8, len: usize) {
 /// Decodes `len` bytes at `data`. `sharpen` and `normals` are booleans
 /// (non-zero: on); `bend_steps` as `swm::DecodeOptions`. The limits are
 /// `swm::Limits` as numbers, the host's native type (a JavaScript number
-/// holds every integer up to 2^53; larger values saturate). Never NULL
-/// unless memory for the answer itself is exhausted.
+/// holds every integer up to 2^53; larger values saturate). Never NULL:
+/// memory exhausted inside the decoder aborts, which traps on wasm32 and
+/// makes the glue replace the instance.
 ///
 /// # Safety
 /// `data` points to `len` readable bytes, or `len` is 0.
