@@ -1,0 +1,232 @@
+//! The web front door (issue 24): builds `web/`'s WebAssembly package
+//! (`npm run build`: cargo for wasm32, then wasm-opt) and runs its Node
+//! test and its headless-Chromium test (`web/test/`) on `.swm` files of
+//! every mode, which must decode bit for bit as `swm decode` decodes them;
+//! and type-checks the TypeScript declarations.
+//!
+//! Needs Node with `npm ci` done in `web/`, the `wasm32-unknown-unknown`
+//! Rust target and, for the browser test, Chromium (`/usr/bin/chromium`
+//! or `$SWM_CHROMIUM`); `.ci/setup-web` installs them all. Without them
+//! the tests print `skipped: ...` and pass, unless `SWM_CI=1`.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+fn web_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../web")
+}
+
+/// Whether a toolchain piece is present; prints the skip notice (or fails
+/// under `SWM_CI=1`) when it is not.
+fn present(found: bool, what: &str, how: &str) -> bool {
+    if !found {
+        if std::env::var("SWM_CI").as_deref() == Ok("1") {
+            panic!("{what} not found ({how}); SWM_CI=1 makes this a failure");
+        }
+        println!("skipped: {what} not found ({how})");
+    }
+    found
+}
+
+fn node_ready() -> bool {
+    let node = Command::new("node").arg("--version").output();
+    present(
+        node.is_ok_and(|o| o.status.success()),
+        "node",
+        "apt-get install nodejs, or .ci/setup-web",
+    ) && present(
+        web_dir().join("node_modules/binaryen").is_dir(),
+        "web/node_modules",
+        "run `npm ci` in web/, or .ci/setup-web",
+    ) && present(
+        wasm_target_installed(),
+        "the wasm32-unknown-unknown Rust target",
+        "rustup target add wasm32-unknown-unknown",
+    )
+}
+
+fn wasm_target_installed() -> bool {
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    Command::new(rustc)
+        .args(["--print", "sysroot"])
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| {
+            Path::new(String::from_utf8_lossy(&o.stdout).trim())
+                .join("lib/rustlib/wasm32-unknown-unknown/lib")
+                .is_dir()
+        })
+        .unwrap_or(false)
+}
+
+fn chromium() -> Option<PathBuf> {
+    let path = std::env::var_os("SWM_CHROMIUM")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("/usr/bin/chromium"));
+    present(
+        path.is_file(),
+        "chromium",
+        "apt-get install chromium, or set SWM_CHROMIUM",
+    )
+    .then_some(path)
+}
+
+/// Runs a command in `web/`, failing the test with its output unless it
+/// succeeds; returns its stdout.
+fn run_in_web(program: &str, args: &[&str], cases: Option<&Path>) -> String {
+    let mut command = Command::new(program);
+    command.args(args).current_dir(web_dir());
+    if let Some(dir) = cases {
+        command.env("SWM_WEB_CASES", dir);
+    }
+    let out = command
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {program}: {e}"));
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{program} {args:?} failed: {}\n--- stdout\n{stdout}\n--- stderr\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+}
+
+/// `npm run build` once per test binary: cargo is incremental and the
+/// build script skips wasm-opt when its output is newer.
+fn build() {
+    static BUILT: OnceLock<()> = OnceLock::new();
+    BUILT.get_or_init(|| {
+        run_in_web("node", &["scripts/build.mjs"], None);
+    });
+}
+
+/// The test files: every sample `common::samples` encodes (lossless, with
+/// a hole and with handles; swing, with `HOLE` and with `REST`) and the
+/// golden files, each with what `swm decode` writes for it (PLY, PLY after
+/// `--sharpen --bend 1`, GLB for the normals), and a damaged file with the
+/// message `swm decode` gives for it. Made once per test binary.
+fn cases() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = common::scratch("web_cases");
+        let mut files: Vec<(String, Vec<u8>)> = common::samples()
+            .iter()
+            .map(|s| (s.name.replace([' ', '+'], "-"), s.bytes.clone()))
+            .collect();
+        for name in ["lossless-v1.0", "swing-v1.0"] {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join(format!("../format-spec/golden/{name}.swm"));
+            files.push((format!("golden-{name}"), std::fs::read(path).unwrap()));
+        }
+        let mut entries = Vec::new();
+        for (name, bytes) in &files {
+            let swm = dir.join(format!("{name}.swm"));
+            std::fs::write(&swm, bytes).unwrap();
+            let decode = |out: &str, extra: &[&str]| {
+                let mut args = vec!["decode", swm.to_str().unwrap(), "-o"];
+                let out = dir.join(out);
+                args.push(out.to_str().unwrap());
+                args.extend_from_slice(extra);
+                common::ok(&common::swm(&args));
+            };
+            decode(&format!("{name}.ply"), &[]);
+            decode(&format!("{name}.sb.ply"), &["--sharpen", "--bend", "1"]);
+            decode(&format!("{name}.glb"), &[]);
+            let header = swm::container::parse_container(bytes, &swm::Limits::default())
+                .unwrap()
+                .header;
+            let mode = match header.mode {
+                swm::Mode::Lossless => "lossless",
+                _ => "swing",
+            };
+            entries.push(serde_json::json!({
+                "name": name,
+                "mode": mode,
+                "swm": format!("{name}.swm"),
+                "ply": format!("{name}.ply"),
+                "sharpened_ply": format!("{name}.sb.ply"),
+                "glb": format!("{name}.glb"),
+            }));
+        }
+        // One flipped bit in the middle of a swing file: the checksum
+        // catches it, and the message names the byte.
+        let (_, bytes) = files.iter().find(|(n, _)| n == "swing-HOLE").unwrap();
+        let mut damaged = bytes.clone();
+        let middle = damaged.len() / 2;
+        damaged[middle] ^= 0x10;
+        let corrupt = dir.join("damaged.swm");
+        std::fs::write(&corrupt, &damaged).unwrap();
+        let out = common::swm(&[
+            "decode",
+            corrupt.to_str().unwrap(),
+            "-o",
+            dir.join("damaged.ply").to_str().unwrap(),
+        ]);
+        assert!(!out.status.success(), "the damaged file decoded");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let prefix = format!("swm: error: {}: ", corrupt.display());
+        let message = stderr
+            .trim_end()
+            .strip_prefix(&prefix)
+            .unwrap_or_else(|| panic!("unexpected error line: {stderr}"));
+        let manifest = serde_json::json!({
+            "cases": entries,
+            "corrupt": { "swm": "damaged.swm", "message": message },
+        });
+        std::fs::write(dir.join("manifest.json"), manifest.to_string()).unwrap();
+        dir
+    })
+}
+
+#[test]
+fn node_package_decodes_as_the_cli() {
+    if !node_ready() {
+        return;
+    }
+    build();
+    let out = run_in_web(
+        "node",
+        &["--test", "--test-reporter=spec", "test/node.test.mjs"],
+        Some(cases()),
+    );
+    println!("{out}");
+}
+
+/// The hand-written TypeScript declarations accept the README's usage and
+/// reject misuse (`web/test/types/usage.ts`, compiled with the lock
+/// file's TypeScript, never run).
+#[test]
+fn typescript_declarations_check() {
+    if !node_ready() {
+        return;
+    }
+    let tsc = web_dir().join("node_modules/typescript/bin/tsc");
+    assert!(
+        tsc.is_file(),
+        "{} missing: run `npm ci` in web/",
+        tsc.display()
+    );
+    run_in_web("node", &[tsc.to_str().unwrap(), "-p", "test/types"], None);
+}
+
+#[test]
+fn browser_page_decodes_and_shows_every_mode() {
+    if !node_ready() {
+        return;
+    }
+    let Some(chromium) = chromium() else {
+        return;
+    };
+    build();
+    let out = run_in_web(
+        "node",
+        &["test/browser.mjs", "--chromium", chromium.to_str().unwrap()],
+        Some(cases()),
+    );
+    println!("{out}");
+}

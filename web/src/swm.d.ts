@@ -1,0 +1,68 @@
+// Types of swm.js, kept by hand beside it.
+
+/** Caps on what a file may make the decoder allocate (`swm::Limits`). */
+export interface Limits {
+  /** Largest vertex count accepted. Default 2^28. */
+  maxVertices?: number;
+  /** Largest triangle count accepted. Default 2^29. */
+  maxFaces?: number;
+  /** Largest allocation in bytes. Default 2^31 (wasm32 memory ends at 4 GiB). */
+  maxAllocBytes?: number;
+}
+
+export interface DecodeOptions {
+  /** Run EdgeSharpener (restores sharp edges and corners). Default false. */
+  sharpen?: boolean;
+  /** Bender subdivision steps after that; each multiplies the triangles by four. Default 0. */
+  bendSteps?: number;
+  /** Also compute unit angle-weighted vertex normals. Default false. */
+  normals?: boolean;
+  /** Default DEFAULT_LIMITS. */
+  limits?: Limits;
+}
+
+export interface DecodeInfo {
+  /** The file's codec. */
+  mode: 'lossless' | 'swing' | string;
+  /** Format version of the file, "major.minor". */
+  version: string;
+  /** Size of the file in bytes. */
+  bytes: number;
+  /** Vertices of the decoded mesh. */
+  vertices: number;
+  /** Triangles of the decoded mesh. */
+  triangles: number;
+  /** Time decode() took, copies included, in milliseconds. */
+  decodeMs: number;
+}
+
+export interface DecodedMesh {
+  /** x, y, z of each vertex. */
+  positions: Float32Array;
+  /** Three vertex indices per triangle, counter-clockwise seen from outside. */
+  indices: Uint32Array;
+  /** Unit vertex normals, when `options.normals` was set. */
+  normals?: Float32Array;
+  info: DecodeInfo;
+}
+
+export const DEFAULT_LIMITS: Readonly<Required<Limits>>;
+
+/** A decoding failure; `message` is the decoder's. */
+export class SWMError extends Error {
+  constructor(message: string, code: string);
+  /** 'format' | 'limit' | 'unsupported' | 'argument' | 'internal' | 'init' | 'load' | 'terminated' */
+  code: string;
+}
+
+/** Where swm.wasm is: a URL, a fetch Response, its bytes, or a compiled module. */
+export type WasmSource = string | URL | Response | BufferSource | WebAssembly.Module;
+
+/** Loads the decoder (default: dist/swm.wasm beside the package). */
+export function init(source?: WasmSource): Promise<void>;
+
+/** Whether init() has finished. */
+export function isReady(): boolean;
+
+/** Decodes a .swm file; throws SWMError. Needs `await init()` first. */
+export function decode(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: DecodeOptions): DecodedMesh;

@@ -1,0 +1,189 @@
+// The swm decoder for JavaScript: a hand-kept glue over the exports of
+// dist/swm.wasm (crate web/wasm). Hand-kept rather than wasm-bindgen's
+// generated glue because the interface is four functions and one struct,
+// and it needs no wasm-bindgen-cli build (BENCHMARKS.md, "Web").
+//
+// The module's Output struct, 32-bit little-endian fields in this order
+// (web/wasm/src/lib.rs): status, message, message_len, positions,
+// vertex_count, indices, triangle_count, normals, mode, major, minor.
+
+const OUT_STATUS = 0;
+const OUT_MESSAGE = 4;
+const OUT_MESSAGE_LEN = 8;
+const OUT_POSITIONS = 12;
+const OUT_VERTEX_COUNT = 16;
+const OUT_INDICES = 20;
+const OUT_TRIANGLE_COUNT = 24;
+const OUT_NORMALS = 28;
+const OUT_MODE = 32;
+const OUT_MAJOR = 36;
+const OUT_MINOR = 40;
+
+/** Error codes by the module's status. */
+const CODES = ['ok', 'argument', 'format', 'limit', 'unsupported', 'internal', 'internal'];
+const MODES = ['lossless', 'swing'];
+
+/**
+ * The limits of `swm::Limits::default()`, but for allocations: 2 GiB
+ * instead of 16 GiB, since a wasm32 memory cannot grow past 4 GiB and
+ * browsers often stop earlier.
+ */
+export const DEFAULT_LIMITS = Object.freeze({
+  maxVertices: 2 ** 28,
+  maxFaces: 2 ** 29,
+  maxAllocBytes: 2 ** 31,
+});
+
+/** A decoding failure; `code` says why, `message` is the decoder's. */
+export class SWMError extends Error {
+  constructor(message, code) {
+    super(message);
+    this.name = 'SWMError';
+    this.code = code;
+  }
+}
+
+let module = null; // the compiled WebAssembly.Module
+let wasm = null; // the live instance's exports
+let loading = null;
+
+/**
+ * Loads the decoder. `source` is where dist/swm.wasm is: a URL or string,
+ * a Response, bytes, or a compiled WebAssembly.Module; by default the
+ * file beside this package. Resolves once; later calls return at once.
+ */
+export function init(source) {
+  if (wasm) return Promise.resolve();
+  loading ??= compile(source ?? new URL('../dist/swm.wasm', import.meta.url)).then(
+    (m) => {
+      module = m;
+      wasm = new WebAssembly.Instance(m, {}).exports;
+    },
+    (e) => {
+      loading = null;
+      throw e;
+    },
+  );
+  return loading;
+}
+
+/** Whether `init()` has finished, so that `decode` may be called. */
+export function isReady() {
+  return wasm !== null;
+}
+
+async function compile(source) {
+  if (source instanceof WebAssembly.Module) return source;
+  if (typeof source === 'string') source = new URL(source, globalThis.location?.href);
+  if (source instanceof URL) {
+    if (source.protocol === 'file:') {
+      // Node: fetch() does not read files.
+      const { readFile } = await import('node:fs/promises');
+      return WebAssembly.compile(await readFile(source));
+    }
+    source = await fetch(source);
+  }
+  if (typeof Response !== 'undefined' && source instanceof Response) {
+    if (!source.ok) throw new SWMError(`cannot load swm.wasm: HTTP ${source.status} ${source.url}`, 'load');
+    if (WebAssembly.compileStreaming && source.headers.get('content-type') === 'application/wasm') {
+      return WebAssembly.compileStreaming(source);
+    }
+    source = await source.arrayBuffer();
+  }
+  return WebAssembly.compile(source);
+}
+
+function count(name, value, fallback) {
+  if (value === undefined) return fallback;
+  if (typeof value !== 'number' || !Number.isInteger(value) || value < 0) {
+    throw new SWMError(`option ${name} must be a non-negative integer, not ${value}`, 'argument');
+  }
+  return value;
+}
+
+function asBytes(bytes) {
+  if (bytes instanceof Uint8Array) return bytes;
+  if (bytes instanceof ArrayBuffer) return new Uint8Array(bytes);
+  if (ArrayBuffer.isView(bytes)) return new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  throw new SWMError('decode: bytes must be a Uint8Array, an ArrayBuffer or a typed array', 'argument');
+}
+
+/**
+ * Decodes a `.swm` file. Synchronous; call `await init()` first. Options:
+ * `sharpen` (EdgeSharpener, default false), `bendSteps` (Bender steps,
+ * default 0), `normals` (unit vertex normals, default false) and
+ * `limits` ({maxVertices, maxFaces, maxAllocBytes}, DEFAULT_LIMITS).
+ * Throws an SWMError with the decoder's message on a bad file.
+ */
+export function decode(bytes, options = {}) {
+  if (!wasm) throw new SWMError('swm: call `await init()` before decode()', 'init');
+  bytes = asBytes(bytes);
+  const limits = options.limits ?? {};
+  const bend = count('bendSteps', options.bendSteps, 0);
+  if (bend > 0xffffffff) throw new SWMError(`option bendSteps is too large: ${bend}`, 'argument');
+  const args = [
+    options.sharpen ? 1 : 0,
+    bend,
+    options.normals ? 1 : 0,
+    count('limits.maxVertices', limits.maxVertices, DEFAULT_LIMITS.maxVertices),
+    count('limits.maxFaces', limits.maxFaces, DEFAULT_LIMITS.maxFaces),
+    count('limits.maxAllocBytes', limits.maxAllocBytes, DEFAULT_LIMITS.maxAllocBytes),
+  ];
+  const start = performance.now();
+  const x = wasm;
+  let input = 0;
+  let out = 0;
+  try {
+    input = x.swm_alloc(bytes.length);
+    if (input === 0) throw new SWMError(`out of memory for a ${bytes.length}-byte file`, 'limit');
+    new Uint8Array(x.memory.buffer, input, bytes.length).set(bytes);
+    out = x.swm_decode(input, bytes.length, ...args);
+    if (out === 0) throw new SWMError('out of memory', 'limit');
+    // Fresh views: memory.grow() during decoding detaches older ones.
+    const buffer = x.memory.buffer;
+    const u32 = (offset) => new DataView(buffer).getUint32(out + offset, true);
+    const status = u32(OUT_STATUS);
+    if (status !== 0) {
+      const text = new Uint8Array(buffer, u32(OUT_MESSAGE), u32(OUT_MESSAGE_LEN));
+      throw new SWMError(new TextDecoder().decode(text), CODES[status] ?? 'internal');
+    }
+    const vertices = u32(OUT_VERTEX_COUNT);
+    const triangles = u32(OUT_TRIANGLE_COUNT);
+    // slice() copies out of the module's memory, which the next call reuses.
+    const positions = new Float32Array(buffer, u32(OUT_POSITIONS), 3 * vertices).slice();
+    const indices = new Uint32Array(buffer, u32(OUT_INDICES), 3 * triangles).slice();
+    const normals = options.normals
+      ? new Float32Array(buffer, u32(OUT_NORMALS), 3 * vertices).slice()
+      : undefined;
+    const info = {
+      mode: MODES[u32(OUT_MODE)] ?? `mode ${u32(OUT_MODE)}`,
+      version: `${u32(OUT_MAJOR)}.${u32(OUT_MINOR)}`,
+      bytes: bytes.length,
+      vertices,
+      triangles,
+      decodeMs: 0,
+    };
+    const result = { positions, indices, info };
+    if (normals) result.normals = normals;
+    info.decodeMs = performance.now() - start;
+    return result;
+  } catch (e) {
+    if (e instanceof WebAssembly.RuntimeError) {
+      // A trap is a bug in the decoder; the heap may be inconsistent, so
+      // the instance is replaced before the next call.
+      wasm = null;
+      try {
+        wasm = new WebAssembly.Instance(module, {}).exports;
+      } catch {
+        loading = null;
+      }
+      throw new SWMError(`internal error: the decoder trapped (${e.message})`, 'internal');
+    }
+    throw e;
+  } finally {
+    if (wasm === x) {
+      x.swm_output_free(out);
+      if (input !== 0) x.swm_free(input, bytes.length);
+    }
+  }
+}

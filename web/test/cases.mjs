@@ -1,0 +1,88 @@
+// The test files that tests/web.rs prepares (SWM_WEB_CASES, a folder):
+// manifest.json lists `.swm` files of every mode with what the `swm` CLI
+// decodes them to (binary PLY, and GLB for the normals), and a damaged
+// file with the CLI's error message. Parsers for those outputs, and
+// bit-for-bit comparison.
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+
+/** The folder of test files, from SWM_WEB_CASES or the first argument. */
+export function casesDir() {
+  const dir = process.env.SWM_WEB_CASES ?? process.argv[2];
+  if (!dir) {
+    throw new Error('set SWM_WEB_CASES to a folder made by tests/web.rs (cargo test -p swm-cli --test web)');
+  }
+  return dir;
+}
+
+export function manifest(dir) {
+  return JSON.parse(readFileSync(join(dir, 'manifest.json'), 'utf8'));
+}
+
+/** Positions and indices of a binary little-endian PLY as `swm decode` writes it. */
+export function readPly(bytes) {
+  const end = bytes.indexOf('end_header\n');
+  if (end < 0) throw new Error('PLY without end_header');
+  const header = bytes.subarray(0, end).toString('latin1');
+  if (!header.includes('format binary_little_endian 1.0')) throw new Error('not a binary little-endian PLY');
+  const vertices = Number(/element vertex (\d+)/.exec(header)[1]);
+  const faces = Number(/element face (\d+)/.exec(header)[1]);
+  const view = new DataView(bytes.buffer, bytes.byteOffset + end + 'end_header\n'.length);
+  const positions = new Float32Array(3 * vertices);
+  for (let i = 0; i < positions.length; i++) positions[i] = view.getFloat32(4 * i, true);
+  const indices = new Uint32Array(3 * faces);
+  let at = 12 * vertices;
+  for (let f = 0; f < faces; f++) {
+    if (view.getUint8(at) !== 3) throw new Error(`PLY face ${f} is not a triangle`);
+    for (let k = 0; k < 3; k++) indices[3 * f + k] = view.getUint32(at + 1 + 4 * k, true);
+    at += 13;
+  }
+  return { positions, indices };
+}
+
+/** The NORMAL attribute of the one mesh in a GLB that `swm decode` writes. */
+export function readGlbNormals(bytes) {
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const jsonLength = view.getUint32(12, true);
+  const gltf = JSON.parse(bytes.subarray(20, 20 + jsonLength).toString('utf8'));
+  const bin = 20 + jsonLength + 8;
+  const accessor = gltf.accessors[gltf.meshes[0].primitives[0].attributes.NORMAL];
+  const bufferView = gltf.bufferViews[accessor.bufferView];
+  const offset = bin + (bufferView.byteOffset ?? 0) + (accessor.byteOffset ?? 0);
+  const normals = new Float32Array(3 * accessor.count);
+  for (let i = 0; i < normals.length; i++) normals[i] = view.getFloat32(offset + 4 * i, true);
+  return normals;
+}
+
+/** Every case with its bytes and the CLI's decodings loaded. */
+export function loadCases(dir) {
+  const m = manifest(dir);
+  const read = (f) => readFileSync(join(dir, f));
+  return {
+    ...m,
+    cases: m.cases.map((c) => ({
+      ...c,
+      bytes: new Uint8Array(read(c.swm)),
+      plain: readPly(read(c.ply)),
+      sharpened: readPly(read(c.sharpened_ply)),
+      normals: readGlbNormals(read(c.glb)),
+    })),
+    corrupt: { ...m.corrupt, bytes: new Uint8Array(read(m.corrupt.swm)) },
+  };
+}
+
+/**
+ * Where two typed arrays first differ bit for bit ("" when they are the
+ * same), for assertion messages.
+ */
+export function bitDiff(actual, expected, what) {
+  if (actual.length !== expected.length) {
+    return `${what}: ${actual.length} values, the CLI gives ${expected.length}`;
+  }
+  const a = new Uint32Array(actual.buffer, actual.byteOffset, actual.length);
+  const b = new Uint32Array(expected.buffer, expected.byteOffset, expected.length);
+  for (let i = 0; i < a.length; i++) {
+    if (a[i] !== b[i]) return `${what}[${i}]: ${actual[i]}, the CLI gives ${expected[i]}`;
+  }
+  return '';
+}

@@ -1,0 +1,96 @@
+// The package in Node (no browser): every test file decodes to exactly
+// what the `swm` CLI decodes it to, with and without Sharpen&Bend, with
+// the CLI's normals; errors are SWMErrors with the decoder's message and
+// leave the decoder usable; SWMLoader builds the same BufferGeometry.
+// Run by tests/web.rs: SWM_WEB_CASES=DIR node --test test/node.test.mjs
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { DEFAULT_LIMITS, decode, init, isReady, SWMError } from '../src/swm.js';
+import { SWMLoader } from '../src/three.js';
+import { bitDiff, casesDir, loadCases } from './cases.mjs';
+
+const { cases, corrupt } = loadCases(casesDir());
+
+test('decode() before init() throws', async () => {
+  // A second copy of the module (another URL), never initialized.
+  const fresh = await import('../src/swm.js?uninitialized');
+  assert.equal(fresh.isReady(), false);
+  assert.throws(() => fresh.decode(cases[0].bytes), { name: 'SWMError', code: 'init' });
+});
+
+test('init() loads the module from the package', async () => {
+  await init();
+  assert.equal(isReady(), true);
+  await init(); // a second call is a no-op
+});
+
+test('every mode decodes bit for bit as the CLI decodes', async () => {
+  await init();
+  const modes = new Set();
+  for (const c of cases) {
+    const r = decode(c.bytes, { normals: true });
+    assert.equal(bitDiff(r.positions, c.plain.positions, `${c.name} positions`), '');
+    assert.equal(bitDiff(r.indices, c.plain.indices, `${c.name} indices`), '');
+    assert.equal(bitDiff(r.normals, c.normals, `${c.name} normals`), '');
+    assert.equal(r.info.mode, c.mode, c.name);
+    assert.equal(r.info.version, '1.0', c.name);
+    assert.equal(r.info.bytes, c.bytes.length, c.name);
+    assert.equal(r.info.vertices, c.plain.positions.length / 3, c.name);
+    assert.equal(r.info.triangles, c.plain.indices.length / 3, c.name);
+    assert.equal(decode(c.bytes).normals, undefined, `${c.name}: normals not asked for`);
+    modes.add(c.mode);
+  }
+  assert.deepEqual([...modes].sort(), ['lossless', 'swing']);
+});
+
+test('Sharpen&Bend gives what `swm decode --sharpen --bend 1` gives', async () => {
+  await init();
+  for (const c of cases) {
+    const r = decode(c.bytes, { sharpen: true, bendSteps: 1 });
+    assert.equal(bitDiff(r.positions, c.sharpened.positions, `${c.name} positions`), '');
+    assert.equal(bitDiff(r.indices, c.sharpened.indices, `${c.name} indices`), '');
+  }
+});
+
+test('a damaged file throws the decoder message, and the decoder still works', async () => {
+  await init();
+  assert.throws(() => decode(corrupt.bytes), (e) => {
+    assert.ok(e instanceof SWMError && e instanceof Error);
+    assert.equal(e.code, 'format');
+    assert.equal(e.message, corrupt.message);
+    return true;
+  });
+  assert.throws(() => decode(new Uint8Array(0)), { name: 'SWMError', code: 'format' });
+  const r = decode(cases[0].bytes);
+  assert.equal(bitDiff(r.positions, cases[0].plain.positions, 'after an error'), '');
+});
+
+test('limits and options are checked', async () => {
+  await init();
+  const c = cases.find((x) => x.plain.positions.length > 3);
+  assert.throws(() => decode(c.bytes, { limits: { maxVertices: 1 } }), { name: 'SWMError', code: 'limit' });
+  assert.throws(() => decode(c.bytes, { limits: { maxAllocBytes: 64 } }), { name: 'SWMError', code: 'limit' });
+  assert.throws(() => decode(c.bytes, { bendSteps: -1 }), { name: 'SWMError', code: 'argument' });
+  assert.throws(() => decode(c.bytes, { limits: { maxFaces: NaN } }), { name: 'SWMError', code: 'argument' });
+  assert.throws(() => decode('not bytes'), { name: 'SWMError', code: 'argument' });
+  // The defaults let every test file through; an ArrayBuffer is accepted.
+  const copy = c.bytes.slice().buffer;
+  assert.equal(decode(copy, { limits: DEFAULT_LIMITS }).info.vertices, c.plain.positions.length / 3);
+});
+
+test('SWMLoader.parse returns the decoded BufferGeometry', async () => {
+  const loader = new SWMLoader();
+  await loader.init();
+  for (const c of cases) {
+    const g = loader.parse(c.bytes.slice().buffer);
+    assert.equal(g.isBufferGeometry, true);
+    assert.equal(bitDiff(g.getAttribute('position').array, c.plain.positions, `${c.name} position`), '');
+    assert.equal(bitDiff(g.getIndex().array, c.plain.indices, `${c.name} index`), '');
+    assert.equal(bitDiff(g.getAttribute('normal').array, c.normals, `${c.name} normal`), '');
+    assert.equal(g.userData.swm.mode, c.mode);
+    assert.ok(g.boundingSphere.radius > 0 || c.plain.positions.length === 0);
+  }
+  const g = await loader.setDecodeOptions({ sharpen: true, bendSteps: 1 }).parseAsync(cases[0].bytes);
+  assert.equal(bitDiff(g.getIndex().array, cases[0].sharpened.indices, 'parseAsync, Sharpen&Bend'), '');
+  await assert.rejects(loader.parseAsync(corrupt.bytes), { name: 'SWMError', message: corrupt.message });
+});

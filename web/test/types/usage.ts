@@ -1,0 +1,41 @@
+// Compiled (not run) by tests/web.rs with `tsc -p test/types`: the
+// hand-written declarations in src/*.d.ts accept the README's usage and
+// reject misuse (the @ts-expect-error lines must be errors).
+import * as THREE from 'three';
+import { decode, DEFAULT_LIMITS, init, isReady, SWMError, type DecodedMesh } from 'swm-decoder';
+import { SWMLoader, toBufferGeometry } from 'swm-decoder/three';
+import { SWMWorker } from 'swm-decoder/worker';
+
+export async function readme(scene: THREE.Scene): Promise<void> {
+  const loader = new SWMLoader().setDecodeOptions({ sharpen: true, bendSteps: 1 });
+  const geometry: THREE.BufferGeometry = await loader.loadAsync('model.swm');
+  scene.add(new THREE.Mesh(geometry, new THREE.MeshStandardMaterial()));
+  loader.setWorker(new SWMWorker({ wasm: '/swm.wasm' })).setWasmPath(new URL('https://example.com/swm.wasm'));
+  loader.load('a.swm', (g) => g.computeVertexNormals(), undefined, (e) => console.error(e));
+  await loader.init();
+  const g2: THREE.BufferGeometry = loader.parse(new ArrayBuffer(8));
+  void g2;
+}
+
+export async function plain(bytes: Uint8Array): Promise<number> {
+  await init();
+  if (!isReady()) return 0;
+  const r: DecodedMesh = decode(bytes, { normals: true, limits: { maxVertices: DEFAULT_LIMITS.maxVertices } });
+  const p: Float32Array = r.positions;
+  const i: Uint32Array = r.indices;
+  const n: Float32Array | undefined = r.normals;
+  const w = new SWMWorker();
+  const r2 = await w.decode(new ArrayBuffer(8), { sharpen: true }, { transfer: true });
+  w.terminate();
+  toBufferGeometry(r2);
+  try {
+    decode(bytes);
+  } catch (e) {
+    if (e instanceof SWMError) return e.code.length;
+  }
+  // @ts-expect-error: bendSteps is a number
+  decode(bytes, { bendSteps: '1' });
+  // @ts-expect-error: decode() is synchronous
+  await decode(bytes).then(() => 0);
+  return p.length + i.length + (n?.length ?? 0) + r.info.vertices;
+}

@@ -1,0 +1,270 @@
+//! The swm decoder as a WebAssembly module (issue 24), for the hand-kept
+//! JavaScript glue in `web/src/swm.js`. Built for `wasm32-unknown-unknown`
+//! by `web/scripts/build.mjs` (the workspace's `wasm` profile, then
+//! binaryen's `wasm-opt`).
+//!
+//! Why not the C ABI crate (`codec/ffi`): its options struct carries `u64`
+//! fields that JavaScript can only write as `BigInt`s through a
+//! `DataView`, its error message sits in a thread-local behind a second
+//! call, and it has no allocator a host can call. Here the options are
+//! plain arguments (limits as `f64`, JavaScript's number) and one flat
+//! struct of 32-bit fields carries the mesh, the error and the file's
+//! mode and version.
+//!
+//! `std` is linked (constriction enables its own `std` on every hosted
+//! target, wasm32 included); the `wasm` profile's `panic = "abort"` makes
+//! a panic a trap.
+//!
+//! The contract with the glue:
+//! - The host copies a file into memory from [`swm_alloc`], calls
+//!   [`swm_decode`], reads the returned [`Output`] (32-bit fields on
+//!   wasm32, in declaration order), copies the arrays out and releases
+//!   everything with [`swm_output_free`] and [`swm_free`].
+//! - A decoding error is an `Output` with a non-zero `status` and a UTF-8
+//!   message; only a bug traps (`unreachable`), after which the glue
+//!   discards the instance, since its heap may be mid-update.
+//! - Every byte of the input is hostile: the library guarantees errors,
+//!   never panics, and nothing allocated beyond the limits passed in.
+
+#![deny(unsafe_op_in_unsafe_fn)]
+
+extern crate alloc;
+
+use alloc::alloc::Layout;
+use alloc::boxed::Box;
+use alloc::string::{String, ToString};
+use alloc::vec::Vec;
+use core::ptr;
+
+use swm::{DecodeOptions, Error, Limits, TriMesh};
+
+/// Success.
+pub const STATUS_OK: u32 = 0;
+/// An option out of range (a negative or non-numeric limit).
+pub const STATUS_ARGUMENT: u32 = 1;
+/// The bytes are not a valid `.swm` file.
+pub const STATUS_FORMAT: u32 = 2;
+/// The file needs more than the limits allow.
+pub const STATUS_LIMIT: u32 = 3;
+/// A newer format version or an unknown mode.
+pub const STATUS_UNSUPPORTED: u32 = 4;
+/// An error of no other kind.
+pub const STATUS_INTERNAL: u32 = 6;
+
+/// Alignment of [`swm_alloc`]'s blocks: enough for every element type
+/// the glue places in them.
+const ALIGN: usize = 8;
+
+/// What [`swm_decode`] hands to the host. The pointers stay valid until
+/// [`swm_output_free`].
+#[repr(C)]
+#[derive(Debug)]
+pub struct Output {
+    /// `STATUS_OK` or one of the `STATUS_*` errors.
+    pub status: u32,
+    /// UTF-8 error message (empty on success).
+    pub message: *const u8,
+    /// Its length in bytes.
+    pub message_len: usize,
+    /// `3 * vertex_count` floats.
+    pub positions: *const f32,
+    /// Vertices of the decoded mesh.
+    pub vertex_count: usize,
+    /// `3 * triangle_count` vertex indices, counter-clockwise from outside.
+    pub indices: *const u32,
+    /// Triangles of the decoded mesh.
+    pub triangle_count: usize,
+    /// `3 * vertex_count` floats of unit vertex normals when asked for,
+    /// NULL otherwise.
+    pub normals: *const f32,
+    /// The file's mode: its code in the file (`swm::Mode::code`: 0
+    /// lossless, 1 SwingWrapper).
+    pub mode: u32,
+    /// Format version of the file, major.
+    pub major: u32,
+    /// Format version of the file, minor.
+    pub minor: u32,
+}
+
+/// The `Output` and what its pointers point into. `repr(C)` with `out`
+/// first, so a pointer to it is a pointer to its `Output`.
+#[repr(C)]
+struct Owned {
+    out: Output,
+    _mesh: TriMesh,
+    _normals: Vec<[f32; 3]>,
+    _message: String,
+}
+
+/// A block of `len` bytes (8-aligned) for the host to fill, or NULL when
+/// memory is exhausted. `len` 0 gives a valid, empty block.
+#[no_mangle]
+pub extern "C" fn swm_alloc(len: usize) -> *mut u8 {
+    match Layout::from_size_align(len.max(1), ALIGN) {
+        // SAFETY: the layout's size is non-zero.
+        Ok(layout) => unsafe { alloc::alloc::alloc(layout) },
+        Err(_) => ptr::null_mut(),
+    }
+}
+
+/// Releases a block from [`swm_alloc`]; NULL is ignored.
+///
+/// # Safety
+/// `p` is NULL or came from `swm_alloc(len)` and was not freed since.
+#[no_mangle]
+pub unsafe extern "C" fn swm_free(p: *mut u8, len: usize) {
+    if p.is_null() {
+        return;
+    }
+    if let Ok(layout) = Layout::from_size_align(len.max(1), ALIGN) {
+        // SAFETY: the caller promises `p` came from `swm_alloc` with this
+        // length, hence this layout.
+        unsafe { alloc::alloc::dealloc(p, layout) }
+    }
+}
+
+/// Decodes `len` bytes at `data`. `sharpen` and `normals` are booleans
+/// (non-zero: on); `bend_steps` as `swm::DecodeOptions`. The limits are
+/// `swm::Limits` as numbers, the host's native type (a JavaScript number
+/// holds every integer up to 2^53; larger values saturate). Never NULL:
+/// memory exhausted inside the decoder aborts, which traps on wasm32 and
+/// makes the glue replace the instance.
+///
+/// # Safety
+/// `data` points to `len` readable bytes, or `len` is 0.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn swm_decode(
+    data: *const u8,
+    len: usize,
+    sharpen: u32,
+    bend_steps: u32,
+    normals: u32,
+    max_vertices: f64,
+    max_faces: f64,
+    max_alloc_bytes: f64,
+) -> *mut Output {
+    let bytes = if len == 0 || data.is_null() {
+        &[][..]
+    } else {
+        // SAFETY: the caller promises `len` readable bytes at `data`.
+        unsafe { core::slice::from_raw_parts(data, len) }
+    };
+    let owned = match limits(max_vertices, max_faces, max_alloc_bytes) {
+        Some(limits) => {
+            let options = DecodeOptions {
+                limits,
+                sharpen: sharpen != 0,
+                bend_steps,
+            };
+            decode(bytes, &options, normals != 0)
+        }
+        None => failure(
+            STATUS_ARGUMENT,
+            "a limit is not a non-negative number".to_string(),
+        ),
+    };
+    Box::into_raw(Box::new(owned)).cast()
+}
+
+/// Releases an [`Output`] and its arrays; NULL is ignored.
+///
+/// # Safety
+/// `out` is NULL or came from [`swm_decode`] and was not freed since.
+#[no_mangle]
+pub unsafe extern "C" fn swm_output_free(out: *mut Output) {
+    if !out.is_null() {
+        // SAFETY: `out` is the first field of an `Owned` that
+        // `swm_decode` boxed.
+        drop(unsafe { Box::from_raw(out.cast::<Owned>()) });
+    }
+}
+
+/// `Limits` from host numbers; `None` for NaN or a negative value.
+fn limits(vertices: f64, faces: f64, alloc_bytes: f64) -> Option<Limits> {
+    // `as` saturates: +inf and values beyond u64 become u64::MAX.
+    let count = |x: f64| (x >= 0.0).then_some(x as u64);
+    Some(Limits {
+        max_vertices: count(vertices)?,
+        max_faces: count(faces)?,
+        max_alloc_bytes: count(alloc_bytes)?,
+    })
+}
+
+fn decode(bytes: &[u8], options: &DecodeOptions, with_normals: bool) -> Owned {
+    let result = swm::decode(bytes, options).and_then(|mesh| {
+        // The file was parsed and checked by `decode`; this second parse
+        // (one CRC pass over the file) only reads the header's version
+        // and mode, through the public container API.
+        let header = swm::container::parse_container(bytes, &options.limits)?.header;
+        Ok((mesh, header))
+    });
+    let (mesh, header) = match result {
+        Ok(x) => x,
+        Err(e) => return failure(status_of(&e), e.to_string()),
+    };
+    let normals = if with_normals {
+        swm::vertex_normals(&mesh)
+    } else {
+        Vec::new()
+    };
+    let out = Output {
+        status: STATUS_OK,
+        message: ptr::null(),
+        message_len: 0,
+        positions: mesh.positions.as_ptr().cast(),
+        vertex_count: mesh.positions.len(),
+        indices: mesh.triangles.as_ptr().cast(),
+        triangle_count: mesh.triangles.len(),
+        normals: if with_normals {
+            normals.as_ptr().cast()
+        } else {
+            ptr::null()
+        },
+        mode: header.mode.code().into(),
+        major: header.major.into(),
+        minor: header.minor.into(),
+    };
+    // Moving the vectors into `Owned` moves their headers, not their heap
+    // buffers, so the pointers above stay valid.
+    Owned {
+        out,
+        _mesh: mesh,
+        _normals: normals,
+        _message: String::new(),
+    }
+}
+
+fn failure(status: u32, message: String) -> Owned {
+    Owned {
+        out: Output {
+            status,
+            message: message.as_ptr(),
+            message_len: message.len(),
+            positions: ptr::null(),
+            vertex_count: 0,
+            indices: ptr::null(),
+            triangle_count: 0,
+            normals: ptr::null(),
+            mode: 0,
+            major: 0,
+            minor: 0,
+        },
+        _mesh: TriMesh::default(),
+        _normals: Vec::new(),
+        _message: message,
+    }
+}
+
+fn status_of(e: &Error) -> u32 {
+    match e {
+        Error::Format(_) => STATUS_FORMAT,
+        Error::LimitExceeded(_) => STATUS_LIMIT,
+        Error::Unsupported(_) => STATUS_UNSUPPORTED,
+        Error::Parameter(_) => STATUS_ARGUMENT,
+        _ => STATUS_INTERNAL,
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,148 @@
+//! The exports called as the glue calls them, on the host: a file of each
+//! kind decodes to what `swm::decode` gives, errors come back as a status
+//! and the library's message, and every block is released.
+
+use super::*;
+
+fn golden(name: &str) -> Vec<u8> {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../format-spec/golden/");
+    std::fs::read(format!("{path}{name}")).expect("read a golden file")
+}
+
+/// Copies `bytes` into a block from `swm_alloc`, as the glue does, and
+/// decodes them.
+fn call(bytes: &[u8], sharpen: bool, bend: u32, normals: bool, limits: [f64; 3]) -> *mut Output {
+    let p = swm_alloc(bytes.len());
+    assert!(!p.is_null());
+    // SAFETY: the block holds `bytes.len()` bytes.
+    unsafe {
+        ptr::copy_nonoverlapping(bytes.as_ptr(), p, bytes.len());
+        let out = swm_decode(
+            p,
+            bytes.len(),
+            sharpen.into(),
+            bend,
+            normals.into(),
+            limits[0],
+            limits[1],
+            limits[2],
+        );
+        swm_free(p, bytes.len());
+        out
+    }
+}
+
+const DEFAULT: [f64; 3] = [
+    (1u64 << 28) as f64,
+    (1u64 << 29) as f64,
+    (16u64 << 30) as f64,
+];
+
+/// The decoded arrays of an `Output`.
+fn arrays(out: &Output) -> (&[f32], &[u32], Option<&[f32]>) {
+    // SAFETY: a successful Output's pointers hold these many elements.
+    unsafe {
+        (
+            core::slice::from_raw_parts(out.positions, 3 * out.vertex_count),
+            core::slice::from_raw_parts(out.indices, 3 * out.triangle_count),
+            (!out.normals.is_null())
+                .then(|| core::slice::from_raw_parts(out.normals, 3 * out.vertex_count)),
+        )
+    }
+}
+
+fn message(out: &Output) -> &str {
+    // SAFETY: the message is `message_len` bytes of UTF-8.
+    unsafe {
+        core::str::from_utf8(core::slice::from_raw_parts(out.message, out.message_len)).unwrap()
+    }
+}
+
+#[test]
+fn golden_files_decode_as_the_library_does() {
+    for (name, mode) in [("lossless-v1.0.swm", 0), ("swing-v1.0.swm", 1)] {
+        let bytes = golden(name);
+        for (sharpen, bend, normals) in [(false, 0, false), (true, 1, true)] {
+            let expected = swm::decode(
+                &bytes,
+                &DecodeOptions {
+                    sharpen,
+                    bend_steps: bend,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            let out = call(&bytes, sharpen, bend, normals, DEFAULT);
+            // SAFETY: `swm_decode` returns a valid Output.
+            let o = unsafe { &*out };
+            assert_eq!(o.status, STATUS_OK, "{name}: {}", message(o));
+            assert_eq!((o.mode, o.major, o.minor), (mode, 1, 0), "{name}");
+            let (p, i, n) = arrays(o);
+            assert_eq!(p, expected.positions.as_flattened(), "{name}");
+            assert_eq!(i, expected.triangles.as_flattened(), "{name}");
+            match n {
+                Some(n) => assert_eq!(n, swm::vertex_normals(&expected).as_flattened()),
+                None => assert!(!normals, "{name}: normals asked for, none given"),
+            }
+            // SAFETY: `out` came from `swm_decode`.
+            unsafe { swm_output_free(out) };
+        }
+    }
+}
+
+#[test]
+fn errors_carry_the_status_and_the_library_message() {
+    let bytes = golden("swing-v1.0.swm");
+    let mut damaged = bytes.clone();
+    let last = damaged.len() - 1;
+    damaged[last] ^= 0x40;
+    let expected = swm::decode(&damaged, &DecodeOptions::default()).unwrap_err();
+    let cases: [(&[u8], [f64; 3], u32, String); 4] = [
+        (&damaged, DEFAULT, STATUS_FORMAT, expected.to_string()),
+        (
+            b"",
+            DEFAULT,
+            STATUS_FORMAT,
+            swm::decode(b"", &DecodeOptions::default())
+                .unwrap_err()
+                .to_string(),
+        ),
+        (
+            &bytes,
+            [2.0, DEFAULT[1], DEFAULT[2]],
+            STATUS_LIMIT,
+            String::new(),
+        ),
+        (
+            &bytes,
+            [f64::NAN, DEFAULT[1], DEFAULT[2]],
+            STATUS_ARGUMENT,
+            String::new(),
+        ),
+    ];
+    for (input, limits, status, text) in cases {
+        let out = call(input, false, 0, false, limits);
+        // SAFETY: `swm_decode` returns a valid Output.
+        let o = unsafe { &*out };
+        assert_eq!(o.status, status, "{}", message(o));
+        assert!(!message(o).is_empty());
+        if !text.is_empty() {
+            assert_eq!(message(o), text);
+        }
+        assert!(o.positions.is_null() && o.indices.is_null() && o.normals.is_null());
+        // SAFETY: `out` came from `swm_decode`.
+        unsafe { swm_output_free(out) };
+    }
+}
+
+#[test]
+fn null_and_empty_blocks_are_accepted() {
+    let p = swm_alloc(0);
+    assert!(!p.is_null());
+    // SAFETY: as returned by `swm_alloc(0)`; NULL is documented as ignored.
+    unsafe {
+        swm_free(p, 0);
+        swm_free(ptr::null_mut(), 5);
+        swm_output_free(ptr::null_mut());
+    }
+}
