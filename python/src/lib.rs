@@ -68,6 +68,7 @@ impl Limits {
             max_vertices: l.max_vertices,
             max_faces: l.max_faces,
             max_alloc_bytes: l.max_alloc_bytes,
+            ..swm::Limits::default()
         })
     }
 }

@@ -188,6 +188,7 @@ fn limits(vertices: f64, faces: f64, alloc_bytes: f64) -> Option<Limits> {
         max_vertices: count(vertices)?,
         max_faces: count(faces)?,
         max_alloc_bytes: count(alloc_bytes)?,
+        ..Limits::default()
     })
 }
 
