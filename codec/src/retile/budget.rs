@@ -19,10 +19,12 @@ use crate::{EncodeLimits, LimitError, Limited};
 use std::cell::Cell;
 use std::time::Instant;
 
-/// Steps per element (surface corner or output corner) allowed to one
-/// retiling run. Measured on the shared corpus at 0.5-8 b/v: at most
-/// about 300 (BENCHMARKS.md, "Encoder work bounds").
-pub const RUN_STEPS_PER_ELEMENT: u64 = 20_000;
+/// Steps per element (surface corner, or corner of the most triangles
+/// the run may make) allowed to one retiling run. Measured: about 10 on
+/// horse, bunny and fandisk at 0.5-8 b/v, about 50 on a fanned
+/// 10,000-gon (BENCHMARKS.md, "Encoder work bounds"); the bound leaves
+/// two orders of magnitude.
+pub const RUN_STEPS_PER_ELEMENT: u64 = 2_000;
 
 /// The running account of one encode.
 #[derive(Debug)]
