@@ -39,6 +39,16 @@
 //!   `metrics::Surface` samples, so it is part of the output: the build
 //!   below must keep producing the same tree for the same input.
 //!
+//! Units: the tree stores its triangles scaled by a power of two that
+//! brings the largest coordinate into `[1/2, 1)`, and scales each query
+//! point the same way (issue 18). Without it, a mesh in units of 1e30 or
+//! 1e-30 overflows or underflows the `f32` squared box distances (to
+//! infinity or zero), nothing is pruned and every query visits every
+//! node. A power of two scales exactly: the tree, the leaf order and every
+//! distance are those of the unscaled input, bit for bit (short of
+//! coordinates below 2⁻¹⁴⁹ of the largest one, which `f32` cannot hold
+//! after scaling and which are far below its precision anyway).
+//!
 //! Construction is iterative with an explicit stack (no recursion depth
 //! to exhaust on adversarial input): a range whose centroids all coincide
 //! is split at its middle, so every split makes progress.
@@ -243,9 +253,13 @@ pub struct Bvh {
     nodes: Vec<Wide>,
     /// Triangle count when the root is a leaf (no nodes).
     root_count: u32,
-    /// Largest absolute coordinate of any triangle.
+    /// Largest absolute coordinate of any stored (scaled) triangle.
     extent: f64,
-    /// Triangles in leaf order.
+    /// The power of two the stored triangles and the queries are
+    /// multiplied by (see the module docs), and its inverse.
+    scale: f64,
+    unscale: f64,
+    /// Triangles in leaf order, multiplied by `scale`.
     tris: Vec<Tri>,
     /// Original index of each entry of `tris`.
     ids: Vec<u32>,
@@ -257,12 +271,55 @@ pub struct Bvh {
 pub struct Scratch {
     stack: Vec<(u32, f32)>,
     path: Path,
+    /// Nodes read by the queries made with this scratch: the work done,
+    /// which tests compare across units.
+    visits: u64,
+}
+
+#[cfg(test)]
+impl Scratch {
+    /// Nodes read so far by queries made with this scratch.
+    pub fn visits(&self) -> u64 {
+        self.visits
+    }
+}
+
+/// `2^k` for `k` in the normal range of `f64`.
+fn power_of_two(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// The power of two that brings `extent` (finite, ≥ 0) into `[1/2, 1)`;
+/// 1 for zero.
+fn normalizing_scale(extent: f64) -> f64 {
+    if extent.is_normal() {
+        // extent is in [2^e, 2^(e + 1)): the biased exponent field.
+        let e = ((extent.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+        power_of_two(-(e + 1))
+    } else {
+        1.0
+    }
 }
 
 impl Bvh {
     /// Builds the tree. Every coordinate must be finite (the caller
     /// checks); an empty list gives a tree that finds nothing.
     pub fn new(tris: &[Tri]) -> Bvh {
+        let extent = largest_coordinate(tris);
+        let scale = normalizing_scale(extent);
+        // Exact (a power of two), short of the underflow the module docs
+        // allow for.
+        let scaled: Vec<Tri>;
+        let tris = if scale == 1.0 {
+            tris
+        } else {
+            scaled = tris
+                .iter()
+                .map(|t| t.map(|v| v.map(|c| (c as f64 * scale) as f32)))
+                .collect();
+            &scaled
+        };
         let n = tris.len();
         let mut items: Vec<Item> = tris
             .iter()
@@ -328,17 +385,14 @@ impl Bvh {
                 centroids: left.centroids,
             });
         }
-        let extent = tris
-            .iter()
-            .flatten()
-            .flatten()
-            .fold(0.0f64, |m, &c| m.max((c as f64).abs()));
         static TREES: AtomicU64 = AtomicU64::new(1);
         Bvh {
             id: TREES.fetch_add(1, Ordering::Relaxed),
             nodes: widen(&nodes),
             root_count: nodes.first().map_or(0, |r| r.count),
-            extent,
+            extent: largest_coordinate(tris),
+            scale,
+            unscale: 1.0 / scale,
             tris: items.iter().map(|it| tris[it.id as usize]).collect(),
             ids: items.iter().map(|it| it.id).collect(),
         }
@@ -350,10 +404,6 @@ impl Bvh {
         &self.ids
     }
 
-    /// The triangles in leaf order.
-    pub fn triangles(&self) -> &[Tri] {
-        &self.tris
-    }
 
     /// The triangle nearest to `p`, if any. `hint`, the [`Nearest::slot`]
     /// of an earlier answer likely to be near (such as the previous
@@ -364,6 +414,22 @@ impl Bvh {
     /// the earlier queries: the distance, not the triangle, is the
     /// meaningful output.
     pub fn nearest(
+        &self,
+        p: [f64; 3],
+        hint: Option<u32>,
+        scratch: &mut Scratch,
+    ) -> Option<Nearest> {
+        // Into the tree's units and back: exact (powers of two; `f64`
+        // holds any `f32` coordinate times any such scale).
+        let p = p.map(|c| c * self.scale);
+        self.nearest_scaled(p, hint, scratch).map(|n| Nearest {
+            distance2: n.distance2 * (self.unscale * self.unscale),
+            ..n
+        })
+    }
+
+    /// [`Self::nearest`] for a query already in the tree's units.
+    fn nearest_scaled(
         &self,
         p: [f64; 3],
         hint: Option<u32>,
@@ -403,7 +469,11 @@ impl Bvh {
             });
         }
         let q = p.map(|c| c as f32);
-        let Scratch { stack, path } = scratch;
+        let Scratch {
+            stack,
+            path,
+            visits,
+        } = scratch;
         let mut level = path.entry(self, p, bound.best, slack);
         let mut primary = true;
         stack.clear();
@@ -419,6 +489,7 @@ impl Bvh {
                     None => break,
                 },
             };
+            *visits += 1;
             let node = &self.nodes[i as usize];
             let d = node.distance2(q);
             let mut admitted = 0u32;
@@ -575,6 +646,14 @@ impl Path {
         self.clear.truncate(level);
         self.nodes.truncate(level + 1);
     }
+}
+
+/// The largest absolute coordinate of any triangle (0 for none).
+fn largest_coordinate(tris: &[Tri]) -> f64 {
+    tris.iter()
+        .flatten()
+        .flatten()
+        .fold(0.0f64, |m, &c| m.max((c as f64).abs()))
 }
 
 /// The search layout of a built binary tree: each node takes up to `W`
