@@ -255,6 +255,20 @@ pub enum Malformed {
         /// The missing tag.
         tag: [u8; 4],
     },
+    /// A count the header declares differs from what the data holds.
+    CountMismatch {
+        /// What was counted, plural ("vertices", "triangles").
+        element: &'static str,
+        /// The count the header declares.
+        declared: u64,
+        /// The count the data holds.
+        found: u64,
+    },
+    /// The text is UTF-16 (a byte-order mark or NUL bytes between
+    /// characters); the readers take ASCII or UTF-8.
+    Utf16,
+    /// The bytes are binary data, not text of this format.
+    Binary,
 }
 
 impl fmt::Display for Malformed {
@@ -295,6 +309,12 @@ impl fmt::Display for Malformed {
             Malformed::MissingSection { tag } => {
                 write!(f, "the required section \"{}\" is missing", tag.escape_ascii())
             }
+            Malformed::CountMismatch { element, declared, found } => write!(
+                f,
+                "the header declares {declared} {element} but the data holds {found}"
+            ),
+            Malformed::Utf16 => write!(f, "UTF-16 text is not supported; save the file as UTF-8"),
+            Malformed::Binary => write!(f, "binary data, not a text file of this format"),
         }
     }
 }
