@@ -170,12 +170,7 @@ fn encode_swing(
         if value.is_finite() && value > 0.0 {
             Ok(value)
         } else {
-            Err(Error::from(ParameterError::OutOfRange {
-                name,
-                value,
-                min: 0.0,
-                max: f64::MAX,
-            }))
+            Err(Error::from(ParameterError::NotPositive { name, value }))
         }
     };
     let cleaned = crate::clean(mesh, &options.clean)?;

@@ -203,7 +203,8 @@ pub enum Malformed {
     },
     /// A face refers to a vertex that does not exist.
     IndexOutOfRange {
-        /// The index as written in the file (0-based after conversion).
+        /// The index as written in the file: 1-based or negative
+        /// (relative) in OBJ, 0-based in the other formats.
         index: i64,
         /// Number of vertices available.
         vertices: u64,
@@ -349,7 +350,16 @@ pub enum ParameterError {
         /// Most bytes a file of the format can take.
         max: u64,
     },
-    /// A numeric option is outside its range.
+    /// An option that must be a positive finite number is not (zero,
+    /// negative, infinite or NaN).
+    NotPositive {
+        /// The option's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A numeric option is outside its range (`f64::MAX` or infinity
+    /// for a side without bound).
     OutOfRange {
         /// The option's name.
         name: &'static str,
@@ -393,7 +403,18 @@ impl fmt::Display for ParameterError {
                 min,
                 max,
             } => {
-                write!(f, "{name} = {value} is out of range [{min}, {max}]")
+                // Plain words for an unbounded side, never a 309-digit
+                // f64::MAX.
+                let (low, high) = (*min > f64::MIN, *max < f64::MAX);
+                match (low, high) {
+                    (true, true) => write!(f, "{name} = {value}: must be between {min} and {max}"),
+                    (true, false) => write!(f, "{name} = {value}: must be a finite number of at least {min}"),
+                    (false, true) => write!(f, "{name} = {value}: must be a number of at most {max}"),
+                    (false, false) => write!(f, "{name} = {value}: must be a finite number"),
+                }
+            }
+            ParameterError::NotPositive { name, value } => {
+                write!(f, "{name} = {value}: must be a positive finite number")
             }
         }
     }

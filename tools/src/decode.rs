@@ -37,8 +37,8 @@ pub struct Args {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
-    // Refuse an unknown output format before doing any work.
-    swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::new(&args.output, e))?;
+    // Refuse an unknown output format before doing any work (bad usage).
+    swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::usage(&args.output, e))?;
     // Mapped when large: the decoder reads the file once, front to back.
     let bytes = swm::io::read_file(&args.input).map_err(|e| CliError::new(&args.input, e))?;
     let default = swm::Limits::default();

@@ -263,7 +263,7 @@ pub fn distance_between(
             name: "samples",
             value: 0.0,
             min: 1.0,
-            max: f64::MAX,
+            max: f64::INFINITY,
         }
         .into());
     }
