@@ -133,7 +133,10 @@ fn info_refuses_the_counts_decode_refuses() {
     const TRIANGLES: usize = 13;
     let mut cases: Vec<(String, Vec<u8>, u32)> = Vec::new();
     for s in samples() {
-        let (v, t) = (&s.bytes[VERTICES..VERTICES + 4], &s.bytes[TRIANGLES..TRIANGLES + 4]);
+        let (v, t) = (
+            &s.bytes[VERTICES..VERTICES + 4],
+            &s.bytes[TRIANGLES..TRIANGLES + 4],
+        );
         let v = u32::from_le_bytes(v.try_into().unwrap());
         let t = u32::from_le_bytes(t.try_into().unwrap());
         for (what, vertices, triangles, quoted) in [
@@ -175,7 +178,10 @@ fn info_refuses_the_counts_decode_refuses() {
             assert_eq!(out.status.code(), Some(1), "{name}: {args:?}\n{err}");
             assert!(out.stdout.is_empty(), "{name}: printed as valid");
             assert_eq!(err.lines().count(), 1, "{name}: {err}");
-            assert!(err.contains(&format!("declares {quoted} ")), "{name}: {err}");
+            assert!(
+                err.contains(&format!("declares {quoted} ")),
+                "{name}: {err}"
+            );
         }
         let out = swm(&["decode", p, "-o", dir.join("out.obj").to_str().unwrap()]);
         assert_eq!(out.status.code(), Some(1), "{name}: decode");

@@ -182,7 +182,10 @@ fn distances_do_not_depend_on_the_units() {
             json(&swm_or_hang(&args, 60))
         };
         let own = run(&a, &a);
-        assert!(own["hausdorff_relative"].as_f64().unwrap() < 1e-9, "{tag}: {own}");
+        assert!(
+            own["hausdorff_relative"].as_f64().unwrap() < 1e-9,
+            "{tag}: {own}"
+        );
         let v = run(&a, &b);
         let Some(base) = &base else {
             assert!(v["l2_relative"].as_f64().unwrap() > 1e-6, "{v}");
@@ -191,7 +194,10 @@ fn distances_do_not_depend_on_the_units() {
         };
         for key in ["l2_relative", "hausdorff_relative"] {
             let (x, y) = (v[key].as_f64().unwrap(), base[key].as_f64().unwrap());
-            assert!((x - y).abs() <= tolerance * y, "{tag} {key}: {x} against {y}");
+            assert!(
+                (x - y).abs() <= tolerance * y,
+                "{tag} {key}: {x} against {y}"
+            );
         }
         let d = v["diagonal"].as_f64().unwrap() / base["diagonal"].as_f64().unwrap();
         assert!((d / k - 1.0).abs() < 1e-6, "{tag}: {v}");

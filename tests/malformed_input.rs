@@ -213,7 +213,11 @@ fn undecodable_text_says_why() {
     };
     let swm_bytes = samples()[0].bytes.clone();
     for (name, bytes, reason) in [
-        ("le.obj", utf16(obj, &[0xFF, 0xFE], true), "UTF-16 text is not supported; save the file as UTF-8"),
+        (
+            "le.obj",
+            utf16(obj, &[0xFF, 0xFE], true),
+            "UTF-16 text is not supported; save the file as UTF-8",
+        ),
         ("be.obj", utf16(obj, &[0xFE, 0xFF], false), "UTF-16"),
         ("nobom.obj", utf16(obj, &[], true), "UTF-16"),
         ("le.off", utf16(off, &[0xFF, 0xFE], true), "UTF-16"),
@@ -222,7 +226,8 @@ fn undecodable_text_says_why() {
     ] {
         let path = write(&dir, name, &bytes);
         assert_clean_error(&path, name);
-        let err = String::from_utf8_lossy(&swm(&["info", path.to_str().unwrap()]).stderr).into_owned();
+        let err =
+            String::from_utf8_lossy(&swm(&["info", path.to_str().unwrap()]).stderr).into_owned();
         assert!(err.contains(reason), "{name}: {err}");
         assert!(!err.contains("empty"), "{name}: {err}");
     }
@@ -234,15 +239,25 @@ fn obj_index_errors_quote_the_file() {
     let dir = scratch("obj-index");
     let v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     for (face, expected) in [
-        ("f 0 1 2", "vertex index 0 is invalid: OBJ indices start at 1"),
-        ("f -1 -2 -4", "vertex index -4 is out of range (the mesh has 3 vertices)"),
+        (
+            "f 0 1 2",
+            "vertex index 0 is invalid: OBJ indices start at 1",
+        ),
+        (
+            "f -1 -2 -4",
+            "vertex index -4 is out of range (the mesh has 3 vertices)",
+        ),
         ("f 1 2 4", "vertex index 4 is out of range"),
         ("f 1/1 2/2 7/7", "vertex index 7 is out of range"),
     ] {
         let path = write(&dir, "f.obj", format!("{v}{face}\n").as_bytes());
         assert_clean_error(&path, face);
-        let err = String::from_utf8_lossy(&swm(&["info", path.to_str().unwrap()]).stderr).into_owned();
-        assert!(err.contains("at line 4") && err.contains(expected), "{face}: {err}");
+        let err =
+            String::from_utf8_lossy(&swm(&["info", path.to_str().unwrap()]).stderr).into_owned();
+        assert!(
+            err.contains("at line 4") && err.contains(expected),
+            "{face}: {err}"
+        );
     }
 }
 
@@ -265,7 +280,10 @@ fn usage_errors_exit_2() {
         let out = swm(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         let err = String::from_utf8_lossy(&out.stderr);
-        assert!(err.contains("unknown mesh format (expected .obj"), "{args:?}: {err}");
+        assert!(
+            err.contains("unknown mesh format (expected .obj"),
+            "{args:?}: {err}"
+        );
         assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
     }
 }

@@ -408,8 +408,13 @@ impl fmt::Display for ParameterError {
                 let (low, high) = (*min > f64::MIN, *max < f64::MAX);
                 match (low, high) {
                     (true, true) => write!(f, "{name} = {value}: must be between {min} and {max}"),
-                    (true, false) => write!(f, "{name} = {value}: must be a finite number of at least {min}"),
-                    (false, true) => write!(f, "{name} = {value}: must be a number of at most {max}"),
+                    (true, false) => write!(
+                        f,
+                        "{name} = {value}: must be a finite number of at least {min}"
+                    ),
+                    (false, true) => {
+                        write!(f, "{name} = {value}: must be a number of at most {max}")
+                    }
                     (false, false) => write!(f, "{name} = {value}: must be a finite number"),
                 }
             }

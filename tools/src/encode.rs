@@ -87,7 +87,10 @@ impl Args {
             return Ok(());
         }
         let verb = if wrong.len() == 1 { "does" } else { "do" };
-        Err(format!("{} {verb} not apply to --mode {mode}", wrong.join(", ")))
+        Err(format!(
+            "{} {verb} not apply to --mode {mode}",
+            wrong.join(", ")
+        ))
     }
 }
 

@@ -117,7 +117,9 @@ fn main() -> ExitCode {
             let mut cmd = Cli::command();
             // Built, so that the usage line says `swm encode`.
             cmd.build();
-            let encode = cmd.find_subcommand_mut("encode").expect("encode subcommand");
+            let encode = cmd
+                .find_subcommand_mut("encode")
+                .expect("encode subcommand");
             encode
                 .error(clap::error::ErrorKind::ArgumentConflict, msg)
                 .exit();

@@ -404,7 +404,6 @@ impl Bvh {
         &self.ids
     }
 
-
     /// The triangle nearest to `p`, if any. `hint`, the [`Nearest::slot`]
     /// of an earlier answer likely to be near (such as the previous
     /// query's), only speeds the search up: its triangle's distance is the

@@ -385,9 +385,9 @@ pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOpt
                     }
                 }
                 Work::Faces(a, b) => {
-                    for f in a..b {
+                    for (f, &n) in face_counts.iter().enumerate().take(b).skip(a) {
                         let mut rng = SplitMix::new(options.seed, from.face_ids[f] as u64);
-                        face_points(&from.triangle(f), face_counts[f], &mut rng, &mut measure);
+                        face_points(&from.triangle(f), n, &mut rng, &mut measure);
                     }
                 }
             }

@@ -112,7 +112,11 @@ fn read_connectivity(
     }
     if conn.triangles() != u64::from(h.triangle_count) {
         let declared = h.triangle_count.into();
-        return Err(crate::lossless::mismatch("triangles", declared, conn.triangles()));
+        return Err(crate::lossless::mismatch(
+            "triangles",
+            declared,
+            conn.triangles(),
+        ));
     }
     let table = edgebreaker::decode(&conn)?;
     Ok((head, conn, table))
@@ -212,7 +216,11 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let triangles = table.triangles();
     if triangles.len() != file.header.triangle_count as usize {
         let declared = file.header.triangle_count.into();
-        return Err(crate::lossless::mismatch("triangles", declared, triangles.len() as u64));
+        return Err(crate::lossless::mismatch(
+            "triangles",
+            declared,
+            triangles.len() as u64,
+        ));
     }
     let mut mesh = TriMesh {
         positions,
