@@ -49,6 +49,14 @@
 //! coordinates below 2⁻¹⁴⁹ of the largest one, which `f32` cannot hold
 //! after scaling and which are far below its precision anyway).
 //!
+//! Far queries: a query farther from the tree's box than 2³⁰ times the
+//! box's diagonal `d` takes the hint's triangle (or the first) without a
+//! search. Every triangle then lies between `D` and `D + d` from it, so
+//! the answer is within a relative 2⁻³⁰ of the minimum — and no box test,
+//! in `f32` or `f64`, could tell the triangles apart: with every bound
+//! within the rounding slack, the search would read every node for every
+//! query (two meshes in units 1e30 apart measured against each other).
+//!
 //! Construction is iterative with an explicit stack (no recursion depth
 //! to exhaust on adversarial input): a range whose centroids all coincide
 //! is split at its middle, so every split makes progress.
@@ -253,6 +261,8 @@ pub struct Bvh {
     nodes: Vec<Wide>,
     /// Triangle count when the root is a leaf (no nodes).
     root_count: u32,
+    /// The box of all (scaled) triangles.
+    bounds: Aabb,
     /// Largest absolute coordinate of any stored (scaled) triangle.
     extent: f64,
     /// The power of two the stored triangles and the queries are
@@ -390,6 +400,7 @@ impl Bvh {
             id: TREES.fetch_add(1, Ordering::Relaxed),
             nodes: widen(&nodes),
             root_count: nodes.first().map_or(0, |r| r.count),
+            bounds: nodes.first().map_or(Aabb::EMPTY, |r| r.bounds),
             extent: largest_coordinate(tris),
             scale,
             unscale: 1.0 / scale,
@@ -427,6 +438,31 @@ impl Bvh {
         })
     }
 
+    /// The answer to a far query (see the module docs): the hint's
+    /// triangle, or the first; `None` for a query near enough to search.
+    fn far(&self, p: [f64; 3], hint: Option<u32>) -> Option<Nearest> {
+        let (lo, hi) = (self.bounds.min, self.bounds.max);
+        let (mut gap2, mut diagonal2) = (0.0f64, 0.0f64);
+        for k in 0..3 {
+            let (lo, hi) = (lo[k] as f64, hi[k] as f64);
+            let g = (lo - p[k]).max(p[k] - hi).max(0.0);
+            gap2 += g * g;
+            diagonal2 += (hi - lo) * (hi - lo);
+        }
+        // Also false for an empty tree (an infinite, NaN diagonal).
+        if !(gap2 > diagonal2 * (1u64 << 60) as f64) {
+            return None;
+        }
+        let slot = hint
+            .filter(|&h| (h as usize) < self.tris.len())
+            .unwrap_or(0);
+        Some(Nearest {
+            distance2: triangle_distance2(p, &self.tris[slot as usize]),
+            triangle: self.ids[slot as usize],
+            slot,
+        })
+    }
+
     /// [`Self::nearest`] for a query already in the tree's units.
     fn nearest_scaled(
         &self,
@@ -434,6 +470,9 @@ impl Bvh {
         hint: Option<u32>,
         scratch: &mut Scratch,
     ) -> Option<Nearest> {
+        if let Some(far) = self.far(p, hint) {
+            return Some(far);
+        }
         // Covers the rounding of `p` to `f32` and of the triangle distances
         // (see `Bound`).
         let slack = self.extent.max(p[0].abs()).max(p[1].abs()).max(p[2].abs())
@@ -962,6 +1001,37 @@ mod tests {
             assert_eq!(hit.distance2, brute(tris, p), "step {step}");
             hints[which] = Some(hit.slot);
         }
+    }
+
+    /// A query 2³⁰ diagonals or more away is answered without a search,
+    /// within a relative 2⁻³⁰ of the brute-force distance; nearer ones
+    /// are still searched and exact.
+    #[test]
+    fn far_queries_are_answered_without_a_search() {
+        let tris = terrain(40, 0.5);
+        let bvh = Bvh::new(&tris);
+        let mut scratch = Scratch::default();
+        for (p, far) in [
+            ([1e30, -3e29, 2e30], true),
+            ([0.5, 0.5, -1e12], true),
+            ([0.5, 0.5, 1e8], false),
+            ([3.0, 0.2, 0.1], false),
+        ] {
+            let before = scratch.visits();
+            let hit = bvh.nearest(p, None, &mut scratch).unwrap();
+            let exact = brute(&tris, p);
+            if far {
+                assert_eq!(scratch.visits(), before, "{p:?}");
+                let rel = (hit.distance2.sqrt() - exact.sqrt()) / exact.sqrt();
+                assert!((0.0..1e-9).contains(&rel), "{p:?}: {rel}");
+            } else {
+                assert!(scratch.visits() > before, "{p:?}");
+                assert_eq!(hit.distance2, exact, "{p:?}");
+            }
+        }
+        assert!(Bvh::new(&[])
+            .nearest([1e30; 3], None, &mut scratch)
+            .is_none());
     }
 
     #[test]

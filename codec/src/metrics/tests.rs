@@ -297,6 +297,20 @@ fn distances_do_not_depend_on_the_units() {
             "scale {s}: {w} node visits against {base_work}"
         );
     }
+    // Two meshes in units 1e30 apart: every sample of the huge one is far
+    // from the small one, and measured without reading every node each
+    // time. (Beside it: from the centre of a sphere every triangle is
+    // equally near, and any search reads them all, whatever the units.)
+    let mut huge = scaled(&b, 1e30);
+    for p in &mut huge.positions {
+        p[0] += 3e30;
+    }
+    let d = distance(&a, &huge, &options).unwrap();
+    assert!(d.l2().is_finite() && d.l2() > 1e29, "{d:?}");
+    let (sa, sh) = (Surface::new(&a).unwrap(), Surface::new(&huge).unwrap());
+    assert_eq!(visits(&sh, &sa), 0);
+    let near = visits(&sa, &sh);
+    assert!(near < 20 * 4 * sa.face_count() as u64, "{near}");
 }
 
 /// A power-of-two change of units changes nothing at all: the tree, the
