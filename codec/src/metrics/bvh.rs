@@ -449,8 +449,8 @@ impl Bvh {
             gap2 += g * g;
             diagonal2 += (hi - lo) * (hi - lo);
         }
-        // Also false for an empty tree (an infinite, NaN diagonal).
-        if !(gap2 > diagonal2 * (1u64 << 60) as f64) {
+        let far = gap2 > diagonal2 * (1u64 << 60) as f64;
+        if !far || self.tris.is_empty() {
             return None;
         }
         let slot = hint
