@@ -79,7 +79,13 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         return Ok(());
     }
     let (ra, rb) = (args.reference.display(), args.other.display());
-    say!("reference {ra}, bbox diagonal {}", d.diagonal);
+    // Scientific notation where plain digits would run long.
+    let diagonal = if (1e-3..1e6).contains(&d.diagonal) {
+        format!("{}", d.diagonal)
+    } else {
+        format!("{:e}", d.diagonal)
+    };
+    say!("reference {ra}, bbox diagonal {diagonal}");
     say!(
         "  L2         {:<14.6e} ({})",
         d.l2(),
