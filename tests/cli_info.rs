@@ -112,3 +112,79 @@ fn generated_corpus_has_the_topology_it_was_built_with() {
         assert_eq!(v["degenerate_faces"], 0, "{name}");
     }
 }
+
+/// `b` with its trailing CRC-32 recomputed.
+fn fix_crc(b: &mut [u8]) {
+    let n = b.len() - 4;
+    let crc = swm::container::crc32(&b[..n]);
+    b[n..].copy_from_slice(&crc.to_le_bytes());
+}
+
+/// Issue 18: `swm info` is as strict as `decode` about the header's
+/// counts. Headers that lie about the vertex or triangle count (CRC
+/// repaired, so only the counts give them away), in every sample and in
+/// the lossless file nested in `REST`, are refused by both with exit 1,
+/// and info names the impossible count.
+#[test]
+fn info_refuses_the_counts_decode_refuses() {
+    let dir = scratch("info-lying-counts");
+    // Offsets of the vertex and triangle counts in the fixed header.
+    const VERTICES: usize = 9;
+    const TRIANGLES: usize = 13;
+    let mut cases: Vec<(String, Vec<u8>, u32)> = Vec::new();
+    for s in samples() {
+        let (v, t) = (
+            &s.bytes[VERTICES..VERTICES + 4],
+            &s.bytes[TRIANGLES..TRIANGLES + 4],
+        );
+        let v = u32::from_le_bytes(v.try_into().unwrap());
+        let t = u32::from_le_bytes(t.try_into().unwrap());
+        for (what, vertices, triangles, quoted) in [
+            ("both", 268_435_455, 268_435_455, 268_435_455),
+            ("triangles", v, t + 1, t + 1),
+            ("vertices", v + 1, t, v + 1),
+        ] {
+            let mut b = s.bytes.clone();
+            b[VERTICES..VERTICES + 4].copy_from_slice(&vertices.to_le_bytes());
+            b[TRIANGLES..TRIANGLES + 4].copy_from_slice(&triangles.to_le_bytes());
+            fix_crc(&mut b);
+            cases.push((format!("{} {what}", s.name), b, quoted));
+        }
+    }
+    // The file nested in REST: its own CRC and the outer one repaired.
+    let s = samples().iter().find(|s| s.name == "swing+REST").unwrap();
+    let file = swm::container::parse_container(&s.bytes, &Default::default()).unwrap();
+    let rest = file.find(swm::container::Tag::REST).unwrap();
+    let (start, len) = (rest.offset, rest.bytes.len());
+    let at = start + VERTICES;
+    let v = u32::from_le_bytes(s.bytes[at..at + 4].try_into().unwrap());
+    let mut b = s.bytes.clone();
+    b[at..at + 4].copy_from_slice(&(v - 1).to_le_bytes());
+    fix_crc(&mut b[start..start + len]);
+    fix_crc(&mut b);
+    cases.push(("REST vertices".into(), b, v - 1));
+
+    for (k, (name, bytes, quoted)) in cases.iter().enumerate() {
+        assert!(
+            swm::decode(bytes, &Default::default()).is_err(),
+            "{name}: decode accepts it"
+        );
+        let path = dir.join(format!("lying-{k}.swm"));
+        std::fs::write(&path, bytes).unwrap();
+        let p = path.to_str().unwrap();
+        for args in [vec!["info", p], vec!["info", p, "--json"]] {
+            let out = swm(&args);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{name}: {args:?}\n{err}");
+            assert!(out.stdout.is_empty(), "{name}: printed as valid");
+            assert_eq!(err.lines().count(), 1, "{name}: {err}");
+            assert!(
+                err.contains(&format!("declares {quoted} ")),
+                "{name}: {err}"
+            );
+        }
+        let out = swm(&["decode", p, "-o", dir.join("out.obj").to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(1), "{name}: decode");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

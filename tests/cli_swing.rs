@@ -313,16 +313,100 @@ fn bad_swing_options_are_usage_errors() {
             "{extra:?}: {err}"
         );
     }
-    // Numbers clap accepts but the library refuses: exit 1, one line.
-    for extra in [
-        &["--bpv=-1"][..],
-        &["--edge-length", "0"],
-        &["--bpv", "nan"],
+    // Issue 18: values outside the range are usage errors too (exit 2),
+    // the accepted range said plainly, never containing the refused value
+    // nor f64::MAX's 309 digits.
+    for (extra, option, accepted) in [
+        (
+            &["--bpv=-1"][..],
+            "--bpv",
+            "must be a positive finite number",
+        ),
+        (
+            &["--edge-length", "0"],
+            "--edge-length",
+            "must be a positive finite number",
+        ),
+        (
+            &["--bpv", "nan"],
+            "--bpv",
+            "must be a positive finite number",
+        ),
+        (
+            &["--bpv", "inf"],
+            "--bpv",
+            "must be a positive finite number",
+        ),
+        (&["--size", "0"], "--size", "at least 1"),
+        (&["--max-size", "0"], "--max-size", "at least 1"),
+        (&["--size", "-5"], "--size", "at least 1"),
+        (
+            &["--edge-length", "-1"],
+            "--edge-length",
+            "must be a positive finite number",
+        ),
     ] {
         let mut args = vec!["encode", s(&input), "-o", s(&output)];
         args.extend_from_slice(extra);
-        one_line_error(&swm(&args), &input);
+        let out = swm(&args);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {out:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        let first = err.lines().next().unwrap();
+        assert!(
+            first.contains(option) && first.contains(accepted),
+            "{extra:?}: {err}"
+        );
+        assert!(!err.contains("17976931348623157"), "{extra:?}: {err}");
     }
+    // Options of the other mode are refused, not silently ignored.
+    for (extra, named) in [
+        (&["--qp", "10"][..], &["--qp"][..]),
+        (&["--mode", "swing", "--qp", "12"], &["--qp"]),
+        (&["--mode", "lossless", "--size", "900"], &["--size"]),
+        (&["--mode", "lossless", "--bpv", "2"], &["--bpv"]),
+        (
+            &["--mode", "lossless", "--edge-length", "0.1"],
+            &["--edge-length"],
+        ),
+        (
+            &[
+                "--mode",
+                "lossless",
+                "--angle-bits",
+                "8",
+                "--max-size",
+                "99",
+            ],
+            &["--angle-bits", "--max-size"],
+        ),
+    ] {
+        let mut args = vec!["encode", s(&input), "-o", s(&output)];
+        args.extend_from_slice(extra);
+        let out = swm(&args);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {out:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        let first = err.lines().next().unwrap();
+        assert!(
+            first.contains("does not apply") || first.contains("do not apply"),
+            "{err}"
+        );
+        for n in named {
+            assert!(first.contains(n), "{extra:?}: {err}");
+        }
+        assert!(err.contains("Usage: swm encode"), "{err}");
+    }
+    // Each mode's own options still work.
+    let lossless = dir.join("lossless.swm");
+    ok(&swm(&[
+        "encode",
+        s(&input),
+        "-o",
+        s(&lossless),
+        "--mode",
+        "lossless",
+        "--qp",
+        "10",
+    ]));
     assert_no_output(&output);
 }
 
@@ -353,4 +437,67 @@ fn a_mesh_too_small_to_retile_is_kept_in_rest() {
     assert!(out.status.success());
     let decoded = swm::io::read_mesh(&obj).unwrap();
     assert_eq!((decoded.vertex_count(), decoded.face_count()), (4, 4));
+}
+
+/// Issue 18: a mesh of many components does not print a line per
+/// component: the first few, then the rest counted by fate; `--verbose`
+/// lists them all, and JSON always has them all.
+#[test]
+fn long_component_reports_are_summarized() {
+    let dir = scratch("swing-many-pieces");
+    let mut mesh = swm_corpus::icosphere(1.0, 3);
+    // Tetrahedra far below the edge length, each its own component.
+    const TINY: usize = 500;
+    for k in 0..TINY {
+        let base = mesh.positions.len() as u32;
+        let (x, y) = (3.0 + (k % 25) as f32 * 0.1, (k / 25) as f32 * 0.1);
+        for d in [
+            [0.0, 0.0, 0.0],
+            [0.01, 0.0, 0.0],
+            [0.0, 0.01, 0.0],
+            [0.0, 0.0, 0.01],
+        ] {
+            mesh.positions.push([x + d[0], y + d[1], d[2]]);
+        }
+        for t in [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]] {
+            mesh.triangles.push(t.map(|v| v + base));
+        }
+    }
+    let input = dir.join("many.obj");
+    swm::io::write_mesh(&input, &mesh).unwrap();
+    let output = dir.join("many.swm");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "encode",
+            s(&input),
+            "-o",
+            s(&output),
+            "--edge-length",
+            "0.2",
+        ];
+        args.extend_from_slice(extra);
+        ok(&swm(&args))
+    };
+    let listed = |text: &str| text.lines().filter(|l| l.starts_with("component ")).count();
+    let short = run(&[]);
+    assert!(listed(&short) <= 10, "{short}");
+    let summary = short
+        .lines()
+        .find(|l| l.starts_with("... "))
+        .expect("a summary line");
+    let all = TINY + 1;
+    assert!(summary.contains(&format!("{all} in all")), "{summary}");
+    assert!(summary.contains("1 retiled"), "{summary}");
+    assert!(
+        summary.contains(&format!("{TINY} kept by lossless coding")),
+        "{summary}"
+    );
+    assert!(summary.contains("--verbose"), "{summary}");
+    assert!(short.lines().count() < 20, "{short}");
+    let long = run(&["--verbose"]);
+    assert_eq!(listed(&long), all, "{long}");
+    assert!(!long.contains("\n... "), "{long}");
+    let v = encode_json(&input, &output, &["--edge-length", "0.2"]);
+    assert_eq!(v["components"].as_array().unwrap().len(), all, "{v}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -116,3 +116,91 @@ fn bad_inputs_give_one_line_errors() {
     let out = swm(&["distance", s(&torus), s(&torus), "--samples", "0"]);
     assert_eq!(out.status.code(), Some(2), "--samples 0 is a usage error");
 }
+
+/// Runs `swm` and kills it if it is still running after `secs` seconds: a
+/// guard against hangs only (never a speed claim), failing the test.
+fn swm_or_hang(args: &[&str], secs: u64) -> std::process::Output {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_swm"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run swm");
+    let start = std::time::Instant::now();
+    while child.try_wait().expect("wait for swm").is_none() {
+        if start.elapsed().as_secs() >= secs {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("swm {args:?} still running after {secs} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.wait_with_output().expect("swm output")
+}
+
+/// Issue 18: a mesh in units of 1e30 or 1e-30 is measured as quickly and
+/// with the same relative figures as in its own units (the tree's `f32`
+/// box tests used to overflow or underflow there, so nothing was pruned
+/// and `swm distance` ran for minutes). The bunny when the shared corpus
+/// is there, a generated torus otherwise.
+#[test]
+fn distances_do_not_depend_on_the_units() {
+    let dir = scratch("distance-units");
+    let mesh = match shared_corpus() {
+        Some(c) => swm::io::read_mesh(&c.join("stanford-bunny.obj")).unwrap(),
+        None => swm_corpus::torus(1.0, 0.35, 200, 100),
+    };
+    // A second surface: every third vertex pushed along z by a little.
+    let mut bumped = mesh.clone();
+    for (i, p) in bumped.positions.iter_mut().enumerate() {
+        if i % 3 == 0 {
+            p[2] += 1e-3 * (1.0 + p[0].abs());
+        }
+    }
+    let scaled = |m: &swm::TriMesh, s: f64| {
+        let mut m = m.clone();
+        for p in &mut m.positions {
+            *p = p.map(|c| (c as f64 * s) as f32);
+        }
+        m
+    };
+    let mut base: Option<serde_json::Value> = None;
+    // Powers of two scale every figure exactly; other factors round the
+    // coordinates, which moves the samples a little (the tree's leaf
+    // order, along which sample counts are carried, may change).
+    let two = 2f64.powi(100);
+    for (tag, k, tolerance) in [
+        ("1", 1.0, 0.0),
+        ("2^100", two, 0.0),
+        ("1e30", 1e30, 1e-3),
+        ("1e-30", 1e-30, 1e-3),
+    ] {
+        let a = write(&dir, &format!("a-{tag}.obj"), &scaled(&mesh, k));
+        let b = write(&dir, &format!("b-{tag}.obj"), &scaled(&bumped, k));
+        let run = |x: &PathBuf, y: &PathBuf| {
+            let args = ["distance", s(x), s(y), "--samples", "1000", "--json"];
+            json(&swm_or_hang(&args, 60))
+        };
+        let own = run(&a, &a);
+        assert!(
+            own["hausdorff_relative"].as_f64().unwrap() < 1e-9,
+            "{tag}: {own}"
+        );
+        let v = run(&a, &b);
+        let Some(base) = &base else {
+            assert!(v["l2_relative"].as_f64().unwrap() > 1e-6, "{v}");
+            base = Some(v);
+            continue;
+        };
+        for key in ["l2_relative", "hausdorff_relative"] {
+            let (x, y) = (v[key].as_f64().unwrap(), base[key].as_f64().unwrap());
+            assert!(
+                (x - y).abs() <= tolerance * y,
+                "{tag} {key}: {x} against {y}"
+            );
+        }
+        let d = v["diagonal"].as_f64().unwrap() / base["diagonal"].as_f64().unwrap();
+        assert!((d / k - 1.0).abs() < 1e-6, "{tag}: {v}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -196,10 +196,94 @@ fn missing_files_and_unknown_formats() {
     assert_clean_error(&sub, "a directory");
 }
 
+/// Issue 18: bytes that are not text get the right reason, not "empty":
+/// UTF-16 (with or without a byte-order mark) and binary data (a `.swm`
+/// file named `.obj`).
+#[test]
+fn undecodable_text_says_why() {
+    let dir = scratch("not-text");
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let utf16 = |text: &str, bom: &[u8], le: bool| -> Vec<u8> {
+        let mut b = bom.to_vec();
+        for c in text.bytes() {
+            b.extend(if le { [c, 0] } else { [0, c] });
+        }
+        b
+    };
+    let swm_bytes = samples()[0].bytes.clone();
+    for (name, bytes, reason) in [
+        (
+            "le.obj",
+            utf16(obj, &[0xFF, 0xFE], true),
+            "UTF-16 text is not supported; save the file as UTF-8",
+        ),
+        ("be.obj", utf16(obj, &[0xFE, 0xFF], false), "UTF-16"),
+        ("nobom.obj", utf16(obj, &[], true), "UTF-16"),
+        ("le.off", utf16(off, &[0xFF, 0xFE], true), "UTF-16"),
+        ("swm.obj", swm_bytes.clone(), "binary data, not a text file"),
+        ("swm.off", swm_bytes, "binary data"),
+    ] {
+        let path = write(&dir, name, &bytes);
+        assert_clean_error(&path, name);
+        let err =
+            String::from_utf8_lossy(&swm(&["info", path.to_str().unwrap()]).stderr).into_owned();
+        assert!(err.contains(reason), "{name}: {err}");
+        assert!(!err.contains("empty"), "{name}: {err}");
+    }
+}
+
+/// Issue 18: OBJ index errors quote the index as written in the file.
+#[test]
+fn obj_index_errors_quote_the_file() {
+    let dir = scratch("obj-index");
+    let v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (face, expected) in [
+        (
+            "f 0 1 2",
+            "vertex index 0 is invalid: OBJ indices start at 1",
+        ),
+        (
+            "f -1 -2 -4",
+            "vertex index -4 is out of range (the mesh has 3 vertices)",
+        ),
+        ("f 1 2 4", "vertex index 4 is out of range"),
+        ("f 1/1 2/2 7/7", "vertex index 7 is out of range"),
+    ] {
+        let path = write(&dir, "f.obj", format!("{v}{face}\n").as_bytes());
+        assert_clean_error(&path, face);
+        let err =
+            String::from_utf8_lossy(&swm(&["info", path.to_str().unwrap()]).stderr).into_owned();
+        assert!(
+            err.contains("at line 4") && err.contains(expected),
+            "{face}: {err}"
+        );
+    }
+}
+
 #[test]
 fn usage_errors_exit_2() {
     let out = swm(&["info"]);
     assert_eq!(out.status.code(), Some(2));
     let out = swm(&["frobnicate"]);
     assert_eq!(out.status.code(), Some(2));
+    // An output format swm does not write is refused before any work.
+    let dir = scratch("usage");
+    let input = dir.join("in.swm");
+    std::fs::write(&input, &samples()[0].bytes).unwrap();
+    let mesh = write(&dir, "in.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    for args in [
+        ["decode", input.to_str().unwrap(), "-o", "out.xyz"],
+        ["decode", input.to_str().unwrap(), "-o", "no-extension"],
+        ["sharpen", mesh.to_str().unwrap(), "-o", "out.swm"],
+    ] {
+        let out = swm(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("unknown mesh format (expected .obj"),
+            "{args:?}: {err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    }
 }

@@ -173,12 +173,7 @@ fn encode_swing(
         if value.is_finite() && value > 0.0 {
             Ok(value)
         } else {
-            Err(Error::from(ParameterError::OutOfRange {
-                name,
-                value,
-                min: 0.0,
-                max: f64::MAX,
-            }))
+            Err(Error::from(ParameterError::NotPositive { name, value }))
         }
     };
     let cleaned = crate::clean(mesh, &options.clean)?;
@@ -297,6 +292,9 @@ pub fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> {
     let (qp, stats, swing) = match h.mode {
         Mode::Lossless => {
             let (q, conn, dummies) = crate::lossless::read_connectivity(&file, limits)?;
+            // As strict as `decode` about the counts (issue 18): the
+            // connectivity is decoded and checked against the header.
+            crate::lossless::decode_topology(&file, &conn, &dummies)?;
             let stats = LosslessStats::new(h, &conn, dummies.len(), sections, bytes.len());
             (q.bits, stats, None)
         }

@@ -212,7 +212,8 @@ pub enum Malformed {
     },
     /// A face refers to a vertex that does not exist.
     IndexOutOfRange {
-        /// The index as written in the file (0-based after conversion).
+        /// The index as written in the file: 1-based or negative
+        /// (relative) in OBJ, 0-based in the other formats.
         index: i64,
         /// Number of vertices available.
         vertices: u64,
@@ -264,6 +265,20 @@ pub enum Malformed {
         /// The missing tag.
         tag: [u8; 4],
     },
+    /// A count the header declares differs from what the data holds.
+    CountMismatch {
+        /// What was counted, plural ("vertices", "triangles").
+        element: &'static str,
+        /// The count the header declares.
+        declared: u64,
+        /// The count the data holds.
+        found: u64,
+    },
+    /// The text is UTF-16 (a byte-order mark or NUL bytes between
+    /// characters); the readers take ASCII or UTF-8.
+    Utf16,
+    /// The bytes are binary data, not text of this format.
+    Binary,
 }
 
 impl fmt::Display for Malformed {
@@ -304,6 +319,12 @@ impl fmt::Display for Malformed {
             Malformed::MissingSection { tag } => {
                 write!(f, "the required section \"{}\" is missing", tag.escape_ascii())
             }
+            Malformed::CountMismatch { element, declared, found } => write!(
+                f,
+                "the header declares {declared} {element} but the data holds {found}"
+            ),
+            Malformed::Utf16 => write!(f, "UTF-16 text is not supported; save the file as UTF-8"),
+            Malformed::Binary => write!(f, "binary data, not a text file of this format"),
         }
     }
 }
@@ -338,7 +359,16 @@ pub enum ParameterError {
         /// Most bytes a file of the format can take.
         max: u64,
     },
-    /// A numeric option is outside its range.
+    /// An option that must be a positive finite number is not (zero,
+    /// negative, infinite or NaN).
+    NotPositive {
+        /// The option's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A numeric option is outside its range (`f64::MAX` or infinity
+    /// for a side without bound).
     OutOfRange {
         /// The option's name.
         name: &'static str,
@@ -382,7 +412,23 @@ impl fmt::Display for ParameterError {
                 min,
                 max,
             } => {
-                write!(f, "{name} = {value} is out of range [{min}, {max}]")
+                // Plain words for an unbounded side, never a 309-digit
+                // f64::MAX.
+                let (low, high) = (*min > f64::MIN, *max < f64::MAX);
+                match (low, high) {
+                    (true, true) => write!(f, "{name} = {value}: must be between {min} and {max}"),
+                    (true, false) => write!(
+                        f,
+                        "{name} = {value}: must be a finite number of at least {min}"
+                    ),
+                    (false, true) => {
+                        write!(f, "{name} = {value}: must be a number of at most {max}")
+                    }
+                    (false, false) => write!(f, "{name} = {value}: must be a finite number"),
+                }
+            }
+            ParameterError::NotPositive { name, value } => {
+                write!(f, "{name} = {value}: must be a positive finite number")
             }
         }
     }

@@ -41,8 +41,8 @@ pub struct Args {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
-    // Refuse an unknown output format before doing any work.
-    swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::new(&args.output, e))?;
+    // Refuse an unknown output format before doing any work (bad usage).
+    swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::usage(&args.output, e))?;
     let default = swm::Limits::default();
     let limits = swm::Limits {
         max_vertices: args.max_vertices.unwrap_or(default.max_vertices),

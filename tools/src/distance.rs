@@ -79,16 +79,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         return Ok(());
     }
     let (ra, rb) = (args.reference.display(), args.other.display());
-    say!("reference {ra}, bbox diagonal {}", d.diagonal);
+    // Scientific notation where plain digits would run long.
+    let diagonal = if (1e-3..1e6).contains(&d.diagonal) {
+        format!("{}", d.diagonal)
+    } else {
+        format!("{:e}", d.diagonal)
+    };
+    say!("reference {ra}, bbox diagonal {diagonal}");
     say!(
-        "  L2         {:<14.6e} ({:.4} x 1e-4 of the diagonal)",
+        "  L2         {:<14.6e} ({})",
         d.l2(),
-        1e4 * d.l2_relative()
+        of_diagonal(d.l2_relative())
     );
     say!(
-        "  Hausdorff  {:<14.6e} ({:.4} x 1e-4 of the diagonal)",
+        "  Hausdorff  {:<14.6e} ({})",
         d.hausdorff(),
-        1e4 * d.hausdorff_relative()
+        of_diagonal(d.hausdorff_relative())
     );
     say!("  mean       {:<14.6e}", d.mean());
     for (label, s) in [
@@ -104,4 +110,15 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         );
     }
     Ok(())
+}
+
+/// A distance relative to the diagonal, in units of 1e-4 as the thesis
+/// reports them, or in scientific notation when that would take more
+/// digits than it says (meshes far apart or of very different sizes).
+fn of_diagonal(relative: f64) -> String {
+    if relative < 1e-2 {
+        format!("{:.4} x 1e-4 of the diagonal", 1e4 * relative)
+    } else {
+        format!("{relative:.4e} times the diagonal")
+    }
 }

@@ -1,5 +1,6 @@
 //! `swm encode IN -o OUT.swm [--mode swing|lossless] [--size B | --bpv X |
-//! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--json]`.
+//! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--json]
+//! [--verbose]`. Options of the other mode are refused, not ignored.
 
 use crate::CliError;
 use std::path::PathBuf;
@@ -26,23 +27,23 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "swing")]
     mode: ModeArg,
     /// Swing: target file size in bytes (met within 3%).
-    #[arg(long, conflicts_with_all = ["bpv", "edge_length"])]
+    #[arg(long, conflicts_with_all = ["bpv", "edge_length"], value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     size: Option<u64>,
     /// Swing: target bits per input vertex (default 2 when no target is given).
-    #[arg(long, conflicts_with = "edge_length")]
+    #[arg(long, conflicts_with = "edge_length", value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
     bpv: Option<f64>,
     /// Swing: the edge length L itself, in the mesh's units.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
     edge_length: Option<f64>,
-    /// Swing: bits per dihedral angle.
-    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(4..=12))]
-    angle_bits: u8,
+    /// Swing: bits per dihedral angle [default: 8].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(4..=12))]
+    angle_bits: Option<u8>,
     /// Swing: never write more than this many bytes.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     max_size: Option<u64>,
-    /// Lossless: bits per coordinate.
-    #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u8).range(6..=24))]
-    qp: u8,
+    /// Lossless: bits per coordinate [default: 12].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(6..=24))]
+    qp: Option<u8>,
     /// Swing: stop with an error after this many steps of retiling work
     /// (walks and searches on the surface, over every run of rate
     /// control; bunny at 1 b/v takes about 10^8). Default: no cap.
@@ -60,6 +61,54 @@ pub struct Args {
     /// Print statistics as JSON.
     #[arg(long)]
     json: bool,
+    /// List every component in the text report (by default a long list is
+    /// cut after its first lines and summed up by fate).
+    #[arg(long)]
+    verbose: bool,
+}
+
+/// Components listed one per line before the text report sums the rest
+/// up (all of them with `--verbose`; JSON always has them all).
+const LISTED_COMPONENTS: usize = 10;
+
+impl Args {
+    /// The lossless mode's bits per coordinate.
+    fn qp(&self) -> u8 {
+        self.qp.unwrap_or(12)
+    }
+
+    /// The options given that do not apply to the chosen mode, as a usage
+    /// error: they would be silently ignored otherwise.
+    pub fn check_mode(&self) -> Result<(), String> {
+        let (mode, options) = match self.mode {
+            ModeArg::Swing => ("swing", vec![(self.qp.is_some(), "--qp")]),
+            ModeArg::Lossless => (
+                "lossless",
+                vec![
+                    (self.size.is_some(), "--size"),
+                    (self.bpv.is_some(), "--bpv"),
+                    (self.edge_length.is_some(), "--edge-length"),
+                    (self.angle_bits.is_some(), "--angle-bits"),
+                    (self.max_size.is_some(), "--max-size"),
+                    (self.max_work.is_some(), "--max-work"),
+                    (self.max_memory.is_some(), "--max-memory"),
+                    (self.time_limit.is_some(), "--time-limit"),
+                ],
+            ),
+        };
+        let wrong: Vec<&str> = options
+            .into_iter()
+            .filter_map(|(given, name)| given.then_some(name))
+            .collect();
+        if wrong.is_empty() {
+            return Ok(());
+        }
+        let verb = if wrong.len() == 1 { "does" } else { "do" };
+        Err(format!(
+            "{} {verb} not apply to --mode {mode}",
+            wrong.join(", ")
+        ))
+    }
 }
 
 /// A positive, finite number of seconds.
@@ -74,14 +123,14 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
     let mesh = swm::io::read_mesh(&args.input).map_err(|e| CliError::new(&args.input, e))?;
     let mode = match args.mode {
-        ModeArg::Lossless => swm::EncodeMode::Lossless { qp: args.qp },
+        ModeArg::Lossless => swm::EncodeMode::Lossless { qp: args.qp() },
         ModeArg::Swing => swm::EncodeMode::Swing {
             target: match (args.size, args.bpv, args.edge_length) {
                 (Some(b), _, _) => swm::SwingTarget::Bytes(b),
                 (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
                 (_, bpv, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
             },
-            angle_bits: args.angle_bits,
+            angle_bits: args.angle_bits.unwrap_or(8),
             max_bytes: args.max_size,
         },
     };
@@ -106,7 +155,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let stats = &encoded.stats;
     let (mut json, vertices, triangles) = match (&stats.lossless, &stats.swing) {
         (Some(l), _) => (
-            crate::report::lossless_json(l, args.qp),
+            crate::report::lossless_json(l, args.qp()),
             l.vertices,
             l.triangles,
         ),
@@ -171,11 +220,47 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         p.holes == 0 && matches!(p.outcome, swm::PieceOutcome::Retiled { .. })
     };
     if stats.pieces.len() > 1 || !stats.pieces.iter().all(plain) {
-        for (k, p) in stats.pieces.iter().enumerate() {
+        let listed = if args.verbose {
+            stats.pieces.len()
+        } else {
+            LISTED_COMPONENTS
+        };
+        for (k, p) in stats.pieces.iter().enumerate().take(listed) {
             say!("component {k}: {}", piece_line(p));
+        }
+        if stats.pieces.len() > listed {
+            say!(
+                "... {} more components ({} in all: {}); --verbose lists them all",
+                stats.pieces.len() - listed,
+                stats.pieces.len(),
+                fates(&stats.pieces)
+            );
         }
     }
     Ok(())
+}
+
+/// How many components met each fate, e.g. "3 retiled, 99997 kept by
+/// lossless coding".
+fn fates(pieces: &[swm::PieceReport]) -> String {
+    let (mut retiled, mut lossless, mut other) = (0usize, 0usize, 0usize);
+    for p in pieces {
+        match p.outcome {
+            swm::PieceOutcome::Retiled { .. } => retiled += 1,
+            swm::PieceOutcome::Lossless => lossless += 1,
+            _ => other += 1,
+        }
+    }
+    [
+        (retiled, "retiled"),
+        (lossless, "kept by lossless coding"),
+        (other, "other"),
+    ]
+    .iter()
+    .filter(|(n, _)| *n > 0)
+    .map(|(n, what)| format!("{n} {what}"))
+    .collect::<Vec<_>>()
+    .join(", ")
 }
 
 /// What cleaning changed, as one line of the non-zero counts.

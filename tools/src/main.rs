@@ -1,8 +1,10 @@
 //! `swm`: the command-line face of the swm codec.
 //!
 //! Exit status: 0 on success, 1 when an input is bad or an operation
-//! fails, 2 on bad usage (clap's convention). Every failure prints one line
-//! on stderr, `swm: error: FILE: what is wrong`. SIGINT and SIGTERM exit
+//! fails, 2 on bad usage (clap's convention): clap's own messages, the
+//! value parsers of `args`, options of the other encoding mode, and an
+//! output extension no writer has. Every other failure prints one line on
+//! stderr, `swm: error: FILE: what is wrong`. SIGINT and SIGTERM exit
 //! 130 and 143 after removing unfinished outputs (see `signals`).
 
 /// `println!` that ignores a closed stdout (`swm info x | head`): the
@@ -14,6 +16,7 @@ macro_rules! say {
     }};
 }
 
+mod args;
 mod decode;
 mod distance;
 mod encode;
@@ -23,7 +26,7 @@ mod report;
 mod sharpen;
 mod signals;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -63,6 +66,8 @@ enum Command {
 pub struct CliError {
     path: PathBuf,
     error: swm::Error,
+    /// The exit status: 1, or 2 for bad usage.
+    code: u8,
 }
 
 impl CliError {
@@ -71,6 +76,16 @@ impl CliError {
         CliError {
             path: path.into(),
             error: error.into(),
+            code: 1,
+        }
+    }
+
+    /// A usage error about `path` found after parsing (such as an output
+    /// extension no writer has): exit status 2, as clap's own.
+    pub fn usage(path: impl Into<PathBuf>, error: impl Into<swm::Error>) -> Self {
+        CliError {
+            code: 2,
+            ..CliError::new(path, error)
         }
     }
 }
@@ -114,6 +129,21 @@ fn same_file(a: &Path, b: &Path) -> bool {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     signals::install();
+    // Checks clap's attributes cannot express, reported as clap reports
+    // its own: usage on stderr, exit 2.
+    if let Command::Encode(args) = &cli.command {
+        if let Err(msg) = args.check_mode() {
+            let mut cmd = Cli::command();
+            // Built, so that the usage line says `swm encode`.
+            cmd.build();
+            let encode = cmd
+                .find_subcommand_mut("encode")
+                .expect("encode subcommand");
+            encode
+                .error(clap::error::ErrorKind::ArgumentConflict, msg)
+                .exit();
+        }
+    }
     let result = match cli.command {
         Command::Encode(args) => encode::run(&args),
         Command::Decode(args) => decode::run(&args),
@@ -128,7 +158,7 @@ fn main() -> ExitCode {
             // One line, whatever the error says.
             let msg = e.error.to_string().replace('\n', " ");
             eprintln!("swm: error: {}: {msg}", e.path.display());
-            ExitCode::from(1)
+            ExitCode::from(e.code)
         }
     }
 }

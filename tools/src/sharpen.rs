@@ -24,7 +24,7 @@ pub struct Args {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
-    swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::new(&args.output, e))?;
+    swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::usage(&args.output, e))?;
     let err = |e| CliError::new(&args.input, e);
     let mesh = swm::io::read_mesh(&args.input).map_err(err)?;
     let cleaned = swm::clean(&mesh, &swm::CleanOptions::default()).map_err(err)?;

@@ -288,7 +288,14 @@ fn finish(
         }
     }
     if next != conn.vertices {
-        return Err(bad("decoded vertex count differs from the header"));
+        return Err(FormatError::new(
+            "SWM",
+            Malformed::CountMismatch {
+                element: "vertices",
+                declared: conn.vertices.into(),
+                found: next.into(),
+            },
+        ));
     }
     // Each closed fan's start is its lowest corner (as `vertex_fans`
     // chooses it), i.e. the first corner of the vertex in corner order.

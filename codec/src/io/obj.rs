@@ -84,6 +84,9 @@ fn scan(bytes: &[u8]) -> Result<Counts, Error> {
 
 /// Reads an OBJ file.
 pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
+    if let Some(why) = text::not_text(bytes) {
+        return Err(FormatError::new(FORMAT, why).into());
+    }
     let counts = scan(bytes)?;
     if counts.vertices == 0 && counts.faces == 0 {
         return Err(FormatError::new(FORMAT, Malformed::Empty).into());
@@ -205,8 +208,15 @@ fn bad_index(bytes: &[u8], vertices: u64) -> Error {
                     let Some(i) = text::parse_i64(first) else {
                         continue;
                     };
+                    if i == 0 {
+                        let why = "vertex index 0 is invalid: OBJ indices start at 1";
+                        return error(Malformed::BadSyntax(why), n);
+                    }
                     let index = if i < 0 { seen.saturating_add(i) } else { i - 1 };
                     if index < 0 || index as u64 >= vertices {
+                        // Quoted as written (1-based or relative), not
+                        // as converted.
+                        let index = i;
                         return error(Malformed::IndexOutOfRange { index, vertices }, n);
                     }
                 }
@@ -487,25 +497,22 @@ f 1 2 4 # comment\r\nl 1 2\r\np 3\r\nf 2 4 5\r\n";
             (
                 "f 1 2 4\n",
                 Malformed::IndexOutOfRange {
-                    index: 3,
+                    index: 4,
                     vertices: 3,
                 },
                 4,
             ),
             (
-                "f 1 2 -4\n",
+                "f -1 -2 -4\n",
                 Malformed::IndexOutOfRange {
-                    index: -1,
+                    index: -4,
                     vertices: 3,
                 },
                 4,
             ),
             (
                 "f 1 2 3\nf 0 1 2\n",
-                Malformed::IndexOutOfRange {
-                    index: -1,
-                    vertices: 3,
-                },
+                Malformed::BadSyntax("vertex index 0 is invalid: OBJ indices start at 1"),
                 5,
             ),
             ("f 1 2\n", Malformed::FaceTooSmall { count: 2 }, 4),
@@ -564,11 +571,23 @@ f 1 2 4 # comment\r\nl 1 2\r\np 3\r\nf 2 4 5\r\n";
             malformed(obj("# only\n# comments\ng nothing\n")).0,
             Malformed::Empty
         );
+        // Not UTF-8 or ASCII text at all: said so, not "empty".
+        let utf16le: Vec<u8> = [0xFF, 0xFE]
+            .into_iter()
+            .chain("v 0 0 0\nf 1 1 1\n".bytes().flat_map(|b| [b, 0]))
+            .collect();
+        let utf16be: Vec<u8> = "v 0 0 0\nf 1 1 1\n".bytes().flat_map(|b| [0, b]).collect();
+        for bytes in [&utf16le, &utf16be] {
+            assert_eq!(malformed(read(bytes, MeshFormat::Obj)).0, Malformed::Utf16);
+        }
+        let swm = b"SWM\x00\x01\x00\x00\x00\x01\x20\x00\x00\x00\x10";
+        assert_eq!(malformed(read(swm, MeshFormat::Obj)).0, Malformed::Binary);
+        assert_eq!(malformed(read(swm, MeshFormat::Off)).0, Malformed::Binary);
         let (what, _) = malformed(obj("f 1 2 3\n"));
         assert_eq!(
             what,
             Malformed::IndexOutOfRange {
-                index: 0,
+                index: 1,
                 vertices: 0
             }
         );

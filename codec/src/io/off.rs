@@ -64,6 +64,9 @@ fn keyword(word: &[u8], line: u64) -> Result<bool, Error> {
 
 /// Reads an OFF file.
 pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
+    if let Some(why) = text::not_text(bytes) {
+        return Err(FormatError::new(FORMAT, why).into());
+    }
     let mut t = Text::new(bytes, 1);
     let Some((n, line)) = data_line(&mut t) else {
         return Err(FormatError::new(FORMAT, Malformed::Empty).into());

@@ -101,6 +101,39 @@ pub(super) fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> + Clone {
         .filter(|t| !t.is_empty())
 }
 
+/// Why `bytes` cannot be the text of a text format, if they cannot:
+/// UTF-16 (a byte-order mark, or NUL bytes between characters, as UTF-16
+/// puts them before or after every ASCII character), or binary data (any
+/// other NUL byte). Text never holds a NUL, so only the start is looked
+/// at; without this check such files read as text without a single
+/// statement, and were reported "empty".
+pub(super) fn not_text(bytes: &[u8]) -> Option<crate::Malformed> {
+    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+        return Some(crate::Malformed::Utf16);
+    }
+    let head = &bytes[..bytes.len().min(4096)];
+    let nuls = |parity: usize| {
+        head.iter()
+            .skip(parity)
+            .step_by(2)
+            .filter(|&&b| b == 0)
+            .count()
+    };
+    let (even, odd) = (nuls(0), nuls(1));
+    if even + odd == 0 {
+        return None;
+    }
+    // UTF-16 ASCII: one byte of each pair is NUL nearly always, the other
+    // almost never.
+    let pairs = head.len() / 2;
+    let utf16 = pairs >= 2 && (even.max(odd) * 10 >= pairs * 9) && even.min(odd) * 10 <= pairs;
+    Some(if utf16 {
+        crate::Malformed::Utf16
+    } else {
+        crate::Malformed::Binary
+    })
+}
+
 /// True when `bytes` holds nothing but ASCII whitespace.
 pub(super) fn is_blank(bytes: &[u8]) -> bool {
     bytes.iter().all(u8::is_ascii_whitespace)

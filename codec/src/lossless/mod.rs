@@ -166,10 +166,73 @@ pub(crate) fn encode(
 /// Decodes a lossless-mode file whose container was parsed.
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
     let (quantizer, conn, dummies) = read_connectivity(file, limits)?;
-    let table = edgebreaker::decode(&conn)?;
-    let real = file.header.vertex_count;
+    let topo = decode_topology(file, &conn, &dummies)?;
+    // What `geo::decode_mesh_positions` does, with each point dequantized
+    // straight into its place instead of through a table by vertex.
+    let traversal = crate::geometry::traverse_except(&topo.table, &topo.excluded)?;
+    let geom = file.require(Tag::GEOM)?.bytes;
+    let mut dec = Decoder::new(geom)?;
+    let mut quantized = Vec::new();
+    geo::decode_positions(
+        &traversal.predictions,
+        quantizer.bits,
+        &mut dec,
+        &mut quantized,
+    )?;
+    dec.finish()?;
+    let mut positions = vec![[0f32; 3]; file.header.vertex_count as usize];
+    for (v, q) in traversal.order.iter().zip(&quantized) {
+        // The traversal decodes exactly the vertices not excluded, so
+        // every real vertex gets its point (and the error cannot happen).
+        let slot = topo
+            .rank
+            .get(v.idx())
+            .and_then(|&r| positions.get_mut(r as usize))
+            .ok_or(bad("a dummy vertex has a position"))?;
+        *slot = quantizer.dequantize(*q);
+    }
+    Ok(TriMesh {
+        positions,
+        triangles: topo.triangles,
+    })
+}
+
+/// The decoded connectivity of a lossless file, its dummy vertices
+/// dropped.
+pub(crate) struct Topology {
+    /// The corner table, dummies included.
+    table: crate::mesh::CornerTable,
+    /// Per table vertex: a dummy.
+    excluded: Vec<bool>,
+    /// Per table vertex: its number in the output, `u32::MAX` for a dummy.
+    rank: Vec<u32>,
+    /// The output's triangles (those without a dummy).
+    triangles: Vec<[u32; 3]>,
+}
+
+/// Decodes the connectivity and checks it against the header's counts:
+/// as many vertices and triangles as declared, and every vertex used by
+/// a triangle. Both [`decode`] and `inspect` go through here, so that
+/// `swm info` refuses what decoding refuses.
+pub(crate) fn decode_topology(
+    file: &Container<'_>,
+    conn: &Connectivity,
+    dummies: &[u32],
+) -> Result<Topology, Error> {
+    // The table's vertex count includes the dummies; the header's does
+    // not, and the message quotes the header.
+    let table = edgebreaker::decode(conn).map_err(|mut e| {
+        if let Malformed::CountMismatch {
+            declared, found, ..
+        } = &mut e.what
+        {
+            *declared = declared.saturating_sub(dummies.len() as u64);
+            *found = found.saturating_sub(dummies.len() as u64);
+        }
+        Error::from(e)
+    })?;
     let mut excluded = vec![false; conn.vertices as usize];
-    for &d in &dummies {
+    for &d in dummies {
         excluded[d as usize] = true;
     }
     // Real vertices keep their decoded order; dummies are dropped.
@@ -181,28 +244,9 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
             next += 1;
         }
     }
-    // What `geo::decode_mesh_positions` does, with each point dequantized
-    // straight into its place instead of through a table by vertex.
-    let traversal = crate::geometry::traverse_except(&table, &excluded)?;
-    let geom = file.require(Tag::GEOM)?.bytes;
-    let mut dec = Decoder::new(geom)?;
-    let mut quantized = Vec::new();
-    geo::decode_positions(
-        &traversal.predictions,
-        quantizer.bits,
-        &mut dec,
-        &mut quantized,
-    )?;
-    dec.finish()?;
-    let mut positions = vec![[0f32; 3]; real as usize];
-    for (v, q) in traversal.order.iter().zip(&quantized) {
-        // The traversal decodes exactly the vertices not excluded, so
-        // every real vertex gets its point (and the error cannot happen).
-        let slot = rank
-            .get(v.idx())
-            .and_then(|&r| positions.get_mut(r as usize))
-            .ok_or(bad("a dummy vertex has a position"))?;
-        *slot = quantizer.dequantize(*q);
+    let declared = u64::from(file.header.vertex_count);
+    if u64::from(next) != declared {
+        return Err(mismatch("vertices", declared, next.into()));
     }
     // Sized by the decoded table, not the header: a header that declares
     // more triangles than the sections code is refused below, after
@@ -215,12 +259,13 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
             triangles.push(r);
         }
     }
-    if triangles.len() != file.header.triangle_count as usize {
-        return Err(bad("triangle count differs from the header"));
+    let declared = u64::from(file.header.triangle_count);
+    if triangles.len() as u64 != declared {
+        return Err(mismatch("triangles", declared, triangles.len() as u64));
     }
     // A listed "dummy" that did not close a hole would leave real vertices
     // without triangles; the encoder never writes such a file.
-    let mut used = vec![false; positions.len()];
+    let mut used = vec![false; next as usize];
     for t in &triangles {
         for &v in t {
             used[v as usize] = true;
@@ -229,10 +274,25 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     if used.contains(&false) {
         return Err(bad("a vertex is used by no triangle"));
     }
-    Ok(TriMesh {
-        positions,
+    Ok(Topology {
+        table,
+        excluded,
+        rank,
         triangles,
     })
+}
+
+/// A header count that the data contradicts.
+pub(crate) fn mismatch(element: &'static str, declared: u64, found: u64) -> Error {
+    FormatError::new(
+        "SWM",
+        Malformed::CountMismatch {
+            element,
+            declared,
+            found,
+        },
+    )
+    .into()
 }
 
 /// Reads HEAD, TOPO and CLRS; also used by `inspect`.

@@ -39,6 +39,24 @@
 //!   `metrics::Surface` samples, so it is part of the output: the build
 //!   below must keep producing the same tree for the same input.
 //!
+//! Units: the tree stores its triangles scaled by a power of two that
+//! brings the largest coordinate into `[1/2, 1)`, and scales each query
+//! point the same way (issue 18). Without it, a mesh in units of 1e30 or
+//! 1e-30 overflows or underflows the `f32` squared box distances (to
+//! infinity or zero), nothing is pruned and every query visits every
+//! node. A power of two scales exactly: the tree, the leaf order and every
+//! distance are those of the unscaled input, bit for bit (short of
+//! coordinates below 2⁻¹⁴⁹ of the largest one, which `f32` cannot hold
+//! after scaling and which are far below its precision anyway).
+//!
+//! Far queries: a query farther from the tree's box than 2³⁰ times the
+//! box's diagonal `d` takes the hint's triangle (or the first) without a
+//! search. Every triangle then lies between `D` and `D + d` from it, so
+//! the answer is within a relative 2⁻³⁰ of the minimum — and no box test,
+//! in `f32` or `f64`, could tell the triangles apart: with every bound
+//! within the rounding slack, the search would read every node for every
+//! query (two meshes in units 1e30 apart measured against each other).
+//!
 //! Construction is iterative with an explicit stack (no recursion depth
 //! to exhaust on adversarial input): a range whose centroids all coincide
 //! is split at its middle, so every split makes progress.
@@ -243,9 +261,15 @@ pub struct Bvh {
     nodes: Vec<Wide>,
     /// Triangle count when the root is a leaf (no nodes).
     root_count: u32,
-    /// Largest absolute coordinate of any triangle.
+    /// The box of all (scaled) triangles.
+    bounds: Aabb,
+    /// Largest absolute coordinate of any stored (scaled) triangle.
     extent: f64,
-    /// Triangles in leaf order.
+    /// The power of two the stored triangles and the queries are
+    /// multiplied by (see the module docs), and its inverse.
+    scale: f64,
+    unscale: f64,
+    /// Triangles in leaf order, multiplied by `scale`.
     tris: Vec<Tri>,
     /// Original index of each entry of `tris`.
     ids: Vec<u32>,
@@ -257,12 +281,55 @@ pub struct Bvh {
 pub struct Scratch {
     stack: Vec<(u32, f32)>,
     path: Path,
+    /// Nodes read by the queries made with this scratch: the work done,
+    /// which tests compare across units.
+    visits: u64,
+}
+
+#[cfg(test)]
+impl Scratch {
+    /// Nodes read so far by queries made with this scratch.
+    pub fn visits(&self) -> u64 {
+        self.visits
+    }
+}
+
+/// `2^k` for `k` in the normal range of `f64`.
+fn power_of_two(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// The power of two that brings `extent` (finite, ≥ 0) into `[1/2, 1)`;
+/// 1 for zero.
+fn normalizing_scale(extent: f64) -> f64 {
+    if extent.is_normal() {
+        // extent is in [2^e, 2^(e + 1)): the biased exponent field.
+        let e = ((extent.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+        power_of_two(-(e + 1))
+    } else {
+        1.0
+    }
 }
 
 impl Bvh {
     /// Builds the tree. Every coordinate must be finite (the caller
     /// checks); an empty list gives a tree that finds nothing.
     pub fn new(tris: &[Tri]) -> Bvh {
+        let extent = largest_coordinate(tris);
+        let scale = normalizing_scale(extent);
+        // Exact (a power of two), short of the underflow the module docs
+        // allow for.
+        let scaled: Vec<Tri>;
+        let tris = if scale == 1.0 {
+            tris
+        } else {
+            scaled = tris
+                .iter()
+                .map(|t| t.map(|v| v.map(|c| (c as f64 * scale) as f32)))
+                .collect();
+            &scaled
+        };
         let n = tris.len();
         let mut items: Vec<Item> = tris
             .iter()
@@ -328,17 +395,15 @@ impl Bvh {
                 centroids: left.centroids,
             });
         }
-        let extent = tris
-            .iter()
-            .flatten()
-            .flatten()
-            .fold(0.0f64, |m, &c| m.max((c as f64).abs()));
         static TREES: AtomicU64 = AtomicU64::new(1);
         Bvh {
             id: TREES.fetch_add(1, Ordering::Relaxed),
             nodes: widen(&nodes),
             root_count: nodes.first().map_or(0, |r| r.count),
-            extent,
+            bounds: nodes.first().map_or(Aabb::EMPTY, |r| r.bounds),
+            extent: largest_coordinate(tris),
+            scale,
+            unscale: 1.0 / scale,
             tris: items.iter().map(|it| tris[it.id as usize]).collect(),
             ids: items.iter().map(|it| it.id).collect(),
         }
@@ -348,11 +413,6 @@ impl Bvh {
     /// order).
     pub fn order(&self) -> &[u32] {
         &self.ids
-    }
-
-    /// The triangles in leaf order.
-    pub fn triangles(&self) -> &[Tri] {
-        &self.tris
     }
 
     /// The triangle nearest to `p`, if any. `hint`, the [`Nearest::slot`]
@@ -369,6 +429,50 @@ impl Bvh {
         hint: Option<u32>,
         scratch: &mut Scratch,
     ) -> Option<Nearest> {
+        // Into the tree's units and back: exact (powers of two; `f64`
+        // holds any `f32` coordinate times any such scale).
+        let p = p.map(|c| c * self.scale);
+        self.nearest_scaled(p, hint, scratch).map(|n| Nearest {
+            distance2: n.distance2 * (self.unscale * self.unscale),
+            ..n
+        })
+    }
+
+    /// The answer to a far query (see the module docs): the hint's
+    /// triangle, or the first; `None` for a query near enough to search.
+    fn far(&self, p: [f64; 3], hint: Option<u32>) -> Option<Nearest> {
+        let (lo, hi) = (self.bounds.min, self.bounds.max);
+        let (mut gap2, mut diagonal2) = (0.0f64, 0.0f64);
+        for k in 0..3 {
+            let (lo, hi) = (lo[k] as f64, hi[k] as f64);
+            let g = (lo - p[k]).max(p[k] - hi).max(0.0);
+            gap2 += g * g;
+            diagonal2 += (hi - lo) * (hi - lo);
+        }
+        let far = gap2 > diagonal2 * (1u64 << 60) as f64;
+        if !far || self.tris.is_empty() {
+            return None;
+        }
+        let slot = hint
+            .filter(|&h| (h as usize) < self.tris.len())
+            .unwrap_or(0);
+        Some(Nearest {
+            distance2: triangle_distance2(p, &self.tris[slot as usize]),
+            triangle: self.ids[slot as usize],
+            slot,
+        })
+    }
+
+    /// [`Self::nearest`] for a query already in the tree's units.
+    fn nearest_scaled(
+        &self,
+        p: [f64; 3],
+        hint: Option<u32>,
+        scratch: &mut Scratch,
+    ) -> Option<Nearest> {
+        if let Some(far) = self.far(p, hint) {
+            return Some(far);
+        }
         // Covers the rounding of `p` to `f32` and of the triangle distances
         // (see `Bound`).
         let slack = self.extent.max(p[0].abs()).max(p[1].abs()).max(p[2].abs())
@@ -403,7 +507,11 @@ impl Bvh {
             });
         }
         let q = p.map(|c| c as f32);
-        let Scratch { stack, path } = scratch;
+        let Scratch {
+            stack,
+            path,
+            visits,
+        } = scratch;
         let mut level = path.entry(self, p, bound.best, slack);
         let mut primary = true;
         stack.clear();
@@ -419,6 +527,7 @@ impl Bvh {
                     None => break,
                 },
             };
+            *visits += 1;
             let node = &self.nodes[i as usize];
             let d = node.distance2(q);
             let mut admitted = 0u32;
@@ -575,6 +684,14 @@ impl Path {
         self.clear.truncate(level);
         self.nodes.truncate(level + 1);
     }
+}
+
+/// The largest absolute coordinate of any triangle (0 for none).
+fn largest_coordinate(tris: &[Tri]) -> f64 {
+    tris.iter()
+        .flatten()
+        .flatten()
+        .fold(0.0f64, |m, &c| m.max((c as f64).abs()))
 }
 
 /// The search layout of a built binary tree: each node takes up to `W`
@@ -884,6 +1001,37 @@ mod tests {
             assert_eq!(hit.distance2, brute(tris, p), "step {step}");
             hints[which] = Some(hit.slot);
         }
+    }
+
+    /// A query 2³⁰ diagonals or more away is answered without a search,
+    /// within a relative 2⁻³⁰ of the brute-force distance; nearer ones
+    /// are still searched and exact.
+    #[test]
+    fn far_queries_are_answered_without_a_search() {
+        let tris = terrain(40, 0.5);
+        let bvh = Bvh::new(&tris);
+        let mut scratch = Scratch::default();
+        for (p, far) in [
+            ([1e30, -3e29, 2e30], true),
+            ([0.5, 0.5, -1e12], true),
+            ([0.5, 0.5, 1e8], false),
+            ([3.0, 0.2, 0.1], false),
+        ] {
+            let before = scratch.visits();
+            let hit = bvh.nearest(p, None, &mut scratch).unwrap();
+            let exact = brute(&tris, p);
+            if far {
+                assert_eq!(scratch.visits(), before, "{p:?}");
+                let rel = (hit.distance2.sqrt() - exact.sqrt()) / exact.sqrt();
+                assert!((0.0..1e-9).contains(&rel), "{p:?}: {rel}");
+            } else {
+                assert!(scratch.visits() > before, "{p:?}");
+                assert_eq!(hit.distance2, exact, "{p:?}");
+            }
+        }
+        assert!(Bvh::new(&[])
+            .nearest([1e30; 3], None, &mut scratch)
+            .is_none());
     }
 
     #[test]

@@ -198,7 +198,11 @@ impl Surface {
             .iter()
             .map(|&f| mesh.triangles[f as usize])
             .collect();
-        let area = bvh.triangles().iter().map(area).sum();
+        // In the mesh's own units (the tree keeps its triangles scaled).
+        let area = faces
+            .iter()
+            .map(|f| area(&f.map(|v| mesh.positions[v as usize])))
+            .sum();
         let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
         Ok(Surface {
             bvh,
@@ -208,6 +212,12 @@ impl Surface {
             area,
             diagonal,
         })
+    }
+
+    /// Face `f` (in the tree's leaf order) as a triangle, in the mesh's
+    /// units.
+    fn triangle(&self, f: usize) -> Tri {
+        self.faces[f].map(|v| self.positions[v as usize])
     }
 
     /// Number of faces.
@@ -253,7 +263,7 @@ pub fn distance_between(
             name: "samples",
             value: 0.0,
             min: 1.0,
-            max: f64::MAX,
+            max: f64::INFINITY,
         }
         .into());
     }
@@ -314,7 +324,7 @@ fn chunks(n: usize, size: usize, f: fn(usize, usize) -> Work) -> impl Iterator<I
 /// Samples `from` (with `faces` face samples and the options' other kinds)
 /// and measures each sample's distance to `to`.
 pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOptions) -> OneSided {
-    let tris = from.bvh.triangles();
+    let n_faces = from.face_count();
     let density = if from.area > 0.0 {
         faces as f64 / from.area
     } else {
@@ -322,9 +332,9 @@ pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOpt
     };
     // A zero-area surface still gets its face samples: spread them evenly.
     let face_counts = if from.area > 0.0 {
-        carried_counts(tris.iter().map(area), density)
+        carried_counts((0..n_faces).map(|f| area(&from.triangle(f))), density)
     } else {
-        carried_counts(tris.iter().map(|_| 1.0), faces as f64 / tris.len() as f64)
+        carried_counts((0..n_faces).map(|_| 1.0), faces as f64 / n_faces as f64)
     };
     let vertices = if options.vertex_samples {
         used_vertices(from)
@@ -348,7 +358,7 @@ pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOpt
     };
     let work: Vec<Work> = chunks(vertices.len(), VERTEX_CHUNK, Work::Vertices)
         .chain(chunks(edges.len(), EDGE_CHUNK, Work::Edges))
-        .chain(chunks(tris.len(), FACE_CHUNK, Work::Faces))
+        .chain(chunks(n_faces, FACE_CHUNK, Work::Faces))
         .collect();
     let parts: Vec<Sums> = work
         .par_iter()
@@ -375,9 +385,9 @@ pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOpt
                     }
                 }
                 Work::Faces(a, b) => {
-                    for f in a..b {
+                    for (f, &n) in face_counts.iter().enumerate().take(b).skip(a) {
                         let mut rng = SplitMix::new(options.seed, from.face_ids[f] as u64);
-                        face_points(&tris[f], face_counts[f], &mut rng, &mut measure);
+                        face_points(&from.triangle(f), n, &mut rng, &mut measure);
                     }
                 }
             }

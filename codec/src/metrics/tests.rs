@@ -230,3 +230,100 @@ fn bad_meshes_are_errors() {
     let d = distance(&good, &flat, &DistanceOptions::default()).unwrap();
     assert!(d.hausdorff().is_finite() && d.hausdorff() > 0.0);
 }
+
+fn scaled(m: &TriMesh, s: f64) -> TriMesh {
+    let mut m = m.clone();
+    for p in &mut m.positions {
+        *p = p.map(|c| (c as f64 * s) as f32);
+    }
+    m
+}
+
+/// Nodes the nearest-point searches read when every vertex of `from`
+/// and the centroid of every face is measured against `to`, as the
+/// samples are (in leaf order, warm-started).
+fn visits(from: &Surface, to: &Surface) -> u64 {
+    let mut scratch = Scratch::default();
+    let mut hint = None;
+    for f in 0..from.face_count() {
+        let t = from.triangle(f);
+        let c = core::array::from_fn(|k| t.iter().map(|v| v[k] as f64).sum::<f64>() / 3.0);
+        for p in t.iter().map(|v| v.map(|c| c as f64)).chain([c]) {
+            hint = to.bvh.nearest(p, hint, &mut scratch).map(|n| n.slot);
+        }
+    }
+    scratch.visits()
+}
+
+/// Issue 18: distances do not depend on the units. A mesh in units of
+/// 1e30 or 1e-30 (or near the ends of `f32`'s range) gives the same
+/// relative figures as in its own units, for the same work: the tree's
+/// box tests used to overflow to infinity or underflow to zero there, so
+/// nothing was pruned and every query read every node.
+#[test]
+fn distances_do_not_depend_on_the_units() {
+    let (a, b) = (sphere(4), lifted(&sphere(2), 0.01));
+    let options = DistanceOptions {
+        face_samples: Some(1000),
+        ..Default::default()
+    };
+    let base = distance(&a, &b, &options).unwrap();
+    let own = distance(&a, &a, &options).unwrap();
+    let work = |a: &TriMesh, b: &TriMesh| {
+        let (a, b) = (Surface::new(a).unwrap(), Surface::new(b).unwrap());
+        visits(&a, &b) + visits(&b, &a)
+    };
+    let base_work = work(&a, &b);
+    for s in [1e30, 1e-30, 1e37, 1e-36, 0.75] {
+        let (sa, sb) = (scaled(&a, s), scaled(&b, s));
+        let d = distance(&sa, &sb, &options).unwrap();
+        // Edge sample counts carry fractions, which rounding may tip.
+        let n = |x: &SurfaceDistance| x.forward.samples as i64;
+        assert!((n(&d) - n(&base)).abs() <= 2, "scale {s}: {d:?}");
+        for (x, y) in [
+            (d.l2_relative(), base.l2_relative()),
+            (d.hausdorff_relative(), base.hausdorff_relative()),
+            (d.mean() / d.diagonal, base.mean() / base.diagonal),
+        ] {
+            // The f32 rounding of the scaled coordinates, no more.
+            assert!(close(x, y, 1e-4), "scale {s}: {x} against {y}");
+        }
+        let self_d = distance(&sa, &sa, &options).unwrap();
+        assert!(self_d.hausdorff_relative() < 1e-9, "scale {s}: {self_d:?}");
+        assert!(own.hausdorff_relative() < 1e-9);
+        let w = work(&sa, &sb);
+        assert!(
+            w < base_work * 3 / 2 && w > base_work * 2 / 3,
+            "scale {s}: {w} node visits against {base_work}"
+        );
+    }
+    // Two meshes in units 1e30 apart: every sample of the huge one is far
+    // from the small one, and measured without reading every node each
+    // time. (Beside it: from the centre of a sphere every triangle is
+    // equally near, and any search reads them all, whatever the units.)
+    let mut huge = scaled(&b, 1e30);
+    for p in &mut huge.positions {
+        p[0] += 3e30;
+    }
+    let d = distance(&a, &huge, &options).unwrap();
+    assert!(d.l2().is_finite() && d.l2() > 1e29, "{d:?}");
+    let (sa, sh) = (Surface::new(&a).unwrap(), Surface::new(&huge).unwrap());
+    assert_eq!(visits(&sh, &sa), 0);
+    let near = visits(&sa, &sh);
+    assert!(near < 20 * 4 * sa.face_count() as u64, "{near}");
+}
+
+/// A power-of-two change of units changes nothing at all: the tree, the
+/// samples and every figure scale exactly.
+#[test]
+fn power_of_two_units_scale_exactly() {
+    let (a, b) = (sphere(3), lifted(&sphere(2), 0.01));
+    let base = distance(&a, &b, &DistanceOptions::default()).unwrap();
+    for s in [2f64.powi(100), 2f64.powi(-100), 0.5] {
+        let d = distance(&scaled(&a, s), &scaled(&b, s), &DistanceOptions::default()).unwrap();
+        assert_eq!(d.forward.samples, base.forward.samples);
+        assert_eq!(d.l2(), base.l2() * s, "scale {s}");
+        assert_eq!(d.hausdorff(), base.hausdorff() * s, "scale {s}");
+        assert_eq!(d.backward.mean, base.backward.mean * s, "scale {s}");
+    }
+}

@@ -111,7 +111,12 @@ fn read_connectivity(
         return Err(bad("a SwingWrapper file has no dummy vertices"));
     }
     if conn.triangles() != u64::from(h.triangle_count) {
-        return Err(bad("triangle count differs from the header"));
+        let declared = h.triangle_count.into();
+        return Err(crate::lossless::mismatch(
+            "triangles",
+            declared,
+            conn.triangles(),
+        ));
     }
     let table = edgebreaker::decode(&conn)?;
     Ok((head, conn, table))
@@ -165,24 +170,32 @@ pub(crate) fn rest_counts(file: &Container<'_>, limits: &Limits) -> Result<(u64,
     })
 }
 
+/// `REST`'s container and offset, if there is one, after checking that
+/// the retiled mesh and REST's together fit the limits.
+fn rest_frame<'a>(
+    file: &Container<'a>,
+    limits: &Limits,
+) -> Result<Option<(Container<'a>, usize)>, Error> {
+    let Some(s) = file.find(Tag::REST) else {
+        return Ok(None);
+    };
+    let rest = read_rest(s, limits)?;
+    let (h, r) = (&file.header, &rest.header);
+    let vertices = u64::from(h.vertex_count) + u64::from(r.vertex_count);
+    limits.check_vertices(vertices)?;
+    limits.check_faces(u64::from(h.triangle_count) + u64::from(r.triangle_count))?;
+    if vertices > u64::from(u32::MAX) {
+        return Err(bad("more than 2^32 - 1 vertices with REST's"));
+    }
+    Ok(Some((rest, s.offset)))
+}
+
 /// Decodes a SwingWrapper file whose container was parsed.
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
     let (head, conn, table) = read_connectivity(file, limits)?;
     // REST's frame first: the whole output must fit the limits before
     // anything is decoded.
-    let rest = match file.find(Tag::REST) {
-        Some(s) => Some((read_rest(s, limits)?, s.offset)),
-        None => None,
-    };
-    if let Some((rest, _)) = &rest {
-        let (h, r) = (&file.header, &rest.header);
-        let vertices = u64::from(h.vertex_count) + u64::from(r.vertex_count);
-        limits.check_vertices(vertices)?;
-        limits.check_faces(u64::from(h.triangle_count) + u64::from(r.triangle_count))?;
-        if vertices > u64::from(u32::MAX) {
-            return Err(bad("more than 2^32 - 1 vertices with REST's"));
-        }
-    }
+    let rest = rest_frame(file, limits)?;
     let geom = file.require(Tag::GEOM)?.bytes;
     let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
     // A length costs more than K/2^16 bits: its model has K + 1 symbols.
@@ -202,7 +215,12 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
     let triangles = table.triangles();
     if triangles.len() != file.header.triangle_count as usize {
-        return Err(bad("triangle count differs from the header"));
+        let declared = file.header.triangle_count.into();
+        return Err(crate::lossless::mismatch(
+            "triangles",
+            declared,
+            triangles.len() as u64,
+        ));
     }
     let mut mesh = TriMesh {
         positions,
@@ -240,8 +258,17 @@ pub(crate) fn inspect(
             .count() as u64,
         None => 0,
     };
-    let rest_triangles = match file.find(Tag::REST) {
-        Some(s) => u64::from(read_rest(s, limits)?.header.triangle_count),
+    // As strict as `decode` about REST's counts too: its frame against
+    // the limits, its connectivity against its header.
+    let rest_triangles = match rest_frame(file, limits)? {
+        Some((rest, offset)) => {
+            let check = || {
+                let (_, conn, dummies) = crate::lossless::read_connectivity(&rest, limits)?;
+                crate::lossless::decode_topology(&rest, &conn, &dummies)
+            };
+            check().map_err(in_section(offset))?;
+            u64::from(rest.header.triangle_count)
+        }
         None => 0,
     };
     let sections = file.sections().map(|s| (s.tag.0, s.bytes.len())).collect();
