@@ -1,0 +1,125 @@
+//! Property target for the encoder on hostile input (issue 18): an OBJ
+//! text built from the bytes (polygon faces of up to a few hundred
+//! vertices, fans around one vertex, duplicate, reversed and degenerate
+//! faces, coordinates from 1e-30 to 1e30) is read by the OBJ reader and
+//! encoded in the SwingWrapper mode under an `EncodeLimits` work budget:
+//! - `swm::encode` returns a file or an error, never panics; with the
+//!   budget it ends in bounded time whatever the shape (libFuzzer's
+//!   `-timeout` catches a run that does not);
+//! - every file it writes decodes to a valid mesh.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use std::fmt::Write as _;
+use swm::{DecodeOptions, EncodeLimits, EncodeMode, EncodeOptions, SwingTarget};
+
+/// Reads bytes front to back; zeros once the input runs out.
+struct Bytes<'a>(&'a [u8]);
+
+impl Bytes<'_> {
+    fn u8(&mut self) -> u8 {
+        match self.0.split_first() {
+            Some((&b, rest)) => {
+                self.0 = rest;
+                b
+            }
+            None => 0,
+        }
+    }
+
+    fn range(&mut self, lo: u32, hi: u32) -> u32 {
+        lo + self.u8() as u32 % (hi - lo + 1)
+    }
+}
+
+/// Vertices on a coarse grid (coincident points are common), some on a
+/// circle (a polygon face), scaled by a power of ten from -30 to 30.
+fn obj(b: &mut Bytes) -> String {
+    let mut s = String::new();
+    let exponent = b.range(0, 60) as i32 - 30;
+    let scale = 10f64.powi(exponent);
+    let n = b.range(3, 24);
+    let ring = b.range(3, 300);
+    for _ in 0..n {
+        let [x, y, z] = [0; 3].map(|_: i32| (b.u8() as i8) as f64 / 16.0 * scale);
+        writeln!(s, "v {x:e} {y:e} {z:e}").unwrap();
+    }
+    let bump = (b.u8() as i8) as f64 / 64.0;
+    for i in 0..ring {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(ring);
+        let z = bump * (3.0 * a).sin();
+        writeln!(s, "v {:e} {:e} {:e}", a.cos() * scale, a.sin() * scale, z * scale).unwrap();
+    }
+    let total = n + ring;
+    let faces = b.range(1, 24);
+    for _ in 0..faces {
+        match b.u8() % 4 {
+            // The ring as one polygon, either way round.
+            0 => {
+                let forward = b.u8() % 2 == 0;
+                s.push('f');
+                for i in 0..ring {
+                    let k = if forward { i } else { ring - 1 - i };
+                    write!(s, " {}", n + 1 + k).unwrap();
+                }
+                s.push('\n');
+            }
+            // A fan from one grid vertex over the ring (a cone's apex).
+            1 => {
+                let apex = b.range(1, n);
+                for i in 0..ring {
+                    let (p, q) = (n + 1 + i, n + 1 + (i + 1) % ring);
+                    writeln!(s, "f {apex} {p} {q}").unwrap();
+                }
+            }
+            // Small polygons of arbitrary vertices (repeats allowed).
+            _ => {
+                let k = b.range(3, 8);
+                s.push('f');
+                for _ in 0..k {
+                    write!(s, " {}", b.range(1, total)).unwrap();
+                }
+                s.push('\n');
+            }
+        }
+    }
+    s
+}
+
+fuzz_target!(|data: &[u8]| {
+    let mut b = Bytes(data);
+    let text = obj(&mut b);
+    let limits = swm::Limits {
+        max_vertices: 1 << 16,
+        max_faces: 1 << 16,
+        max_alloc_bytes: 64 << 20,
+        ..swm::Limits::default()
+    };
+    let Ok(mesh) = swm::io::read_mesh_bytes(text.as_bytes(), swm::io::MeshFormat::Obj, &limits)
+    else {
+        return;
+    };
+    let target = match b.u8() % 2 {
+        0 => SwingTarget::BitsPerVertex(f64::from(b.range(1, 16))),
+        _ => SwingTarget::Bytes(u64::from(b.range(40, 2000))),
+    };
+    let options = EncodeOptions {
+        mode: EncodeMode::Swing {
+            target,
+            angle_bits: 8,
+            max_bytes: None,
+        },
+        limits: EncodeLimits {
+            max_work: 5_000_000,
+            max_memory_bytes: 256 << 20,
+            max_milliseconds: None,
+        },
+        ..Default::default()
+    };
+    let Ok(encoded) = swm::encode(&mesh, &options) else {
+        return;
+    };
+    let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default())
+        .unwrap_or_else(|e| panic!("decode of an encoded file failed: {e}"));
+    decoded.validate().expect("decoded mesh is invalid");
+});
