@@ -112,6 +112,7 @@ pub fn rate_json(r: &swm::RateReport) -> Value {
         "reduced": r.reduced,
         "within_tolerance": r.within_tolerance,
         "work": r.work,
+        "peak_memory_bytes": r.peak_memory_bytes,
         "attempts": attempts,
     })
 }

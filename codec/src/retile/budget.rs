@@ -6,11 +6,11 @@
 //! [`Budget`] with an estimate of its memory. Two bounds apply:
 //! * the caller's [`EncodeLimits`], over the whole encode: passing one
 //!   ends the encode with a [`LimitError`];
-//! * a per-run bound, `RUN_STEPS_PER_ELEMENT` steps per corner of the
-//!   surface and per corner of the largest output the run may make: a run
-//!   beyond it is running away (the valence cap and the searches' own
-//!   radius bounds keep ordinary runs two orders of magnitude below), and
-//!   fails like a front that does not close.
+//! * a per-run bound, `RUN_STEPS_PER_ELEMENT` steps and
+//!   `RUN_BYTES_PER_ELEMENT` bytes per corner of the surface and per
+//!   corner of the largest output the run may make: a run beyond it is
+//!   running away (ordinary runs stay one to two orders of magnitude
+//!   below), and fails like a front that does not close.
 //!
 //! Counting never influences a decision of the retiler, so the bytes of
 //! a file do not depend on the limits, only whether it is written.
@@ -25,12 +25,19 @@ use std::time::Instant;
 /// 10,000-gon (BENCHMARKS.md, "Encoder work bounds"); the bound leaves
 /// two orders of magnitude.
 pub const RUN_STEPS_PER_ELEMENT: u64 = 2_000;
+/// Bytes per element a run's surface and output may hold. Measured: 70
+/// (horse at 8 b/v) to 180 (woody at 4 b/v) on the corpus, 340-500 on a
+/// fanned 10,000-gon and a double fan of valence 2,000, and 5,000 on a
+/// double fan of valence 20,000 at 2 b/v, whose fine rim every path
+/// splits again and again (BENCHMARKS.md, "Encoder work bounds").
+pub const RUN_BYTES_PER_ELEMENT: u64 = 1_000;
 
 /// The running account of one encode.
 #[derive(Debug)]
 pub struct Budget {
     limits: EncodeLimits,
     used: Cell<u64>,
+    peak: Cell<u64>,
     start: Instant,
     exceeded: Cell<Option<(Limited, u64, u64)>>,
 }
@@ -40,6 +47,7 @@ impl Budget {
         Budget {
             limits,
             used: Cell::new(0),
+            peak: Cell::new(0),
             start: Instant::now(),
             exceeded: Cell::new(None),
         }
@@ -63,6 +71,7 @@ impl Budget {
         }
         let used = self.used.get().saturating_add(steps);
         self.used.set(used);
+        self.peak.set(self.peak.get().max(memory));
         let over = if used > self.limits.max_work {
             Some((Limited::Work, used, self.limits.max_work))
         } else if memory > self.limits.max_memory_bytes {
@@ -80,6 +89,11 @@ impl Budget {
     /// Work charged so far.
     pub fn used(&self) -> u64 {
         self.used.get()
+    }
+
+    /// The most memory any charge reported.
+    pub fn peak_memory(&self) -> u64 {
+        self.peak.get()
     }
 
     /// The limit that was passed, if any.

@@ -133,6 +133,8 @@ fn retile_piece(
         flood: region::Flood::default(),
         run_steps: budget::RUN_STEPS_PER_ELEMENT
             .saturating_mul(3 * (mesh.face_count() + cap) as u64),
+        run_bytes: budget::RUN_BYTES_PER_ELEMENT
+            .saturating_mul(3 * (mesh.face_count() + cap) as u64),
         budget,
         cap,
     };
@@ -197,6 +199,8 @@ struct Retiler<'b> {
     cap: usize,
     /// Steps this run may still take before it counts as running away.
     run_steps: u64,
+    /// Bytes this run may hold before it counts as running away.
+    run_bytes: u64,
     budget: &'b Budget,
 }
 
@@ -510,7 +514,11 @@ impl Retiler<'_> {
     fn account(&mut self) -> Result<(), Failure> {
         let steps = self.s.work.replace(0);
         self.run_steps = self.run_steps.checked_sub(steps).ok_or(Failure::Runaway)?;
-        if self.budget.charge(steps, self.memory()) {
+        let memory = self.memory();
+        if memory > self.run_bytes {
+            return Err(Failure::Runaway);
+        }
+        if self.budget.charge(steps, memory) {
             Ok(())
         } else {
             Err(Failure::Limit)

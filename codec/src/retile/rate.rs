@@ -54,6 +54,9 @@ pub struct RateReport {
     /// Steps of retiling work over every run (what
     /// [`EncodeLimits::max_work`](crate::EncodeLimits) caps).
     pub work: u64,
+    /// The most bytes a run's working surface and output held (what
+    /// [`EncodeLimits::max_memory_bytes`](crate::EncodeLimits) caps).
+    pub peak_memory_bytes: u64,
 }
 
 /// A finished encoding.
@@ -123,6 +126,7 @@ pub fn at_length(pieces: &[Piece], l: f64, bits: u8, budget: &Budget) -> Result<
                         reduced: next != l,
                         within_tolerance: true,
                         work: budget.used(),
+                        peak_memory_bytes: budget.peak_memory(),
                         attempts,
                     },
                 });
@@ -249,6 +253,7 @@ pub fn at_size(
             reduced: first_failed,
             within_tolerance: (size - target as f64).abs() <= TOLERANCE * target as f64,
             work: budget.used(),
+            peak_memory_bytes: budget.peak_memory(),
             attempts,
         },
         bytes,
