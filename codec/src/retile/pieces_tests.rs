@@ -337,3 +337,37 @@ fn probe() {
         }
     }
 }
+
+/// A non-flat 70,000-gon fanned from its vertex 0 (as the OBJ reader
+/// triangulates it): its patch is one ring fanned to a centre on the loop
+/// itself, so the centre's rebuild puts new vertices next to loop
+/// vertices whose fans are rebuilt after it (this panicked once, on a
+/// vertex without an incidence list). The closed piece comes out a
+/// manifold sphere of bounded valence.
+#[test]
+fn a_huge_wavy_polygon_closes_into_a_piece_of_bounded_valence() {
+    let n = 70_000u32;
+    let positions: Vec<[f32; 3]> = (0..n)
+        .map(|i| {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            [a.cos(), a.sin(), 0.1 * (7.0 * a).sin()]
+        })
+        .collect();
+    let triangles: Vec<[u32; 3]> = (1..n - 1).map(|i| [0, i, i + 1]).collect();
+    let m = TriMesh::new(positions, triangles);
+    let p = prepared(&m);
+    assert_eq!(p.len(), 1);
+    let mut valence = vec![0usize; p[0].mesh.vertex_count()];
+    p[0].mesh
+        .triangles
+        .iter()
+        .flatten()
+        .for_each(|&x| valence[x as usize] += 1);
+    assert!(
+        valence.iter().all(|&d| d <= 64),
+        "{:?}",
+        valence.iter().max()
+    );
+    assert_eq!(p[0].genus, 0);
+    assert!(p[0].table.opposites().iter().all(|o| o.is_some()));
+}

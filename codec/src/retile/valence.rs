@@ -316,8 +316,12 @@ fn rebuild_open(
         ids.push(f);
     }
     let old: std::collections::HashSet<u32> = old.into_iter().collect();
+    // Vertices made by an earlier rebuild (they can be on this fan's rim)
+    // have no list: they are never capped.
     for &x in rim.iter().chain([&v]) {
-        faces_at[x as usize].retain(|f| !old.contains(f));
+        if let Some(list) = faces_at.get_mut(x as usize) {
+            list.retain(|f| !old.contains(f));
+        }
     }
     for &f in &ids {
         for x in mesh.triangles[f as usize] {
