@@ -235,6 +235,13 @@ fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
         mesh.triangles
             .push([a + disk_vertices, c + disk_vertices, b + disk_vertices]);
     }
+    let copy: Vec<u32> = ring.iter().map(|&v| v + disk_vertices).collect();
+    if rows < 4 * MAX_RINGS {
+        // The budget cut the rows: the wall would be slivers every path
+        // across it crosses one by one.
+        graded_wall(mesh, ring, &copy, outer, normal, depth);
+        return;
+    }
     // Wall rows: row 0 is the loop, row `rows` the copy's loop.
     let mut ids: Vec<Vec<u32>> = vec![ring.to_vec()];
     for k in 1..rows {
@@ -249,13 +256,90 @@ fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
                 .collect(),
         );
     }
-    ids.push(ring.iter().map(|&v| v + disk_vertices).collect());
+    ids.push(copy);
     for k in 0..rows {
         let (o, inn) = (&ids[k], &ids[k + 1]);
         for i in 0..n {
             let j = (i + 1) % n;
             mesh.triangles.push([o[j], o[i], inn[i]]);
             mesh.triangles.push([o[j], inn[i], inn[j]]);
+        }
+    }
+}
+
+/// Fewest loop vertices at the middle of a graded wall.
+const WALL_WAIST: usize = 64;
+
+/// The wall of a shell whose loop is too long for full rows (more than
+/// about 680 vertices): rows that halve the loop's vertex count down to
+/// the middle of the wall and double it back to the copy's loop, each as
+/// high as its vertices are apart, so the wall's triangles are about as
+/// high as wide and a path across the wall crosses a few of them, not
+/// one sliver per loop edge. Each halving keeps every other vertex (the
+/// last group spans three edges when the count is odd), as the fans of
+/// `valence` do.
+fn graded_wall(
+    mesh: &mut TriMesh,
+    ring: &[u32],
+    copy: &[u32],
+    outer: &[DVec3],
+    normal: DVec3,
+    depth: f64,
+) {
+    // Loop indices kept at each level, level 0 = all.
+    let mut levels: Vec<Vec<usize>> = vec![(0..ring.len()).collect()];
+    while levels[levels.len() - 1].len() / 2 >= WALL_WAIST {
+        let last = &levels[levels.len() - 1];
+        levels.push(
+            last.iter()
+                .step_by(2)
+                .take(last.len() / 2)
+                .copied()
+                .collect(),
+        );
+    }
+    let h = levels.len() - 1;
+    // Row j (0..=2h) sits at level min(j, 2h − j); its height above the
+    // next row grows as the level's spacing, 2^level.
+    let level = |j: usize| j.min(2 * h - j);
+    let weight = |j: usize| 2f64.powi(level(j).min(level(j + 1)) as i32);
+    let total: f64 = (0..2 * h).map(weight).sum();
+    let mut rows: Vec<Vec<u32>> = vec![ring.to_vec()];
+    let mut z = 0.0;
+    for j in 1..2 * h {
+        z += depth * weight(j - 1) / total;
+        let drop = normal * z;
+        rows.push(
+            levels[level(j)]
+                .iter()
+                .map(|&i| {
+                    mesh.positions.push((outer[i] - drop).as_vec3().to_array());
+                    mesh.positions.len() as u32 - 1
+                })
+                .collect(),
+        );
+    }
+    rows.push(copy.to_vec());
+    for j in 0..2 * h {
+        let (fine, coarse, down) = if level(j) < level(j + 1) {
+            (&rows[j], &rows[j + 1], true)
+        } else {
+            (&rows[j + 1], &rows[j], false)
+        };
+        let (n, m) = (fine.len(), coarse.len());
+        for g in 0..m {
+            let (p, q) = (coarse[g], coarse[(g + 1) % m]);
+            let end = if g + 1 == m { n } else { 2 * g + 2 };
+            // Seen from outside, the loop runs right to left on the
+            // upper row (as the full rows' [o_{i+1}, o_i, inner_i]).
+            for k in 2 * g..end {
+                let (a, b) = (fine[k], fine[(k + 1) % n]);
+                mesh.triangles
+                    .push(if down { [p, b, a] } else { [p, a, b] });
+            }
+            let e = fine[end % n];
+            mesh.triangles
+                .push(if down { [p, q, e] } else { [p, e, q] });
         }
     }
 }

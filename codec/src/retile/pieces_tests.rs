@@ -371,3 +371,41 @@ fn a_huge_wavy_polygon_closes_into_a_piece_of_bounded_valence() {
     assert_eq!(p[0].genus, 0);
     assert!(p[0].table.opposites().iter().all(|o| o.is_some()));
 }
+
+/// A flat 3,000-gon fanned from vertex 0: a flat disk, closed by a shell
+/// whose wall is graded (its loop is too long for full rows). The piece
+/// is a closed manifold sphere with every wall face about as high as
+/// wide, not one sliver per loop edge.
+#[test]
+fn a_long_flat_loop_gets_a_graded_wall() {
+    let n = 3000u32;
+    let positions: Vec<[f32; 3]> = (0..n)
+        .map(|i| {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            [a.cos(), a.sin(), 0.0]
+        })
+        .collect();
+    let triangles: Vec<[u32; 3]> = (1..n - 1).map(|i| [0, i, i + 1]).collect();
+    let p = prepared(&TriMesh::new(positions, triangles));
+    assert_eq!((p.len(), p[0].genus), (1, 0));
+    assert!(p[0].table.opposites().iter().all(|o| o.is_some()));
+    // Wall faces: neither on the disk (z = 0) nor on its copy.
+    let m = &p[0].mesh;
+    let depth = m.positions.iter().map(|q| q[2]).fold(0f32, f32::min);
+    let wall: Vec<[DVec3; 3]> = m
+        .triangles
+        .iter()
+        .map(|t| t.map(|x| DVec3::from(m.positions[x as usize].map(f64::from))))
+        .filter(|t| !t.iter().all(|q| q.z == 0.0) && !t.iter().all(|q| q.z as f32 == depth))
+        .collect();
+    assert!(wall.len() < 6 * n as usize, "{} wall faces", wall.len());
+    // Outward: the wall's normals point away from the axis.
+    for t in &wall {
+        let c = (t[0] + t[1] + t[2]) / 3.0;
+        let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+        assert!(
+            normal.dot(DVec3::new(c.x, c.y, 0.0)) > 0.0,
+            "a wall face turned inward"
+        );
+    }
+}
