@@ -222,7 +222,8 @@ fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
     let lp = Loop::new(mesh, ring);
     let (n, outer) = (ring.len(), &lp.outer);
     let depth = SHELL * lp.radius;
-    let rows = lp.steps(depth, (4 * MAX_RINGS).min(PATCH_VERTICES / n).max(1));
+    let budget = (4 * MAX_RINGS).min(PATCH_VERTICES / n).max(1);
+    let rows = lp.steps(depth, 4 * MAX_RINGS);
     let disk_vertices = mesh.vertex_count() as u32;
     let disk_faces = mesh.face_count();
     // The copy: vertex v becomes v + disk_vertices.
@@ -236,9 +237,9 @@ fn add_shell(mesh: &mut TriMesh, ring: &[u32], normal: DVec3) {
             .push([a + disk_vertices, c + disk_vertices, b + disk_vertices]);
     }
     let copy: Vec<u32> = ring.iter().map(|&v| v + disk_vertices).collect();
-    if rows < 4 * MAX_RINGS {
-        // The budget cut the rows: the wall would be slivers every path
-        // across it crosses one by one.
+    if rows > budget {
+        // The budget cuts the rows: full rows would be slivers that every
+        // path across the wall crosses one by one.
         graded_wall(mesh, ring, &copy, outer, normal, depth);
         return;
     }
