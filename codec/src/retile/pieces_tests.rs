@@ -3,6 +3,7 @@
 use super::compose::{retile_pieces, PieceOutcome};
 use super::fill::pieces;
 use super::tests::{retiled, sphere};
+use super::valence::tests::{fanned_polygon, max_valence};
 use super::RetileOptions;
 use crate::{CornerTable, TriMesh};
 use glam::DVec3;
@@ -346,28 +347,10 @@ fn probe() {
 /// manifold sphere of bounded valence.
 #[test]
 fn a_huge_wavy_polygon_closes_into_a_piece_of_bounded_valence() {
-    let n = 70_000u32;
-    let positions: Vec<[f32; 3]> = (0..n)
-        .map(|i| {
-            let a = std::f32::consts::TAU * i as f32 / n as f32;
-            [a.cos(), a.sin(), 0.1 * (7.0 * a).sin()]
-        })
-        .collect();
-    let triangles: Vec<[u32; 3]> = (1..n - 1).map(|i| [0, i, i + 1]).collect();
-    let m = TriMesh::new(positions, triangles);
-    let p = prepared(&m);
+    let p = prepared(&fanned_polygon(70_000, 0.1));
     assert_eq!(p.len(), 1);
-    let mut valence = vec![0usize; p[0].mesh.vertex_count()];
-    p[0].mesh
-        .triangles
-        .iter()
-        .flatten()
-        .for_each(|&x| valence[x as usize] += 1);
-    assert!(
-        valence.iter().all(|&d| d <= 64),
-        "{:?}",
-        valence.iter().max()
-    );
+    let valence = max_valence(&p[0].mesh);
+    assert!(valence <= 64, "{valence}");
     assert_eq!(p[0].genus, 0);
     assert!(p[0].table.opposites().iter().all(|o| o.is_some()));
 }
@@ -379,14 +362,7 @@ fn a_huge_wavy_polygon_closes_into_a_piece_of_bounded_valence() {
 #[test]
 fn a_long_flat_loop_gets_a_graded_wall() {
     let n = 3000u32;
-    let positions: Vec<[f32; 3]> = (0..n)
-        .map(|i| {
-            let a = std::f32::consts::TAU * i as f32 / n as f32;
-            [a.cos(), a.sin(), 0.0]
-        })
-        .collect();
-    let triangles: Vec<[u32; 3]> = (1..n - 1).map(|i| [0, i, i + 1]).collect();
-    let p = prepared(&TriMesh::new(positions, triangles));
+    let p = prepared(&fanned_polygon(n, 0.0));
     assert_eq!((p.len(), p[0].genus), (1, 0));
     assert!(p[0].table.opposites().iter().all(|o| o.is_some()));
     // Wall faces: neither on the disk (z = 0) nor on its copy.

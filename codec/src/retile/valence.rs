@@ -424,17 +424,33 @@ fn rebuild(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::CornerTable;
+
+    /// `n` points on the unit circle, at height `wave`·sin 7a.
+    pub(in crate::retile) fn circle(n: u32, wave: f32) -> Vec<[f32; 3]> {
+        (0..n)
+            .map(|i| {
+                let a = std::f32::consts::TAU * i as f32 / n as f32;
+                [a.cos(), a.sin(), wave * (7.0 * a).sin()]
+            })
+            .collect()
+    }
+
+    /// The n-gon on [`circle`], fanned from its vertex 0 as the mesh
+    /// readers triangulate a polygon face.
+    pub(in crate::retile) fn fanned_polygon(n: u32, wave: f32) -> TriMesh {
+        let triangles = (1..n - 1).map(|i| [0, i, i + 1]).collect();
+        TriMesh::new(circle(n, wave), triangles)
+    }
 
     /// A closed double cone: apexes 0 and 1 over a ring of `n` vertices.
     fn double_fan(n: u32) -> TriMesh {
         let mut positions = vec![[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+        positions.extend(circle(n, 0.0));
         let mut triangles = Vec::new();
         for i in 0..n {
-            let a = std::f32::consts::TAU * i as f32 / n as f32;
-            positions.push([a.cos(), a.sin(), 0.0]);
             let (p, q) = (2 + i, 2 + (i + 1) % n);
             triangles.push([0, p, q]);
             triangles.push([1, q, p]);
@@ -442,7 +458,7 @@ mod tests {
         TriMesh::new(positions, triangles)
     }
 
-    fn max_valence(m: &TriMesh) -> usize {
+    pub(in crate::retile) fn max_valence(m: &TriMesh) -> usize {
         let mut valence = vec![0usize; m.vertex_count()];
         m.triangles
             .iter()
@@ -496,11 +512,7 @@ mod tests {
         // A polygon fanned from its centre (vertex n) and closed by a cone
         // under it (apex n + 1); top faces labelled 0, the cone 1.
         let n = 500u32;
-        let mut positions = Vec::new();
-        for i in 0..n {
-            let a = std::f32::consts::TAU * i as f32 / n as f32;
-            positions.push([a.cos(), a.sin(), 0.0]);
-        }
+        let mut positions = circle(n, 0.0);
         positions.push([0.0, 0.0, 0.0]);
         positions.push([0.0, 0.0, -0.5]);
         let mut triangles = Vec::new();
@@ -538,20 +550,11 @@ mod tests {
         // An n-gon fanned from its vertex 0 (a reader's triangulation),
         // closed by a cone under it.
         let n = 2000u32;
-        let mut positions = Vec::new();
+        let mut m = fanned_polygon(n, 0.0);
+        m.positions.push([0.0, 0.0, -0.5]);
         for i in 0..n {
-            let a = std::f32::consts::TAU * i as f32 / n as f32;
-            positions.push([a.cos(), a.sin(), 0.0]);
+            m.triangles.push([n, (i + 1) % n, i]);
         }
-        positions.push([0.0, 0.0, -0.5]);
-        let mut triangles = Vec::new();
-        for i in 1..n - 1 {
-            triangles.push([0, i, i + 1]);
-        }
-        for i in 0..n {
-            triangles.push([n, (i + 1) % n, i]);
-        }
-        let mut m = TriMesh::new(positions, triangles);
         let polygon = n as usize - 2;
         let area = |m: &TriMesh, f: usize| m.face_cross(crate::FaceId(f as u32)).length() / 2.0;
         let before: f64 = (0..polygon).map(|f| area(&m, f)).sum();
