@@ -12,25 +12,7 @@
 use libfuzzer_sys::fuzz_target;
 use std::fmt::Write as _;
 use swm::{DecodeOptions, EncodeLimits, EncodeMode, EncodeOptions, SwingTarget};
-
-/// Reads bytes front to back; zeros once the input runs out.
-struct Bytes<'a>(&'a [u8]);
-
-impl Bytes<'_> {
-    fn u8(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((&b, rest)) => {
-                self.0 = rest;
-                b
-            }
-            None => 0,
-        }
-    }
-
-    fn range(&mut self, lo: u32, hi: u32) -> u32 {
-        lo + self.u8() as u32 % (hi - lo + 1)
-    }
-}
+use swm_fuzz::Bytes;
 
 /// Vertices on a coarse grid (coincident points are common), some on a
 /// circle (a polygon face), scaled by a power of ten from -30 to 30.
@@ -48,7 +30,14 @@ fn obj(b: &mut Bytes) -> String {
     for i in 0..ring {
         let a = std::f64::consts::TAU * f64::from(i) / f64::from(ring);
         let z = bump * (3.0 * a).sin();
-        writeln!(s, "v {:e} {:e} {:e}", a.cos() * scale, a.sin() * scale, z * scale).unwrap();
+        writeln!(
+            s,
+            "v {:e} {:e} {:e}",
+            a.cos() * scale,
+            a.sin() * scale,
+            z * scale
+        )
+        .unwrap();
     }
     let total = n + ring;
     let faces = b.range(1, 24);

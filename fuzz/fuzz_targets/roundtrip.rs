@@ -14,27 +14,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use swm::{DecodeOptions, EncodeMode, EncodeOptions, SwingTarget, TriMesh};
-
-/// Reads bytes front to back; zeros once the input runs out, so every
-/// input builds some mesh.
-struct Bytes<'a>(&'a [u8]);
-
-impl Bytes<'_> {
-    fn u8(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((&b, rest)) => {
-                self.0 = rest;
-                b
-            }
-            None => 0,
-        }
-    }
-
-    /// A value in `lo..=hi`.
-    fn range(&mut self, lo: u32, hi: u32) -> u32 {
-        lo + self.u8() as u32 % (hi - lo + 1)
-    }
-}
+use swm_fuzz::Bytes;
 
 fn mesh(b: &mut Bytes) -> TriMesh {
     let mut m = match b.u8() % 6 {

@@ -1,4 +1,5 @@
-//! What the mesh-reader fuzz targets share: one check, four formats.
+//! What the fuzz targets share: the mesh readers' one check (four
+//! formats), and the byte reader the encoder targets build meshes with.
 
 use swm::io::MeshFormat;
 
@@ -16,5 +17,26 @@ pub fn check_reader(data: &[u8], format: MeshFormat) {
     if let Ok(mesh) = swm::io::read_mesh_bytes(data, format, &limits) {
         // The readers promise indices in range and finite positions.
         mesh.validate().expect("reader returned an invalid mesh");
+    }
+}
+
+/// Reads a fuzz input front to back; zeros once it runs out, so every
+/// input builds some mesh.
+pub struct Bytes<'a>(pub &'a [u8]);
+
+impl Bytes<'_> {
+    pub fn u8(&mut self) -> u8 {
+        match self.0.split_first() {
+            Some((&b, rest)) => {
+                self.0 = rest;
+                b
+            }
+            None => 0,
+        }
+    }
+
+    /// A value in `lo..=hi`.
+    pub fn range(&mut self, lo: u32, hi: u32) -> u32 {
+        lo + self.u8() as u32 % (hi - lo + 1)
     }
 }
