@@ -38,6 +38,14 @@ pub enum EncodeMode {
 }
 
 #[cfg(feature = "encoder")]
+/// The angle bits K that `swm encode` and the Python `encode` use when
+/// none is given. Measured with approximating tips on bunny and horse at
+/// 0.5-8 b/v (BENCHMARKS.md, issue 19): at the same file size 6 bits give
+/// the lowest L2 at every rate but bunny's lowest two, where 5 is within
+/// a few percent; 8 bits cost 30-45% more L2 (fewer, finer triangles).
+pub const DEFAULT_ANGLE_BITS: u8 = 6;
+
+#[cfg(feature = "encoder")]
 /// What the SwingWrapper encoder aims at; the edge length L follows.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -68,6 +76,31 @@ pub struct EncodeOptions {
     /// Caps on the encoder's work, memory and time. Default: see
     /// [`EncodeLimits`].
     pub limits: crate::EncodeLimits,
+    /// Encoder-side choices of the SwingWrapper mode. Default: all on.
+    pub swing: SwingTuning,
+}
+
+#[cfg(feature = "encoder")]
+/// Choices of the SwingWrapper encoder that the decoder never sees (the
+/// file format does not change with them). Each is on by default and can
+/// be switched off to measure what it buys (BENCHMARKS.md, issue 19's
+/// ablation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SwingTuning {
+    /// Aim each new vertex off the surface by the offset that cancels the
+    /// mean chord error of the triangles around it (about H·L²/8 along
+    /// the normal, H the mean curvature at the scale of L), rather than
+    /// on the surface as the thesis does. Default `true`.
+    pub approximate_tips: bool,
+}
+
+#[cfg(feature = "encoder")]
+impl Default for SwingTuning {
+    fn default() -> Self {
+        SwingTuning {
+            approximate_tips: true,
+        }
+    }
 }
 
 /// Options for [`decode`].
@@ -179,18 +212,22 @@ fn encode_swing(
     let cleaned = crate::clean(mesh, &options.clean)?;
     let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     let budget = crate::retile::Budget::new(options.limits);
+    let knobs = rate::Knobs {
+        angle_bits,
+        approximate_tips: options.swing.approximate_tips,
+    };
     let bytes_for = |bpv: f64| (bpv * mesh.vertex_count() as f64 / 8.0).round() as u64;
     let chosen = match target {
         SwingTarget::EdgeLength(l) => {
-            rate::at_length(&pieces, positive("edge length", l)?, angle_bits, &budget)?
+            rate::at_length(&pieces, positive("edge length", l)?, knobs, &budget)?
         }
         SwingTarget::Bytes(b) => {
             let b = positive("size", b as f64)? as u64;
-            rate::at_size(&pieces, b, max_bytes, angle_bits, &budget)?
+            rate::at_size(&pieces, b, max_bytes, knobs, &budget)?
         }
         SwingTarget::BitsPerVertex(bpv) => {
             let b = bytes_for(positive("bits per vertex", bpv)?).max(1);
-            rate::at_size(&pieces, b, max_bytes, angle_bits, &budget)?
+            rate::at_size(&pieces, b, max_bytes, knobs, &budget)?
         }
     };
     if let Some(cap) = max_bytes {

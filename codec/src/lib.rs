@@ -53,7 +53,7 @@ pub use api::{decode, inspect, DecodeOptions, FileInfo, LosslessStats, SwingStat
 #[cfg(feature = "encoder")]
 pub use api::{
     encode, Attempt, EncodeMode, EncodeOptions, EncodeStats, Encoded, PieceOutcome, PieceReport,
-    RateReport, SwingTarget,
+    RateReport, SwingTarget, SwingTuning, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::Mode;

@@ -114,7 +114,7 @@ fn with_value(e: swm::Error, name: &str, value: i64) -> swm::Error {
 /// documented wrapper.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
-                    mode="swing", max_size=None, angle_bits=8, qp=12))]
+                    mode="swing", max_size=None, angle_bits=6, qp=12))]
 #[allow(clippy::too_many_arguments)]
 fn encode<'py>(
     py: Python<'py>,

@@ -310,7 +310,7 @@ def _parser() -> argparse.ArgumentParser:
     target.add_argument("--bpv", type=float, help="swing: bits per input vertex (default 2)")
     target.add_argument("--size", type=int, help="swing: bytes per file")
     target.add_argument("--edge-length", type=float, help="swing: the edge length L")
-    p.add_argument("--angle-bits", type=int, default=8, help="swing: bits per dihedral angle")
+    p.add_argument("--angle-bits", type=int, default=6, help="swing: bits per dihedral angle")
     p.add_argument("--max-size", type=int, help="swing: never more bytes than this")
     p.add_argument("--qp", type=int, default=12, help="lossless: bits per coordinate")
     p.add_argument(

@@ -290,8 +290,9 @@ impl Retiler<'_> {
             || (left && self.folds([v(f.next(gl)), v(gl), v(wn)]))
     }
 
-    /// A C: quantize V's dihedral angle and continue from X̂. `None` when
-    /// V cannot anchor a triangloid of this gate.
+    /// A C: quantize the dihedral angle of V (moved by its curvature
+    /// offset when tips approximate) and continue from X̂. `None` when V
+    /// cannot anchor a triangloid of this gate.
     fn try_c(&mut self, gr: u32, gl: u32, tip: u32, v: DVec3, f: u32, id: u32) -> Option<Gate> {
         let (vl, vr) = (self.front.vertex(gl), self.front.vertex(gr));
         // Splitting M at V changes no triangloid, so it needs no undo.
@@ -305,7 +306,12 @@ impl Retiler<'_> {
             self.xhat[tip as usize].to_array(),
             self.radius,
         );
-        let q = quantize(self.table.bits(), frame.angle(v.to_array()));
+        let aim = if self.approximate {
+            v + super::offset::offset(&self.s, f, v, self.l, &mut self.offsets)
+        } else {
+            v
+        };
+        let q = quantize(self.table.bits(), frame.angle(aim.to_array()));
         let xhat = DVec3::from_array(frame.point(&self.table, q));
         let x = self.add_vertex(xhat, m);
         if !self.attempt([x, vl, vr], &[(x, vl), (vr, x)], id) {

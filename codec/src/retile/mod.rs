@@ -8,7 +8,10 @@
 //! meets M, on the side farther from T. V snaps to a border vertex W
 //! within L/2 along the surface (always, if V fell in a claimed
 //! triangloid), which makes the triangle an L, R, E or S; otherwise it is
-//! a C and V's dihedral angle is quantized. Each M′ triangle claims the
+//! a C and V's dihedral angle is quantized, aimed off M by the offset
+//! that cancels the mean chord error there (`offset`, beyond the thesis:
+//! M′ then approximates M instead of interpolating it; issue 19). Each
+//! M′ triangle claims the
 //! region of M bounded by three approximate geodesics (its triangloid).
 //!
 //! Invariants:
@@ -34,6 +37,7 @@ pub mod fill;
 mod front;
 mod gate;
 mod mask;
+mod offset;
 mod path;
 pub mod rate;
 mod region;
@@ -72,6 +76,10 @@ pub struct RetileOptions {
     /// (0 = the flattest). A run that failed is an independent new trial
     /// from another start. Default 0.
     pub start_rank: u32,
+    /// Aim each C tip off M by the offset that cancels the mean chord
+    /// error of its triangles (`offset`), instead of at M itself as the
+    /// thesis does. Default `true`.
+    pub approximate_tips: bool,
 }
 
 pub use crate::error::RetileFailure as Failure;
@@ -131,6 +139,8 @@ fn retile_piece(
         codes: Vec::new(),
         scratch: path::Scratch::default(),
         flood: region::Flood::default(),
+        approximate: opt.approximate_tips,
+        offsets: offset::Scratch::default(),
         run_steps: budget::RUN_STEPS_PER_ELEMENT
             .saturating_mul(3 * (mesh.face_count() + cap) as u64),
         run_bytes: budget::RUN_BYTES_PER_ELEMENT
@@ -196,6 +206,9 @@ struct Retiler<'b> {
     codes: Vec<u32>,
     scratch: path::Scratch,
     flood: region::Flood,
+    /// Aim C tips off M by the curvature offset (`offset`).
+    approximate: bool,
+    offsets: offset::Scratch,
     cap: usize,
     /// Steps this run may still take before it counts as running away.
     run_steps: u64,

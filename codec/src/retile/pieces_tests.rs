@@ -14,6 +14,7 @@ fn options(l: f64) -> RetileOptions {
         angle_bits: 8,
         start_vertex: None,
         start_rank: 0,
+        approximate_tips: true,
     }
 }
 

@@ -59,6 +59,15 @@ pub struct RateReport {
     pub peak_memory_bytes: u64,
 }
 
+/// What every run of one encode shares besides L.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Knobs {
+    /// Bits per dihedral angle K.
+    pub angle_bits: u8,
+    /// [`RetileOptions::approximate_tips`].
+    pub approximate_tips: bool,
+}
+
 /// A finished encoding.
 pub struct Chosen {
     pub bytes: Vec<u8>,
@@ -75,15 +84,16 @@ type Run = (Vec<u8>, SwingStats, Vec<PieceReport>);
 fn run(
     pieces: &[Piece],
     l: f64,
-    bits: u8,
+    knobs: Knobs,
     start_rank: u32,
     budget: &Budget,
 ) -> Result<Result<Run, Failure>, Error> {
     let opt = RetileOptions {
         edge_length: l,
-        angle_bits: bits,
+        angle_bits: knobs.angle_bits,
         start_vertex: None,
         start_rank,
+        approximate_tips: knobs.approximate_tips,
     };
     match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {
@@ -105,12 +115,12 @@ fn run(
 
 /// Encodes at the given L; if four runs from different start vertices
 /// fail, at the first L below it, in steps of 2%, where one works.
-pub fn at_length(pieces: &[Piece], l: f64, bits: u8, budget: &Budget) -> Result<Chosen, Error> {
+pub fn at_length(pieces: &[Piece], l: f64, knobs: Knobs, budget: &Budget) -> Result<Chosen, Error> {
     let mut attempts = Vec::new();
     let mut next = l;
     let mut fails = 0u32;
     for _ in 0..MAX_RUNS {
-        match run(pieces, next, bits, fails % 4, budget)? {
+        match run(pieces, next, knobs, fails % 4, budget)? {
             Ok((bytes, stats, report)) => {
                 attempts.push(Attempt {
                     edge_length: next,
@@ -151,7 +161,7 @@ pub fn at_size(
     pieces: &[Piece],
     target: u64,
     max_bytes: Option<u64>,
-    bits: u8,
+    knobs: Knobs,
     budget: &Budget,
 ) -> Result<Chosen, Error> {
     // A cap below the target is the real target.
@@ -188,7 +198,7 @@ pub fn at_size(
     let mut fails = 0u32;
     let mut failing_from: Option<f64> = None;
     for _ in 0..MAX_RUNS {
-        match run(pieces, l, bits, fails, budget)? {
+        match run(pieces, l, knobs, fails, budget)? {
             Ok(done) => {
                 fails = 0;
                 failing_from = None;

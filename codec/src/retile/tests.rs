@@ -69,6 +69,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             angle_bits: 8,
             start_vertex: None,
             start_rank: 0,
+            approximate_tips: true,
         },
     )
 }
@@ -190,6 +191,7 @@ fn probe() {
                     .ok()
                     .map(|s| s.parse().unwrap()),
                 start_rank: std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap()),
+                approximate_tips: true,
             },
         );
         let dt = t0.elapsed().as_secs_f64();
@@ -261,13 +263,19 @@ fn decoding_reproduces_the_retiled_mesh_exactly() {
     }
 }
 
+const KNOBS: rate::Knobs = rate::Knobs {
+    angle_bits: 8,
+    approximate_tips: true,
+};
+
 #[test]
 fn rate_control_lands_within_three_percent_and_under_the_cap() {
     let m = ellipsoid(5);
     let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
     let pieces = fill::pieces(&m, &table).unwrap();
     for target in [1500u64, 4000] {
-        let chosen = rate::at_size(&pieces, target, None, 8, &super::Budget::unlimited()).unwrap();
+        let chosen =
+            rate::at_size(&pieces, target, None, KNOBS, &super::Budget::unlimited()).unwrap();
         let size = chosen.bytes.len() as f64;
         assert!(chosen.report.within_tolerance);
         assert!(
@@ -276,7 +284,13 @@ fn rate_control_lands_within_three_percent_and_under_the_cap() {
         );
         // A cap just below what the free search found is still honoured.
         let cap = chosen.bytes.len() as u64 - 1;
-        match rate::at_size(&pieces, target, Some(cap), 8, &super::Budget::unlimited()) {
+        match rate::at_size(
+            &pieces,
+            target,
+            Some(cap),
+            KNOBS,
+            &super::Budget::unlimited(),
+        ) {
             Ok(c) => assert!(c.bytes.len() as u64 <= cap),
             Err(e) => assert!(matches!(e, crate::Error::Retile(_)), "{e}"),
         }

@@ -30,7 +30,7 @@ pub struct Case {
     lossless_sizes: Mutex<HashMap<u8, u64>>,
     /// SwingWrapper files by (byte budget, angle bits): the swing
     /// configurations differ only in how they decode the same file.
-    swing_files: Mutex<HashMap<(u64, u8), SwingCell>>,
+    swing_files: Mutex<HashMap<(u64, swm::SwingTuning), SwingCell>>,
     /// The welded input the baseline simplifies, and its sizes.
     pub simplifier: Simplifier,
 }
@@ -81,19 +81,19 @@ impl Case {
     }
 
     /// The SwingWrapper file of the whole mesh asked for `budget` bytes
-    /// (also its cap) at `bits` angle bits, encoded once per key: a job
-    /// that asks while another encodes waits for that result.
-    pub fn swing_file(&self, budget: u64, bits: u8) -> SwingCell {
+    /// (also its cap) with `tuning`, encoded once per key: a job that asks
+    /// while another encodes waits for that result.
+    pub fn swing_file(&self, budget: u64, tuning: swm::SwingTuning) -> SwingCell {
         let cell = Arc::clone(
             self.swing_files
                 .lock()
                 .expect("cache lock")
-                .entry((budget, bits))
+                .entry((budget, tuning))
                 .or_default(),
         );
         cell.get_or_init(|| {
             let start = Instant::now();
-            swm::encode(&self.mesh, &swing_options(budget, bits))
+            swm::encode(&self.mesh, &swing_options(budget, tuning))
                 .map(|e| (e.bytes, start.elapsed().as_secs_f64()))
         });
         cell
@@ -122,14 +122,16 @@ pub type SwingFile = Result<(Vec<u8>, f64), swm::Error>;
 pub type SwingCell = Arc<OnceLock<SwingFile>>;
 
 /// What the rd harness asks the SwingWrapper encoder for: `budget` bytes,
-/// never more.
-pub fn swing_options(budget: u64, bits: u8) -> swm::EncodeOptions {
+/// never more, with `swm encode`'s defaults otherwise (its angle bits,
+/// [`swm::DEFAULT_ANGLE_BITS`]) and the encoder-side choices `tuning`.
+pub fn swing_options(budget: u64, tuning: swm::SwingTuning) -> swm::EncodeOptions {
     swm::EncodeOptions {
         mode: swm::EncodeMode::Swing {
             target: swm::SwingTarget::Bytes(budget),
-            angle_bits: bits,
+            angle_bits: swm::DEFAULT_ANGLE_BITS,
             max_bytes: Some(budget),
         },
+        swing: tuning,
         ..Default::default()
     }
 }

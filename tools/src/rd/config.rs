@@ -10,7 +10,6 @@ use crate::rd::case::{encode, swing_options, Case};
 use crate::rd::table::{Coded, Outcome};
 use crate::CliError;
 use std::borrow::Cow;
-use std::sync::Arc;
 use std::time::Instant;
 use swm::TriMesh;
 
@@ -24,9 +23,13 @@ pub enum Config {
     /// (meshoptimizer) to the face count and qp (7..=14) with the lowest L2
     /// that fits.
     Baseline,
-    /// SwingWrapper at the default 8 angle bits, asked for the budget and
-    /// capped at it.
+    /// SwingWrapper as `swm encode` runs it by default, asked for the
+    /// budget and capped at it.
     Swing,
+    /// `swing` with every tip on the input surface, as the thesis places
+    /// them (the ablation of approximating tips).
+    #[value(name = "swing-on-surface")]
+    SwingOnSurface,
     /// The `swing` file decoded with EdgeSharpener (no extra bits).
     #[value(name = "swing+sharpen")]
     SwingSharpen,
@@ -35,19 +38,24 @@ pub enum Config {
     SwingSharpenBend,
 }
 
-/// Bits per dihedral angle the `swing` configuration tries at each rate
-/// (the row's `qp` column says which one won).
-pub const SWING_ANGLE_BITS: [u8; 2] = [5, 6];
-
 impl Config {
     /// Every configuration, in table order.
-    pub const ALL: [Config; 5] = [
+    pub const ALL: [Config; 6] = [
         Config::Lossless,
         Config::Baseline,
         Config::Swing,
+        Config::SwingOnSurface,
         Config::SwingSharpen,
         Config::SwingSharpenBend,
     ];
+
+    /// What `swm rd` runs without `--configs`: all but the ablation rows.
+    pub fn default_set() -> Vec<Config> {
+        Config::ALL
+            .into_iter()
+            .filter(|&c| c != Config::SwingOnSurface)
+            .collect()
+    }
 
     /// The name used on the command line and in tables.
     pub fn name(self) -> &'static str {
@@ -55,6 +63,7 @@ impl Config {
             Config::Lossless => "lossless",
             Config::Baseline => "baseline",
             Config::Swing => "swing",
+            Config::SwingOnSurface => "swing-on-surface",
             Config::SwingSharpen => "swing+sharpen",
             Config::SwingSharpenBend => "swing+sharpen+bend",
         }
@@ -86,7 +95,19 @@ impl Config {
             Config::Lossless => lossless(case, budget, samples)?,
             Config::Baseline => crate::rd::baseline::run(case, budget, samples)?,
             Config::Swing | Config::SwingSharpen | Config::SwingSharpenBend => {
-                return swing(case, budget, samples, &self.decode_options())
+                return swing(
+                    case,
+                    budget,
+                    samples,
+                    swm::SwingTuning::default(),
+                    &self.decode_options(),
+                )
+            }
+            Config::SwingOnSurface => {
+                let tuning = swm::SwingTuning {
+                    approximate_tips: false,
+                };
+                return swing(case, budget, samples, tuning, &self.decode_options());
             }
         };
         Ok(coded.map_or(Outcome::Infeasible, Outcome::Coded))
@@ -107,63 +128,40 @@ fn lossless(case: &Case, budget: u64, samples: u64) -> Result<Option<Coded>, Cli
 
 /// SwingWrapper asked for `budget` bytes with `budget` as its cap, so
 /// the file lands within 3% below the budget when the rate control
-/// manages, and never above it; like the baseline's choice of `qp`, the
-/// angle bits are searched ([`SWING_ANGLE_BITS`]) and the row keeps the
-/// lowest L2 (measured on horse and fandisk at 0.5-4 b/v: 5 or 6 bits
-/// always beat the default 8, by 15-35% in L2, as the bits saved buy
-/// more triangles). The encoder's own errors become the row's status: a
-/// mesh the mode does not take is `n/a`; a [`swm::RetileError`] where
-/// some retiling worked but no file it made fitted the cap is
-/// `infeasible`; one where every retiling broke down is `failed`. Every
-/// other error (a file that does not decode) stops the run. `post` is how
-/// the file is decoded (Sharpen&Bend or not); the angle bits are chosen
-/// by the L2 after it.
+/// manages, and never above it; otherwise exactly what `swm encode` does
+/// by default (its angle bits, [`swm::DEFAULT_ANGLE_BITS`], and `tuning`,
+/// which is the default except for ablation rows). The encoder's own
+/// errors become the row's status: a mesh the mode does not take is
+/// `n/a`; a [`swm::RetileError`] where some retiling worked but no file it
+/// made fitted the cap is `infeasible`; one where every retiling broke
+/// down is `failed`. Every other error (a file that does not decode) stops
+/// the run. `post` is how the file is decoded (Sharpen&Bend or not).
 fn swing(
     case: &Case,
     budget: u64,
     samples: u64,
+    tuning: swm::SwingTuning,
     post: &swm::DecodeOptions,
 ) -> Result<Outcome, CliError> {
-    let mut best: Option<Coded> = None;
-    let mut first_error = None;
-    for bits in SWING_ANGLE_BITS {
-        let cell = case.swing_file(budget, bits);
-        match cell.get().expect("swing_file fills its cell") {
-            Ok((bytes, encode_s)) => {
-                let coded = measure(case, bits, samples, bytes, *encode_s, post)?;
-                if best.as_ref().is_none_or(|b| coded.l2_rel < b.l2_rel) {
-                    best = Some(coded);
-                }
-            }
-            Err(e) => {
-                // A mesh the mode does not take fails alike at every K.
-                let not_applicable = matches!(
-                    e,
-                    swm::Error::Topology(swm::TopologyError::NotASphere { .. })
-                );
-                first_error.get_or_insert((bits, Arc::clone(&cell)));
-                if not_applicable {
-                    break;
-                }
-            }
+    let cell = case.swing_file(budget, tuning);
+    let error = match cell.get().expect("swing_file fills its cell") {
+        Ok((bytes, encode_s)) => {
+            let bits = swm::DEFAULT_ANGLE_BITS;
+            let coded = measure(case, bits, samples, bytes, *encode_s, post)?;
+            return Ok(Outcome::Coded(coded));
         }
-    }
-    if let Some(coded) = best {
-        return Ok(Outcome::Coded(coded));
-    }
-    let Some((bits, cell)) = first_error else {
-        return Ok(Outcome::Infeasible);
+        Err(e) => e,
     };
-    Ok(match cell.get().and_then(|r| r.as_ref().err()) {
-        Some(swm::Error::Topology(e @ swm::TopologyError::NotASphere { .. })) => {
+    Ok(match error {
+        swm::Error::Topology(e @ swm::TopologyError::NotASphere { .. }) => {
             Outcome::NotApplicable { why: e.to_string() }
         }
-        Some(swm::Error::Retile(e)) if e.successes > 0 => Outcome::Infeasible,
-        Some(e @ swm::Error::Retile(_)) => Outcome::Failed { why: e.to_string() },
+        swm::Error::Retile(e) if e.successes > 0 => Outcome::Infeasible,
+        e @ swm::Error::Retile(_) => Outcome::Failed { why: e.to_string() },
         // Anything else is a bug that stops the run; the cache holds the
         // error by reference, so encode again (deterministically) to own it.
         _ => {
-            return match swm::encode(&case.mesh, &swing_options(budget, bits)) {
+            return match swm::encode(&case.mesh, &swing_options(budget, tuning)) {
                 Err(e) => Err(case.err(e)),
                 Ok(_) => Ok(Outcome::Failed {
                     why: "the encoder failed, then succeeded on the same input".into(),

@@ -27,6 +27,7 @@ fn color(config: Config) -> RGBColor {
         Config::Swing => RGBColor(67, 99, 216),
         Config::SwingSharpen => RGBColor(245, 130, 49),
         Config::SwingSharpenBend => RGBColor(145, 30, 180),
+        Config::SwingOnSurface => RGBColor(66, 212, 244),
     }
 }
 
