@@ -65,7 +65,9 @@ fn assert_restored(before: (f64, f64), after: (f64, f64), what: &str) {
     );
 }
 
-/// The cube, written and encoded; returns the folder and the `.swm`.
+/// The cube, written and encoded with its tips on the surface (the
+/// thesis's retiling, which EdgeSharpener assumes); returns the folder and
+/// the `.swm`.
 fn encoded_cube(name: &str) -> (PathBuf, PathBuf) {
     let dir = scratch(name);
     let input = dir.join("cube.obj");
@@ -78,6 +80,7 @@ fn encoded_cube(name: &str) -> (PathBuf, PathBuf) {
         s(&file),
         "--edge-length",
         "0.08",
+        "--on-surface",
     ]));
     (dir, file)
 }

@@ -21,7 +21,7 @@ fn modes(mesh: &TriMesh) -> [(&'static str, EncodeMode); 3] {
             "swing L = diagonal / 10",
             EncodeMode::Swing {
                 target: SwingTarget::EdgeLength(mesh.bbox_diagonal() / 10.0),
-                angle_bits: 8,
+                angle_bits: Some(8),
                 max_bytes: None,
             },
         ),
@@ -29,7 +29,7 @@ fn modes(mesh: &TriMesh) -> [(&'static str, EncodeMode); 3] {
             "swing",
             EncodeMode::Swing {
                 target: SwingTarget::BitsPerVertex(4.0),
-                angle_bits: 8,
+                angle_bits: Some(8),
                 max_bytes: None,
             },
         ),

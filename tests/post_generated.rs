@@ -10,13 +10,18 @@ fn generated(name: &str) -> TriMesh {
     swm_corpus::by_name(name).unwrap_or_else(|| panic!("no generated mesh {name}"))
 }
 
-/// Encodes with SwingWrapper (8-bit angles) and decodes.
+/// Encodes with SwingWrapper (8-bit angles, every tip aimed at the
+/// surface: the thesis's retiling, which EdgeSharpener assumes and
+/// `swm encode --on-surface` makes) and decodes.
 fn retiled(mesh: &TriMesh, target: swm::SwingTarget) -> TriMesh {
     let options = swm::EncodeOptions {
         mode: swm::EncodeMode::Swing {
             target,
-            angle_bits: 8,
+            angle_bits: Some(8),
             max_bytes: None,
+        },
+        swing: swm::SwingTuning {
+            approximate_tips: false,
         },
         ..Default::default()
     };

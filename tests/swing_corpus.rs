@@ -9,12 +9,13 @@ mod common;
 
 use swm::{DecodeOptions, EncodeMode, EncodeOptions, SwingTarget};
 
-/// SwingWrapper at `bpv` bits per input vertex, 8 angle bits.
+/// SwingWrapper at `bpv` bits per input vertex, as `swm encode --bpv`
+/// runs it (angle bits chosen by rate control).
 fn at_rate(bpv: f64) -> EncodeOptions {
     EncodeOptions {
         mode: EncodeMode::Swing {
             target: SwingTarget::BitsPerVertex(bpv),
-            angle_bits: 8,
+            angle_bits: None,
             max_bytes: None,
         },
         ..EncodeOptions::default()

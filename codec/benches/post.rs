@@ -24,7 +24,7 @@ fn decoded(dir: &std::path::Path, name: &str, bpv: f64) -> TriMesh {
     let options = EncodeOptions {
         mode: EncodeMode::Swing {
             target: SwingTarget::BitsPerVertex(bpv),
-            angle_bits: 8,
+            angle_bits: Some(8),
             max_bytes: None,
         },
         ..Default::default()

@@ -26,7 +26,7 @@ fn options(bpv: f64) -> EncodeOptions {
     EncodeOptions {
         mode: EncodeMode::Swing {
             target: SwingTarget::BitsPerVertex(bpv),
-            angle_bits: 8,
+            angle_bits: Some(8),
             max_bytes: None,
         },
         ..Default::default()
@@ -37,7 +37,7 @@ fn at_length(l: f64) -> EncodeOptions {
     EncodeOptions {
         mode: EncodeMode::Swing {
             target: SwingTarget::EdgeLength(l),
-            angle_bits: 8,
+            angle_bits: Some(8),
             max_bytes: None,
         },
         ..Default::default()

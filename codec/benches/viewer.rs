@@ -32,7 +32,7 @@ fn encoded(dir: &std::path::Path, name: &str, mode: EncodeMode) -> Vec<u8> {
 fn swing(bpv: f64) -> EncodeMode {
     EncodeMode::Swing {
         target: SwingTarget::BitsPerVertex(bpv),
-        angle_bits: 8,
+        angle_bits: Some(8),
         max_bytes: None,
     }
 }

@@ -30,20 +30,24 @@ pub enum EncodeMode {
     Swing {
         /// What to aim at: a size, a rate or an edge length.
         target: SwingTarget,
-        /// Bits per dihedral angle K, 4..=12. Default 8.
-        angle_bits: u8,
+        /// Bits per dihedral angle K, 4..=12. `None` (what `swm encode`
+        /// does without `--angle-bits`): [`DEFAULT_ANGLE_BITS`] for a given
+        /// edge length; for a size or a rate, chosen by rate control (6,
+        /// or 5 when the 6-bit file's angles spread so widely that the
+        /// sampling, not the angles, limits the error).
+        angle_bits: Option<u8>,
         /// A size in bytes never to exceed. Default none.
         max_bytes: Option<u64>,
     },
 }
 
 #[cfg(feature = "encoder")]
-/// The angle bits K that `swm encode` and the Python `encode` use when
-/// none is given. Measured with approximating tips on bunny and horse at
-/// 0.5-8 b/v (BENCHMARKS.md, issue 19): at the same file size 6 bits give
-/// the lowest L2 at every rate but bunny's lowest two, where 5 is within
-/// a few percent; 8 bits cost 30-45% more L2 (fewer, finer triangles).
-pub const DEFAULT_ANGLE_BITS: u8 = 6;
+/// The angle bits K of a SwingWrapper encode at a given edge length when
+/// none is given: the edge length fixes the triangles, so the angles get
+/// the precision that keeps their error well under the retiling's (a
+/// size or a rate instead lets rate control choose, see
+/// [`EncodeMode::Swing`]).
+pub const DEFAULT_ANGLE_BITS: u8 = 8;
 
 #[cfg(feature = "encoder")]
 /// What the SwingWrapper encoder aims at; the edge length L follows.
@@ -188,12 +192,13 @@ fn encode_swing(
     mesh: &TriMesh,
     options: &EncodeOptions,
     target: SwingTarget,
-    angle_bits: u8,
+    angle_bits: Option<u8>,
     max_bytes: Option<u64>,
 ) -> Result<Encoded, Error> {
     use crate::retile::rate;
     use crate::swing::{MAX_ANGLE_BITS, MIN_ANGLE_BITS};
-    if !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(&angle_bits) {
+    if let Some(angle_bits) = angle_bits.filter(|k| !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(k))
+    {
         return Err(ParameterError::OutOfRange {
             name: "angle bits",
             value: angle_bits as f64,
@@ -212,9 +217,14 @@ fn encode_swing(
     let cleaned = crate::clean(mesh, &options.clean)?;
     let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     let budget = crate::retile::Budget::new(options.limits);
+    let approximate_tips = options.swing.approximate_tips;
     let knobs = rate::Knobs {
-        angle_bits,
-        approximate_tips: options.swing.approximate_tips,
+        angle_bits: angle_bits.unwrap_or(DEFAULT_ANGLE_BITS),
+        approximate_tips,
+    };
+    let at_size = |b: u64| match angle_bits {
+        Some(_) => rate::at_size(&pieces, b, max_bytes, knobs, &budget),
+        None => rate::at_size_auto(&pieces, b, max_bytes, approximate_tips, &budget),
     };
     let bytes_for = |bpv: f64| (bpv * mesh.vertex_count() as f64 / 8.0).round() as u64;
     let chosen = match target {
@@ -223,11 +233,11 @@ fn encode_swing(
         }
         SwingTarget::Bytes(b) => {
             let b = positive("size", b as f64)? as u64;
-            rate::at_size(&pieces, b, max_bytes, knobs, &budget)?
+            at_size(b)?
         }
         SwingTarget::BitsPerVertex(bpv) => {
             let b = bytes_for(positive("bits per vertex", bpv)?).max(1);
-            rate::at_size(&pieces, b, max_bytes, knobs, &budget)?
+            at_size(b)?
         }
     };
     if let Some(cap) = max_bytes {

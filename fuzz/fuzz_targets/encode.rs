@@ -95,7 +95,7 @@ fuzz_target!(|data: &[u8]| {
     let options = EncodeOptions {
         mode: EncodeMode::Swing {
             target,
-            angle_bits: 8,
+            angle_bits: Some(8),
             max_bytes: None,
         },
         limits: EncodeLimits {

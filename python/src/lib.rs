@@ -114,7 +114,7 @@ fn with_value(e: swm::Error, name: &str, value: i64) -> swm::Error {
 /// documented wrapper.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
-                    mode="swing", max_size=None, angle_bits=6, qp=12))]
+                    mode="swing", max_size=None, angle_bits=None, qp=12))]
 #[allow(clippy::too_many_arguments)]
 fn encode<'py>(
     py: Python<'py>,
@@ -125,7 +125,7 @@ fn encode<'py>(
     edge_length: Option<f64>,
     mode: &str,
     max_size: Option<i128>,
-    angle_bits: i64,
+    angle_bits: Option<i64>,
     qp: i64,
 ) -> PyResult<Bound<'py, PyBytes>> {
     let targets = [bpv.is_some(), size.is_some(), edge_length.is_some()];
@@ -148,7 +148,7 @@ fn encode<'py>(
             };
             swm::EncodeMode::Swing {
                 target,
-                angle_bits: bits(angle_bits),
+                angle_bits: angle_bits.map(bits),
                 max_bytes,
             }
         }
@@ -174,7 +174,7 @@ fn encode<'py>(
     };
     let encoded = py
         .detach(|| swm::encode(&mesh, &options))
-        .map_err(|e| with_value(with_value(e, "angle bits", angle_bits), "qp", qp))
+        .map_err(|e| with_value(with_value(e, "angle bits", angle_bits.unwrap_or(0)), "qp", qp))
         .py_err(py)?;
     Ok(PyBytes::new(py, &encoded.bytes))
 }

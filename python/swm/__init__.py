@@ -109,7 +109,7 @@ def encode(
     edge_length: Optional[float] = None,
     mode: str = "swing",
     max_size: Optional[int] = None,
-    angle_bits: int = 6,
+    angle_bits: Optional[int] = None,
     qp: int = 12,
 ) -> bytes:
     """Cleans and encodes a mesh into the bytes of a ``.swm`` file.
@@ -119,7 +119,9 @@ def encode(
     ``qp`` bits). A swing encode aims at one of ``bpv`` (bits per input
     vertex; 2 when no target is given), ``size`` (bytes, met within 3%) or
     ``edge_length`` (the retiling edge L), with ``angle_bits`` bits per
-    dihedral angle, and never exceeds ``max_size`` bytes when given.
+    dihedral angle (by default chosen as ``swm encode`` does: 6, or 5 when
+    rate control finds the angles spread widely), and never exceeds
+    ``max_size`` bytes when given.
     Deterministic: the same arrays and options give the same bytes.
     """
     return _swm.encode(

@@ -38,7 +38,7 @@ def encode(
     edge_length: Optional[float] = None,
     mode: str = "swing",
     max_size: Optional[int] = None,
-    angle_bits: int = 6,
+    angle_bits: Optional[int] = None,
     qp: int = 12,
 ) -> bytes: ...
 def decode(

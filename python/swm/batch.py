@@ -310,7 +310,7 @@ def _parser() -> argparse.ArgumentParser:
     target.add_argument("--bpv", type=float, help="swing: bits per input vertex (default 2)")
     target.add_argument("--size", type=int, help="swing: bytes per file")
     target.add_argument("--edge-length", type=float, help="swing: the edge length L")
-    p.add_argument("--angle-bits", type=int, default=6, help="swing: bits per dihedral angle")
+    p.add_argument("--angle-bits", type=int, help="swing: bits per dihedral angle (default: chosen by rate control, as swm encode)")
     p.add_argument("--max-size", type=int, help="swing: never more bytes than this")
     p.add_argument("--qp", type=int, default=12, help="lossless: bits per coordinate")
     p.add_argument(
@@ -346,8 +346,8 @@ def _options(args: argparse.Namespace) -> Dict[str, Any]:
         if given:
             raise ValueError(f"{', '.join(given)} apply to --mode swing only")
         return {"mode": "lossless", "qp": args.qp}
-    options: Dict[str, Any] = {"mode": "swing", "angle_bits": args.angle_bits}
-    for key in ("bpv", "size", "edge_length", "max_size"):
+    options: Dict[str, Any] = {"mode": "swing"}
+    for key in ("angle_bits", "bpv", "size", "edge_length", "max_size"):
         if getattr(args, key) is not None:
             options[key] = getattr(args, key)
     return options

@@ -145,7 +145,7 @@ fn encode(mesh: &TriMesh, mode: EncodeMode) -> Vec<u8> {
 fn swing(l: f64) -> EncodeMode {
     EncodeMode::Swing {
         target: SwingTarget::EdgeLength(l),
-        angle_bits: 8,
+        angle_bits: Some(8),
         max_bytes: None,
     }
 }

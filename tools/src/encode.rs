@@ -35,10 +35,16 @@ pub struct Args {
     /// Swing: the edge length L itself, in the mesh's units.
     #[arg(long, value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
     edge_length: Option<f64>,
-    /// Swing: bits per dihedral angle [default: 6, the best at every rate
-    /// measured; more bits buy finer angles but fewer triangles].
+    /// Swing: bits per dihedral angle [default: chosen by rate control, 6
+    /// or 5 (or 7 when 6 falls short of the size); 8 with --edge-length].
     #[arg(long, value_parser = clap::value_parser!(u8).range(4..=12))]
     angle_bits: Option<u8>,
+    /// Swing: aim every new vertex at the input surface, as the thesis
+    /// does, instead of off it by the offset that cancels the chord error
+    /// (for files to be decoded with --sharpen: EdgeSharpener fits the
+    /// planes of flat regions through their vertices).
+    #[arg(long)]
+    on_surface: bool,
     /// Swing: never write more than this many bytes.
     #[arg(long, value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     max_size: Option<u64>,
@@ -90,6 +96,7 @@ impl Args {
                     (self.bpv.is_some(), "--bpv"),
                     (self.edge_length.is_some(), "--edge-length"),
                     (self.angle_bits.is_some(), "--angle-bits"),
+                    (self.on_surface, "--on-surface"),
                     (self.max_size.is_some(), "--max-size"),
                     (self.max_work.is_some(), "--max-work"),
                     (self.max_memory.is_some(), "--max-memory"),
@@ -131,7 +138,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
                 (_, bpv, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
             },
-            angle_bits: args.angle_bits.unwrap_or(swm::DEFAULT_ANGLE_BITS),
+            angle_bits: args.angle_bits,
             max_bytes: args.max_size,
         },
     };
@@ -146,6 +153,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let options = swm::EncodeOptions {
         mode,
         limits,
+        swing: swm::SwingTuning {
+            approximate_tips: !args.on_surface,
+        },
         ..Default::default()
     };
     let start = Instant::now();

@@ -21,11 +21,19 @@
 //! patch sampled isotropically, Σw·h = H/2 · Σw·ρ²), which needs no
 //! assumption about the shape of the sampled disk.
 //!
+//! Where the disk wraps a thin part or spans a crease the quadratic model
+//! fails: the coherence of the sampled normals (|Σw·n| / Σw, about
+//! 1 − (L/R)²/8 on a smooth patch) fades the offset out between
+//! [`COHERENT_HIGH`] and [`COHERENT_LOW`]. Measured over bunny, horse,
+//! fandisk, spot, homer and cheburashka at 0.5-4 b/v (24 rd cells against
+//! on-surface tips, 100k samples): without the fade the geometric mean of
+//! the L2 ratios is 0.955 but single cells lose up to 42% (bunny and
+//! fandisk at 0.5 b/v); with it 0.951 and at most 15%.
+//!
 //! Invariants: the offset only changes where the encoder aims the angle;
 //! V itself (the on-surface sample that anchors the paths) is untouched,
 //! and the decoder is unchanged. The offset is bounded by
-//! [`MAX_OFFSET`]·L, so thin parts and creases, where the quadratic model
-//! fails, cannot throw a tip far off. The flood visits at most
+//! [`MAX_OFFSET`]·L, so no tip is thrown far off. The flood visits at most
 //! [`MAX_FACES`] faces and charges them to the run's work budget. Faces
 //! of hole patches (the encoder's own filling, masked away in the file)
 //! are neither sampled nor crossed, and a tip on one is not offset.
@@ -41,6 +49,10 @@ pub(super) const MAX_OFFSET: f64 = 0.15;
 /// Faces sampled at most per tip (the disk is cut short, still about
 /// isotropic, when L is many input edges long).
 pub(super) const MAX_FACES: usize = 1024;
+/// Normal coherence (|Σw·n| / Σw over the disk) at and below which no
+/// offset is applied, and at and above which all of it is.
+pub(super) const COHERENT_LOW: f64 = 0.75;
+pub(super) const COHERENT_HIGH: f64 = 0.9;
 
 /// Reusable buffers for the flood.
 #[derive(Default)]
@@ -50,6 +62,8 @@ pub(super) struct Scratch {
     epoch: u32,
     /// (weight, sample − V) of the samples within reach.
     samples: Vec<(f64, DVec3)>,
+    /// (section curvature 2h/ρ², weight w·ρ²) per sample.
+    sections: Vec<(f64, f64)>,
 }
 
 /// The displacement to add to V (on face `f` of M) before its angle is
@@ -112,21 +126,49 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
     if n == DVec3::ZERO {
         return DVec3::ZERO;
     }
-    let (mut wh, mut wr) = (0.0, 0.0);
-    for &(w, d) in &sc.samples {
-        let h = d.dot(n);
-        wh += w * h;
-        wr += w * (d.length_squared() - h * h);
-    }
-    if !(wr > 0.0) {
+    // Coherence of the normals: |Σw·n| / Σw is about 1 − (L/R)²/8 on a
+    // smooth patch, far less where the disk wraps a thin part or spans a
+    // crease; the quadratic model fails there, so the offset fades out.
+    let weight: f64 = sc.samples.iter().map(|&(w, _)| w).sum();
+    let coherence = normal.length() / weight;
+    let trust = ((coherence - COHERENT_LOW) / (COHERENT_HIGH - COHERENT_LOW)).clamp(0.0, 1.0);
+    if trust == 0.0 {
         return DVec3::ZERO;
     }
-    // κ = 2·Σw·h / Σw·ρ² is −H for a convex part (heights are negative
-    // under the outward normal); the mesh then lies κ·L²/8 along n from M
-    // on average, so the tip moves the other way.
-    let kappa = 2.0 * wh / wr;
+    // Per sample, k = 2h/ρ² is the curvature of the normal section
+    // through it; weighted by w·ρ², their mean is the least-squares fit
+    // of h = κ·ρ²/2 and estimates −H. Their weighted median does too on a
+    // smooth patch (the sections' curvatures are symmetric about H) and
+    // ignores a minority of samples across a crease, which would make
+    // the mean large and push a tip beside a sharp edge off its plane.
+    sc.sections.clear();
+    let mut total = 0.0;
+    for &(w, d) in &sc.samples {
+        let h = d.dot(n);
+        let r2 = d.length_squared() - h * h;
+        if r2 > 0.0 {
+            sc.sections.push((2.0 * h / r2, w * r2));
+            total += w * r2;
+        }
+    }
+    if !(total > 0.0) {
+        return DVec3::ZERO;
+    }
+    sc.sections.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    let mut acc = 0.0;
+    let kappa = sc
+        .sections
+        .iter()
+        .find(|&&(_, w)| {
+            acc += w;
+            acc >= 0.5 * total
+        })
+        .map_or(0.0, |&(k, _)| k);
+    // The mesh lies κ·L²/8 along n from M on average (κ < 0 on a convex
+    // part, whose heights are negative under the outward normal), so the
+    // tip moves the other way.
     let delta = (-kappa * l * l / 8.0).clamp(-MAX_OFFSET * l, MAX_OFFSET * l);
-    n * delta
+    n * (trust * delta)
 }
 
 #[cfg(test)]
@@ -179,7 +221,7 @@ mod tests {
     }
 
     #[test]
-    fn offsets_are_bounded_and_hole_patches_get_none() {
+    fn offsets_are_bounded_fade_where_normals_disagree_and_skip_hole_patches() {
         let mut s = surface(3, false);
         let mut sc = Scratch::default();
         let v = centroid(&s, 5);
@@ -188,6 +230,9 @@ mod tests {
         for l in [0.9, 1.5] {
             assert!(offset(&s, 5, v, l, &mut sc).length() <= MAX_OFFSET * l + 1e-12);
         }
+        // A disk that wraps most of the sphere: incoherent normals, no
+        // offset at all.
+        assert_eq!(offset(&s, 5, v, 1.5, &mut sc), DVec3::ZERO);
         s.patch[5] = 0;
         assert_eq!(offset(&s, 5, v, 0.3, &mut sc), DVec3::ZERO);
     }

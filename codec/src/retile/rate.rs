@@ -164,11 +164,115 @@ pub fn at_size(
     knobs: Knobs,
     budget: &Budget,
 ) -> Result<Chosen, Error> {
+    search(pieces, target, max_bytes, knobs, budget, None)
+}
+
+/// [`at_size`] with the angle bits chosen here: [`AUTO_ANGLE_BITS`]`[0]`
+/// first, then `[1]` when the first file's angles spread over
+/// [`SPREAD_BITS_PER_ANGLE`] or more, or when no file could be made with
+/// the first: the coarser angles then cost less than the sampling error
+/// they add, and the bits they save buy triangles. When the first file
+/// falls short of the size (runs failed at the finer L it needed), one
+/// bit more per angle is tried from its L, and the file nearer the size
+/// is kept. Measured on six corpus meshes at 0.5-8 b/v, BENCHMARKS.md
+/// "Angle bits chosen by rate control".
+pub fn at_size_auto(
+    pieces: &[Piece],
+    target: u64,
+    max_bytes: Option<u64>,
+    approximate_tips: bool,
+    budget: &Budget,
+) -> Result<Chosen, Error> {
+    let knobs = |angle_bits| Knobs {
+        angle_bits,
+        approximate_tips,
+    };
+    let [fine, coarse] = AUTO_ANGLE_BITS;
+    let first = search(pieces, target, max_bytes, knobs(fine), budget, None);
+    let (hint, earlier) = match &first {
+        // At the same size, one bit less per angle buys about 1/0.91² as
+        // many triangles (measured).
+        Ok(c) if bits_per_angle(&c.stats) >= SPREAD_BITS_PER_ANGLE => {
+            (Some(0.91 * c.report.edge_length), c.report.attempts.clone())
+        }
+        Ok(c) if c.report.within_tolerance || c.bytes.len() as u64 > target => return first,
+        // Short of the size: runs failed at the finer L it asked for. The
+        // bytes left over buy finer angles, and the search draws new
+        // retilings.
+        Ok(c) => {
+            let finer = search(
+                pieces,
+                target,
+                max_bytes,
+                knobs(fine + 1),
+                budget,
+                Some(c.report.edge_length),
+            );
+            return match (first, finer) {
+                (Ok(a), Ok(mut b)) if nearer(&b, &a, target) => {
+                    let mut attempts = a.report.attempts;
+                    attempts.append(&mut b.report.attempts);
+                    b.report.attempts = attempts;
+                    b.report.work = budget.used();
+                    b.report.peak_memory_bytes = budget.peak_memory();
+                    Ok(b)
+                }
+                (_, Err(e)) if !matches!(e, Error::Retile(_)) => Err(e),
+                (a, _) => a,
+            };
+        }
+        Err(Error::Retile(_)) => (None, Vec::new()),
+        Err(_) => return first,
+    };
+    match search(pieces, target, max_bytes, knobs(coarse), budget, hint) {
+        Ok(mut c) => {
+            let mut attempts = earlier;
+            attempts.append(&mut c.report.attempts);
+            c.report.attempts = attempts;
+            c.report.work = budget.used();
+            c.report.peak_memory_bytes = budget.peak_memory();
+            Ok(c)
+        }
+        // A limit ends the encode; otherwise the first file stands.
+        Err(e) if first.is_err() || !matches!(e, Error::Retile(_)) => Err(e),
+        Err(_) => first,
+    }
+}
+
+/// `a` is nearer the target than `b` (both within the cap).
+fn nearer(a: &Chosen, b: &Chosen, target: u64) -> bool {
+    let off = |c: &Chosen| (c.bytes.len() as f64 / target as f64).ln().abs();
+    off(a) < off(b)
+}
+
+/// Geometry bits per C angle of a file.
+fn bits_per_angle(stats: &SwingStats) -> f64 {
+    let angles = stats.clers[0].max(1) as f64;
+    stats.geometry_bits_per_triangle * stats.triangles as f64 / angles
+}
+
+/// The angle bits [`at_size_auto`] tries, in order.
+pub const AUTO_ANGLE_BITS: [u8; 2] = [6, 5];
+/// Geometry bits per angle of a 6-bit file from which 5 bits do better:
+/// the dihedral angles vary so much from triangle to triangle that the
+/// sampling error, not the angle precision, sets the distortion.
+pub const SPREAD_BITS_PER_ANGLE: f64 = 3.2;
+
+/// The search of [`at_size`], from `start` when given, else from the
+/// thesis's estimate.
+fn search(
+    pieces: &[Piece],
+    target: u64,
+    max_bytes: Option<u64>,
+    knobs: Knobs,
+    budget: &Budget,
+    start: Option<f64>,
+) -> Result<Chosen, Error> {
     // A cap below the target is the real target.
     let target = max_bytes.map_or(target, |cap| target.min(cap));
     let area: f64 = pieces.iter().map(|p| p.area).sum();
     let s_bits = 8.0 * target as f64;
-    let mut l = (16.0 * area / (3f64.sqrt() * s_bits)).sqrt();
+    let mut l = start.unwrap_or_else(|| (16.0 * area / (3f64.sqrt() * s_bits)).sqrt());
     let cap = max_bytes.unwrap_or(u64::MAX);
     // With the cap at the target, aim a little below it so that a run
     // lands inside [target − 3%, target].

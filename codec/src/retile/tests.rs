@@ -23,7 +23,7 @@ pub fn retiled(mesh: &TriMesh, target: crate::SwingTarget) -> TriMesh {
     let options = crate::EncodeOptions {
         mode: crate::EncodeMode::Swing {
             target,
-            angle_bits: 8,
+            angle_bits: Some(8),
             max_bytes: None,
         },
         ..Default::default()
@@ -303,7 +303,7 @@ fn swing_encoding_through_the_api_is_deterministic() {
     let options = crate::EncodeOptions {
         mode: crate::EncodeMode::Swing {
             target: crate::SwingTarget::Bytes(1200),
-            angle_bits: 8,
+            angle_bits: Some(8),
             max_bytes: None,
         },
         ..Default::default()

@@ -122,13 +122,13 @@ pub type SwingFile = Result<(Vec<u8>, f64), swm::Error>;
 pub type SwingCell = Arc<OnceLock<SwingFile>>;
 
 /// What the rd harness asks the SwingWrapper encoder for: `budget` bytes,
-/// never more, with `swm encode`'s defaults otherwise (its angle bits,
-/// [`swm::DEFAULT_ANGLE_BITS`]) and the encoder-side choices `tuning`.
+/// never more, with `swm encode`'s defaults otherwise (angle bits chosen
+/// by rate control) and the encoder-side choices `tuning`.
 pub fn swing_options(budget: u64, tuning: swm::SwingTuning) -> swm::EncodeOptions {
     swm::EncodeOptions {
         mode: swm::EncodeMode::Swing {
             target: swm::SwingTarget::Bytes(budget),
-            angle_bits: swm::DEFAULT_ANGLE_BITS,
+            angle_bits: None,
             max_bytes: Some(budget),
         },
         swing: tuning,

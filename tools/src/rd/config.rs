@@ -129,8 +129,9 @@ fn lossless(case: &Case, budget: u64, samples: u64) -> Result<Option<Coded>, Cli
 /// SwingWrapper asked for `budget` bytes with `budget` as its cap, so
 /// the file lands within 3% below the budget when the rate control
 /// manages, and never above it; otherwise exactly what `swm encode` does
-/// by default (its angle bits, [`swm::DEFAULT_ANGLE_BITS`], and `tuning`,
-/// which is the default except for ablation rows). The encoder's own
+/// by default (angle bits chosen by rate control, reported in the row's
+/// `qp` column, and `tuning`, which is the default except for ablation
+/// rows). The encoder's own
 /// errors become the row's status: a mesh the mode does not take is
 /// `n/a`; a [`swm::RetileError`] where some retiling worked but no file it
 /// made fitted the cap is `infeasible`; one where every retiling broke
@@ -146,7 +147,9 @@ fn swing(
     let cell = case.swing_file(budget, tuning);
     let error = match cell.get().expect("swing_file fills its cell") {
         Ok((bytes, encode_s)) => {
-            let bits = swm::DEFAULT_ANGLE_BITS;
+            // The angle bits rate control chose, as the file says.
+            let info = swm::inspect(bytes, &swm::Limits::default()).map_err(|e| case.err(e))?;
+            let bits = info.swing.map_or(0, |s| s.angle_bits);
             let coded = measure(case, bits, samples, bytes, *encode_s, post)?;
             return Ok(Outcome::Coded(coded));
         }

@@ -90,8 +90,9 @@ Configurations:
   lossless  swm's lossless mode, the largest qp (6..24) that fits
   baseline  quadric simplification (meshoptimizer), then the lossless mode,
             at the face count and qp (7..14) with the lowest L2 that fits
-  swing     SwingWrapper exactly as swm encode runs it by default (6 angle
-            bits, approximating tips), asked for the budget and capped at it
+  swing     SwingWrapper exactly as swm encode runs it by default (angle
+            bits chosen by rate control, approximating tips), asked for
+            the budget and capped at it
   swing-on-surface  swing with every tip on the input surface (the
             thesis's placement; not run by default, for ablation)
 A configuration that cannot fit a budget gives a row with status infeasible;
