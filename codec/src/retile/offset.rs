@@ -151,7 +151,7 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
             total += w * r2;
         }
     }
-    if !(total > 0.0) {
+    if total <= 0.0 || total.is_nan() {
         return DVec3::ZERO;
     }
     sc.sections.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
