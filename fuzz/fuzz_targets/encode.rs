@@ -21,7 +21,14 @@ fn obj(b: &mut Bytes) -> String {
     let exponent = b.range(0, 60) as i32 - 30;
     let scale = 10f64.powi(exponent);
     let n = b.range(3, 24);
-    let ring = b.range(3, 300);
+    // Mostly short rings, which keep an input to a millisecond or two;
+    // one in 8 long enough for a polygon face or a fan of valence above
+    // the retiler's cap of 256 (`retile::valence`).
+    let ring = if b.u8() % 8 == 7 {
+        b.range(200, 300)
+    } else {
+        b.range(3, 48)
+    };
     for _ in 0..n {
         let [x, y, z] = [0; 3].map(|_: i32| (b.u8() as i8) as f64 / 16.0 * scale);
         writeln!(s, "v {x:e} {y:e} {z:e}").unwrap();
@@ -75,6 +82,32 @@ fn obj(b: &mut Bytes) -> String {
     s
 }
 
+/// The rate and the work limit. Most inputs get one retiling run at an
+/// edge length of 1/2 to 1/16 of the bounding-box diagonal (a few to a
+/// few hundred triangles: the hostile shapes are in the input, not in the
+/// output's resolution) under a small budget, so that libFuzzer gets
+/// through a million inputs in about an hour; one in 64 (never a zero
+/// byte, which an input that ran out gives) asks for a size or a rate, so
+/// rate control with its retries, steps and brackets is reached too,
+/// under a budget that allows a few runs.
+fn target(b: &mut Bytes, diagonal: f64) -> (SwingTarget, u64) {
+    match b.u8() {
+        s if s % 64 == 63 => match s / 64 % 2 {
+            0 => (
+                SwingTarget::BitsPerVertex(f64::from(b.range(1, 16))),
+                300_000,
+            ),
+            _ => (SwingTarget::Bytes(u64::from(b.range(40, 2000))), 300_000),
+        },
+        // A zero or non-finite diagonal (coincident or overflowing
+        // points) gives an edge length `encode` must refuse cleanly.
+        _ => (
+            SwingTarget::EdgeLength(diagonal / f64::from(b.range(2, 16))),
+            50_000,
+        ),
+    }
+}
+
 fuzz_target!(|data: &[u8]| {
     let mut b = Bytes(data);
     let text = obj(&mut b);
@@ -88,10 +121,7 @@ fuzz_target!(|data: &[u8]| {
     else {
         return;
     };
-    let target = match b.u8() % 2 {
-        0 => SwingTarget::BitsPerVertex(f64::from(b.range(1, 16))),
-        _ => SwingTarget::Bytes(u64::from(b.range(40, 2000))),
-    };
+    let (target, max_work) = target(&mut b, mesh.bbox_diagonal());
     let options = EncodeOptions {
         mode: EncodeMode::Swing {
             target,
@@ -99,7 +129,7 @@ fuzz_target!(|data: &[u8]| {
             max_bytes: None,
         },
         limits: EncodeLimits {
-            max_work: 5_000_000,
+            max_work,
             max_memory_bytes: 256 << 20,
             max_milliseconds: None,
         },
