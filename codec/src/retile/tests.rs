@@ -158,7 +158,8 @@ fn oversized_edge_length_fails_cleanly() {
     assert_eq!(run(&m, -1.0).unwrap_err(), Failure::BadInput);
 }
 
-/// Manual probe on a real mesh: `SWM_RETILE=path:L[,L...]`, e.g.
+/// Manual probe on a real mesh: `SWM_RETILE=path:L[,L...]` (L relative
+/// to the diagonal; `SWM_RETILE_ON_SURFACE=1` for the thesis's tips), e.g.
 /// `SWM_RETILE=../shared/corpus/horse.ply:0.01 cargo test -p swm --release
 /// --lib retile::tests::probe -- --ignored --nocapture`.
 #[test]
@@ -191,7 +192,7 @@ fn probe() {
                     .ok()
                     .map(|s| s.parse().unwrap()),
                 start_rank: std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap()),
-                approximate_tips: true,
+                approximate_tips: std::env::var_os("SWM_RETILE_ON_SURFACE").is_none(),
             },
         );
         let dt = t0.elapsed().as_secs_f64();
