@@ -86,7 +86,7 @@ fn obj(b: &mut Bytes) -> String {
 /// edge length of 1/2 to 1/16 of the bounding-box diagonal (a few to a
 /// few hundred triangles: the hostile shapes are in the input, not in the
 /// output's resolution) under a small budget, so that libFuzzer gets
-/// through a million inputs in about an hour; one in 64 (never a zero
+/// through a million inputs in one to two hours; one in 64 (never a zero
 /// byte, which an input that ran out gives) asks for a size or a rate, so
 /// rate control with its retries, steps and brackets is reached too,
 /// under a budget that allows a few runs.
