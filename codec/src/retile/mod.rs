@@ -36,6 +36,7 @@ pub mod compose;
 pub mod fill;
 mod front;
 mod gate;
+mod marks;
 mod mask;
 mod offset;
 mod path;

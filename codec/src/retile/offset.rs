@@ -15,11 +15,15 @@
 //! H is estimated at the scale of L, not of the input's edges (a scanned
 //! surface is rough at its own scale): the faces of M within Euclidean
 //! distance [`REACH`]·L of V, found by adjacency from V's face, give
-//! area-weighted samples at their edge midpoints (exact for quadratics);
-//! with heights h over the plane through V with their mean normal and
-//! squared tangential distances ρ², H ≈ 2·Σw·h / Σw·ρ² (for a quadratic
-//! patch sampled isotropically, Σw·h = H/2 · Σw·ρ²), which needs no
-//! assumption about the shape of the sampled disk.
+//! area-weighted samples at their edge midpoints (exact for quadratics).
+//! With heights h over the plane through V with their mean normal and
+//! squared tangential distances ρ², each sample gives the curvature 2h/ρ²
+//! of the normal section through it; their mean weighted by w·ρ² is the
+//! least-squares fit 2·Σw·h / Σw·ρ² (for a quadratic patch sampled
+//! isotropically, Σw·h = H/2 · Σw·ρ², whatever the shape of the sampled
+//! disk), and their weighted median, which swm uses, estimates H as well
+//! on a smooth patch while ignoring a minority of samples across a
+//! crease beside V.
 //!
 //! Where the disk wraps a thin part or spans a crease the quadratic model
 //! fails: the coherence of the sampled normals (|Σw·n| / Σw, about
@@ -38,6 +42,7 @@
 //! of hole patches (the encoder's own filling, masked away in the file)
 //! are neither sampled nor crossed, and a tip on one is not offset.
 
+use super::marks::Marks;
 use super::surface::{face, Surface, NONE};
 use glam::DVec3;
 
@@ -58,8 +63,8 @@ pub(super) const COHERENT_HIGH: f64 = 0.9;
 #[derive(Default)]
 pub(super) struct Scratch {
     queue: Vec<u32>,
-    stamp: Vec<u32>,
-    epoch: u32,
+    /// Faces queued.
+    queued: Marks,
     /// (weight, sample − V) of the samples within reach.
     samples: Vec<(f64, DVec3)>,
     /// (section curvature 2h/ρ², weight w·ρ²) per sample.
@@ -69,27 +74,20 @@ pub(super) struct Scratch {
 /// The displacement to add to V (on face `f` of M) before its angle is
 /// quantized, for edge length `l`.
 pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) -> DVec3 {
-    let reach2 = (REACH * l) * (REACH * l);
-    if sc.stamp.len() < s.face_count() {
-        sc.stamp.resize(s.face_count(), 0);
-    }
-    sc.epoch = sc.epoch.wrapping_add(1);
-    if sc.epoch == 0 {
-        sc.stamp.fill(0);
-        sc.epoch = 1;
-    }
-    sc.queue.clear();
-    sc.queue.push(f);
-    sc.stamp[f as usize] = sc.epoch;
-    // Weighted sums of the normal, the offsets p − V and their squares.
-    let mut normal = DVec3::ZERO;
-    sc.samples.clear();
     // A hole patch is the encoder's own filling, masked away in the file:
     // its shape says nothing about the input's curvature, and a tip on it
     // is not worth the bits of an offset.
     if s.patch[f as usize] != NONE {
         return DVec3::ZERO;
     }
+    let reach2 = (REACH * l) * (REACH * l);
+    sc.queued.clear(s.face_count());
+    sc.queued.insert(f);
+    sc.queue.clear();
+    sc.queue.push(f);
+    sc.samples.clear();
+    // Σw·n and Σw over the samples.
+    let (mut normal, mut weight) = (DVec3::ZERO, 0.0);
     let mut head = 0;
     while head < sc.queue.len() && head < MAX_FACES {
         let g = sc.queue[head];
@@ -107,6 +105,7 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
             if d.length_squared() <= reach2 {
                 sc.samples.push((w, d));
                 normal += w * s.normal[g as usize];
+                weight += w;
                 near = true;
             }
         }
@@ -116,8 +115,7 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
         }
         for k in Surface::corners(g) {
             let h = face(s.opp[k as usize]);
-            if sc.stamp[h as usize] != sc.epoch {
-                sc.stamp[h as usize] = sc.epoch;
+            if sc.queued.insert(h) {
                 sc.queue.push(h);
             }
         }
@@ -129,7 +127,6 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
     // Coherence of the normals: |Σw·n| / Σw is about 1 − (L/R)²/8 on a
     // smooth patch, far less where the disk wraps a thin part or spans a
     // crease; the quadratic model fails there, so the offset fades out.
-    let weight: f64 = sc.samples.iter().map(|&(w, _)| w).sum();
     let coherence = normal.length() / weight;
     let trust = ((coherence - COHERENT_LOW) / (COHERENT_HIGH - COHERENT_LOW)).clamp(0.0, 1.0);
     if trust == 0.0 {
@@ -174,8 +171,7 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::retile::tests::sphere;
-    use crate::CornerTable;
+    use crate::retile::tests::{sphere, surface_of};
 
     /// The unit sphere as a dynamic surface, with its faces reversed when
     /// `inside_out`.
@@ -186,14 +182,7 @@ mod tests {
                 t.swap(1, 2);
             }
         }
-        let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
-        let pos: Vec<DVec3> = m
-            .positions
-            .iter()
-            .map(|p| p.map(f64::from).into())
-            .collect();
-        let opp: Vec<u32> = table.opposites().iter().map(|c| c.0).collect();
-        Surface::new(&pos, &m.triangles, &opp)
+        surface_of(&m)
     }
 
     fn centroid(s: &Surface, f: u32) -> DVec3 {

@@ -18,6 +18,7 @@
 //! face of M; interior points are free (no sample, no path edge at them);
 //! no edge is crossed twice (a plane meets a segment once).
 
+use super::marks::Marks;
 use super::surface::{face, next, prev, Surface, NONE};
 use super::walk::{leave_vertex, Plane, Walker};
 use glam::DVec3;
@@ -170,40 +171,34 @@ fn shorten(s: &Surface, pts: &mut [Point]) {
     }
 }
 
-/// Reusable Dijkstra buffers, stamped so they need no clearing.
+/// Reusable Dijkstra buffers: `dist` and `from` hold for the vertices
+/// in `seen`, so they need no clearing.
 #[derive(Default)]
 pub struct Scratch {
-    stamp: Vec<u32>,
+    seen: Marks,
     dist: Vec<f64>,
     from: Vec<u32>,
-    epoch: u32,
 }
 
 impl Scratch {
     pub fn begin(&mut self, n: usize) {
-        if self.stamp.len() < n {
-            self.stamp.resize(n, 0);
+        if self.dist.len() < n {
             self.dist.resize(n, 0.0);
             self.from.resize(n, NONE);
         }
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.stamp.fill(0);
-            self.epoch = 1;
-        }
+        self.seen.clear(n);
     }
 
     pub fn get(&self, v: u32) -> Option<f64> {
-        (self.stamp[v as usize] == self.epoch).then(|| self.dist[v as usize])
+        self.seen.contains(v).then(|| self.dist[v as usize])
     }
 
     /// Records `d` for `v` if it improves; returns whether it did.
     pub fn relax(&mut self, v: u32, d: f64, from: u32) -> bool {
         let i = v as usize;
-        if self.stamp[i] == self.epoch && self.dist[i] <= d {
+        if !self.seen.insert(v) && self.dist[i] <= d {
             return false;
         }
-        self.stamp[i] = self.epoch;
         self.dist[i] = d;
         self.from[i] = from;
         true

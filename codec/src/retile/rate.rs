@@ -209,14 +209,7 @@ pub fn at_size_auto(
                 Some(c.report.edge_length),
             );
             return match (first, finer) {
-                (Ok(a), Ok(mut b)) if nearer(&b, &a, target) => {
-                    let mut attempts = a.report.attempts;
-                    attempts.append(&mut b.report.attempts);
-                    b.report.attempts = attempts;
-                    b.report.work = budget.used();
-                    b.report.peak_memory_bytes = budget.peak_memory();
-                    Ok(b)
-                }
+                (Ok(a), Ok(b)) if nearer(&b, &a, target) => Ok(after(a.report.attempts, b, budget)),
                 (_, Err(e)) if !matches!(e, Error::Retile(_)) => Err(e),
                 (a, _) => a,
             };
@@ -225,18 +218,21 @@ pub fn at_size_auto(
         Err(_) => return first,
     };
     match search(pieces, target, max_bytes, knobs(coarse), budget, hint) {
-        Ok(mut c) => {
-            let mut attempts = earlier;
-            attempts.append(&mut c.report.attempts);
-            c.report.attempts = attempts;
-            c.report.work = budget.used();
-            c.report.peak_memory_bytes = budget.peak_memory();
-            Ok(c)
-        }
+        Ok(c) => Ok(after(earlier, c, budget)),
         // A limit ends the encode; otherwise the first file stands.
         Err(e) if first.is_err() || !matches!(e, Error::Retile(_)) => Err(e),
         Err(_) => first,
     }
+}
+
+/// `c`, found by a second search, reporting the first search's runs
+/// (`earlier`) before its own and the whole encode's work and memory.
+fn after(mut earlier: Vec<Attempt>, mut c: Chosen, budget: &Budget) -> Chosen {
+    earlier.append(&mut c.report.attempts);
+    c.report.attempts = earlier;
+    c.report.work = budget.used();
+    c.report.peak_memory_bytes = budget.peak_memory();
+    c
 }
 
 /// `a` is nearer the target than `b` (both within the cap).

@@ -17,6 +17,7 @@
 //!   (a check the thesis does not need, as it never closes a gate by
 //!   force; this retiler's fallbacks can).
 
+use super::marks::Marks;
 use super::surface::{face, prev, Surface, NONE};
 
 /// Why a triangloid was rejected.
@@ -38,8 +39,7 @@ pub enum Invalid {
 pub struct Flood {
     stack: Vec<u32>,
     faces: Vec<u32>,
-    vstamp: Vec<u32>,
-    epoch: u32,
+    vertices: Marks,
 }
 
 /// Claims for triangle `id` the region left of the closed chain `boundary`
@@ -105,20 +105,11 @@ pub fn claim(
     }
     // Euler characteristic: E = (3F + n) / 2 as every inner edge is seen
     // twice and every boundary edge once.
-    if fl.vstamp.len() < s.vertex_count() {
-        fl.vstamp.resize(s.vertex_count(), 0);
-    }
-    fl.epoch = fl.epoch.wrapping_add(1);
-    if fl.epoch == 0 {
-        fl.vstamp.fill(0);
-        fl.epoch = 1;
-    }
+    fl.vertices.clear(s.vertex_count());
     let mut vertices = 0usize;
     for &f in &fl.faces {
         for c in Surface::corners(f) {
-            let x = s.v[c as usize] as usize;
-            if fl.vstamp[x] != fl.epoch {
-                fl.vstamp[x] = fl.epoch;
+            if fl.vertices.insert(s.v[c as usize]) {
                 vertices += 1;
             }
         }

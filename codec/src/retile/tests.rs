@@ -17,6 +17,18 @@ pub fn sphere(levels: u32) -> TriMesh {
     TriMesh::new(p, f)
 }
 
+/// A closed mesh as the retiler's dynamic surface.
+pub fn surface_of(m: &TriMesh) -> Surface {
+    let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
+    let pos: Vec<DVec3> = m
+        .positions
+        .iter()
+        .map(|p| p.map(f64::from).into())
+        .collect();
+    let opp: Vec<u32> = table.opposites().iter().map(|c| c.0).collect();
+    Surface::new(&pos, &m.triangles, &opp)
+}
+
 /// `mesh` through the SwingWrapper encoder (8 angle bits, aiming at
 /// `target`) and back through the decoder: what a user of the codec gets.
 pub fn retiled(mesh: &TriMesh, target: crate::SwingTarget) -> TriMesh {
@@ -90,15 +102,7 @@ fn check_closed_genus0(r: &Retiled) {
 
 #[test]
 fn splits_keep_the_surface_consistent() {
-    let m = sphere(1);
-    let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
-    let pos: Vec<DVec3> = m
-        .positions
-        .iter()
-        .map(|p| p.map(f64::from).into())
-        .collect();
-    let opp: Vec<u32> = table.opposites().iter().map(|c| c.0).collect();
-    let mut s = Surface::new(&pos, &m.triangles, &opp);
+    let mut s = surface_of(&sphere(1));
     s.set_path(4);
     let w = s.split_edge(4, 0.3);
     s.check().unwrap();

@@ -83,6 +83,13 @@ impl Config {
         }
     }
 
+    /// What this configuration asks of the SwingWrapper encoder.
+    fn tuning(self) -> swm::SwingTuning {
+        swm::SwingTuning {
+            approximate_tips: self != Config::SwingOnSurface,
+        }
+    }
+
     /// The configuration a table names.
     pub fn from_name(name: &str) -> Option<Config> {
         Config::ALL.into_iter().find(|c| c.name() == name)
@@ -94,20 +101,11 @@ impl Config {
         let coded = match self {
             Config::Lossless => lossless(case, budget, samples)?,
             Config::Baseline => crate::rd::baseline::run(case, budget, samples)?,
-            Config::Swing | Config::SwingSharpen | Config::SwingSharpenBend => {
-                return swing(
-                    case,
-                    budget,
-                    samples,
-                    swm::SwingTuning::default(),
-                    &self.decode_options(),
-                )
-            }
-            Config::SwingOnSurface => {
-                let tuning = swm::SwingTuning {
-                    approximate_tips: false,
-                };
-                return swing(case, budget, samples, tuning, &self.decode_options());
+            Config::Swing
+            | Config::SwingOnSurface
+            | Config::SwingSharpen
+            | Config::SwingSharpenBend => {
+                return swing(case, budget, samples, self.tuning(), &self.decode_options())
             }
         };
         Ok(coded.map_or(Outcome::Infeasible, Outcome::Coded))
