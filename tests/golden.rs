@@ -229,6 +229,7 @@ fn golden_swing_options() -> EncodeOptions {
         // them.
         swing: swm::SwingTuning {
             approximate_tips: false,
+            adaptive_density: false,
         },
         ..EncodeOptions::default()
     }
@@ -284,5 +285,95 @@ fn swing_v1_0_reencodes_to_the_same_bytes() {
     assert_eq!(
         encoded.bytes, SWING_V1_0,
         "re-encoding the golden sphere no longer gives golden/swing-v1.0.swm"
+    );
+}
+
+// --- Format 1.1: SwingWrapper with a density (DENS) ---
+
+const SWING_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-v1.1.swm");
+
+/// The test vector of format-spec/05-swing.md ("Golden file", 1.1).
+const SWING_V1_1_FNV1A64: u64 = 0x35B1_779D_4F78_F5EC;
+
+/// The 1.1 golden file's input: the golden sphere stretched into the
+/// ellipsoid x² + (y/0.5)² + (z/0.25)² = 1 (one binary32 multiplication
+/// per coordinate, exact on every platform), whose curvature varies
+/// enough for the edge length to step.
+fn golden_ellipsoid() -> TriMesh {
+    let mut m = golden_sphere();
+    for p in &mut m.positions {
+        p[1] *= 0.5;
+        p[2] *= 0.25;
+    }
+    m
+}
+
+fn golden_adaptive_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: swm::SwingTarget::EdgeLength(0.2),
+            angle_bits: Some(8),
+            max_bytes: None,
+        },
+        swing: swm::SwingTuning {
+            approximate_tips: false,
+            adaptive_density: true,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+/// Writes the 1.1 golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_swing_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_swing_v1_1_golden() {
+    let encoded = swm::encode(&golden_ellipsoid(), &golden_adaptive_options()).unwrap();
+    let mesh = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
+    std::fs::write(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../format-spec/golden/swing-v1.1.swm"
+        ),
+        &encoded.bytes,
+    )
+    .unwrap();
+    println!(
+        "{} bytes, {} vertices, {} triangles, hash {:#018X}",
+        encoded.bytes.len(),
+        mesh.positions.len(),
+        mesh.triangles.len(),
+        mesh_hash(&mesh)
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads the
+/// DENS section of format 1.1 as specified.
+#[test]
+fn swing_v1_1_decodes_to_its_test_vector() {
+    let info = swm::inspect(SWING_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    let swing = info.swing.expect("a SwingWrapper file");
+    assert!(
+        swing.sections.iter().any(|(t, _)| t == b"DENS"),
+        "the 1.1 golden file has a DENS section"
+    );
+    let mesh = swm::decode(SWING_V1_1, &DecodeOptions::default())
+        .expect("golden file swing-v1.1.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        SWING_V1_1_FNV1A64,
+        "decoded mesh differs from format-spec/05-swing.md's test vector"
+    );
+}
+
+/// The encoder still writes the 1.1 golden bytes from the golden
+/// ellipsoid (pins the encoder's density rule on this platform).
+#[test]
+fn swing_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_ellipsoid(), &golden_adaptive_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_V1_1,
+        "re-encoding the golden ellipsoid no longer gives golden/swing-v1.1.swm"
     );
 }

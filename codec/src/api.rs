@@ -85,10 +85,11 @@ pub struct EncodeOptions {
 }
 
 #[cfg(feature = "encoder")]
-/// Choices of the SwingWrapper encoder that the decoder never sees (the
-/// file format does not change with them). Each is on by default and can
-/// be switched off to measure what it buys (BENCHMARKS.md, issue 19's
-/// ablation).
+/// Choices of the SwingWrapper encoder, each switchable to measure what
+/// it buys (BENCHMARKS.md, issue 19's ablation). Every decoder of the
+/// format reads the result: approximating tips only change which angle
+/// codes are sent, and adaptive density adds a `DENS` section (format
+/// 1.1) only when some edge length differs from the base.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct SwingTuning {
     /// Aim each new vertex off the surface by the offset that cancels the
@@ -96,6 +97,13 @@ pub struct SwingTuning {
     /// the normal, H the mean curvature at the scale of L), rather than
     /// on the surface as the thesis does. Default `true`.
     pub approximate_tips: bool,
+    /// Let the edge length follow the shape: shorter where the surface
+    /// bends, is thin or creased, longer where it is flat (L ∝ κ^(−1/3)
+    /// for the curvature κ at the scale of L; the file then carries one
+    /// level step per vertex in a `DENS` section, format 1.1). Default
+    /// `false`: on the shared corpus it does not yet pay for its section
+    /// everywhere (BENCHMARKS.md, "Adaptive sampling").
+    pub adaptive_density: bool,
 }
 
 #[cfg(feature = "encoder")]
@@ -103,6 +111,7 @@ impl Default for SwingTuning {
     fn default() -> Self {
         SwingTuning {
             approximate_tips: true,
+            adaptive_density: false,
         }
     }
 }
@@ -217,14 +226,14 @@ fn encode_swing(
     let cleaned = crate::clean(mesh, &options.clean)?;
     let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     let budget = crate::retile::Budget::new(options.limits);
-    let approximate_tips = options.swing.approximate_tips;
     let knobs = rate::Knobs {
         angle_bits: angle_bits.unwrap_or(DEFAULT_ANGLE_BITS),
-        approximate_tips,
+        approximate_tips: options.swing.approximate_tips,
+        adaptive_density: options.swing.adaptive_density,
     };
     let at_size = |b: u64| match angle_bits {
         Some(_) => rate::at_size(&pieces, b, max_bytes, knobs, &budget),
-        None => rate::at_size_auto(&pieces, b, max_bytes, approximate_tips, &budget),
+        None => rate::at_size_auto(&pieces, b, max_bytes, knobs, &budget),
     };
     let bytes_for = |bpv: f64| (bpv * mesh.vertex_count() as f64 / 8.0).round() as u64;
     let chosen = match target {

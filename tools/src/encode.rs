@@ -45,6 +45,11 @@ pub struct Args {
     /// planes of flat regions through their vertices).
     #[arg(long)]
     on_surface: bool,
+    /// Swing: shorter edges where the surface bends, is thin or creased,
+    /// longer where it is flat, instead of one edge length everywhere
+    /// (experimental; the file is then format 1.1).
+    #[arg(long)]
+    adaptive: bool,
     /// Swing: never write more than this many bytes.
     #[arg(long, value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     max_size: Option<u64>,
@@ -97,6 +102,7 @@ impl Args {
                     (self.edge_length.is_some(), "--edge-length"),
                     (self.angle_bits.is_some(), "--angle-bits"),
                     (self.on_surface, "--on-surface"),
+                    (self.adaptive, "--adaptive"),
                     (self.max_size.is_some(), "--max-size"),
                     (self.max_work.is_some(), "--max-work"),
                     (self.max_memory.is_some(), "--max-memory"),
@@ -155,6 +161,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         limits,
         swing: swm::SwingTuning {
             approximate_tips: !args.on_surface,
+            adaptive_density: args.adaptive,
         },
         ..Default::default()
     };

@@ -101,12 +101,14 @@ pub struct Header {
 }
 
 impl Header {
-    /// A header of the current version ([`FORMAT_MAJOR`].[`FORMAT_MINOR`])
-    /// with no flags.
+    /// A header of version [`FORMAT_MAJOR`].0 with no flags: a writer
+    /// raises `minor` (at most to [`FORMAT_MINOR`]) only when the file
+    /// uses a feature a later minor version added, so that every older
+    /// decoder of the major version reads every file it can.
     pub fn new(mode: Mode, vertex_count: u32, triangle_count: u32, component_count: u32) -> Self {
         Header {
             major: FORMAT_MAJOR,
-            minor: FORMAT_MINOR,
+            minor: 0,
             flags: 0,
             mode,
             vertex_count,

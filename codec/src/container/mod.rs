@@ -93,7 +93,7 @@ pub const FORMAT_MAJOR: u8 = 1;
 /// Minor format version this crate writes. A decoder reads newer minor
 /// versions of its major version as long as they use no feature it does
 /// not know (see `format-spec/versions.md`).
-pub const FORMAT_MINOR: u8 = 0;
+pub const FORMAT_MINOR: u8 = 1;
 
 /// The four bytes every `.swm` file starts with.
 pub const MAGIC: [u8; 4] = *b"SWM\0";

@@ -31,6 +31,9 @@ impl Tag {
     /// file whose mesh is appended to the decoded one
     /// (format-spec/05-swing.md).
     pub const REST: Tag = Tag(*b"REST");
+    /// Critical (format 1.1). SwingWrapper density: one level step per C
+    /// tip, scaling its circle's radius (format-spec/05-swing.md).
+    pub const DENS: Tag = Tag(*b"DENS");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
 
@@ -66,16 +69,18 @@ impl Tag {
     }
 }
 
-/// Critical tags of format 1.0. A decoder rejects any other critical tag.
+/// Critical tags of format 1.0, then those 1.1 added. A decoder rejects
+/// any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
 /// (At most 8: the parser keeps them in a `u8`.)
-pub(crate) const KNOWN_CRITICAL: [Tag; 6] = [
+pub(crate) const KNOWN_CRITICAL: [Tag; 7] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
     Tag::GEOM,
     Tag::HOLE,
     Tag::REST,
+    Tag::DENS,
 ];
 
 /// Ancillary tags of format 1.0. Other ancillary tags are skipped.

@@ -206,7 +206,8 @@ fn other_major_versions_are_unsupported() {
         );
         let text = Error::from(e).to_string();
         assert!(
-            text.contains(&format!("{major}.3")) && text.contains("1.0"),
+            text.contains(&format!("{major}.3"))
+                && text.contains(&format!("{FORMAT_MAJOR}.{FORMAT_MINOR}")),
             "{text}"
         );
     }

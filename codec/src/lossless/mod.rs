@@ -301,11 +301,11 @@ pub(crate) fn read_connectivity(
     limits: &Limits,
 ) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
     // Critical sections of the SwingWrapper mode mean nothing here.
-    for tag in [Tag::HOLE, Tag::REST] {
+    for tag in [Tag::HOLE, Tag::REST, Tag::DENS] {
         if file.find(tag).is_some() {
             return Err(crate::FormatError::new(
                 "SWM",
-                crate::Malformed::BadSyntax("a lossless file has a HOLE or REST section"),
+                crate::Malformed::BadSyntax("a lossless file has a HOLE, REST or DENS section"),
             )
             .into());
         }

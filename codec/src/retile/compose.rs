@@ -77,6 +77,7 @@ pub fn retile_pieces(
         symbols: Vec::new(),
         codes: Vec::new(),
         edge_length: opt.edge_length,
+        steps: Vec::new(),
         hole_mask: Vec::new(),
         rest: None,
     };
@@ -187,6 +188,7 @@ fn append(out: &mut Retiled, r: Retiled, mask: Vec<bool>) {
     out.positions.extend(r.positions);
     out.symbols.extend(r.symbols);
     out.codes.extend(r.codes);
+    out.steps.extend(r.steps);
     out.hole_mask.extend(mask);
 }
 

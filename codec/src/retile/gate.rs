@@ -25,7 +25,7 @@ use super::surface::NONE;
 use super::walk::Plane;
 use super::{Failure, Gate, Retiler};
 use crate::edgebreaker::Symbol;
-use crate::swing::{quantize, Frame};
+use crate::swing::{gate_level, level_ratio, quantize, Frame};
 use glam::DVec3;
 
 /// The thesis's snap radius, in L (surface distance from the candidate).
@@ -55,6 +55,7 @@ impl Retiler<'_> {
         let gl = self.front.next(gr);
         let (vl, vr) = (self.front.vertex(gl), self.front.vertex(gr));
         let (xl, xr) = (self.xhat[vl as usize], self.xhat[vr as usize]);
+        self.set_level(vl, vr);
         let centre = (xl + xr) * 0.5;
         let plane = Plane {
             origin: centre,
@@ -139,6 +140,24 @@ impl Retiler<'_> {
             }
         }
         Err(Failure::NoTip { triangle: id })
+    }
+
+    /// The level of the gate GL = `vl`, GR = `vr` (`swing::density`):
+    /// the mean of its vertices' levels rounded down, stepped towards the
+    /// density's target when it adapts; sets the edge length and tip
+    /// radius of this gate's triangle.
+    fn set_level(&mut self, vl: u32, vr: u32) {
+        let gate = gate_level(self.level[vl as usize], self.level[vr as usize]);
+        let (ml, mr) = (self.msample[vl as usize], self.msample[vr as usize]);
+        let d = match &mut self.density {
+            Some(field) => field.step(&self.s, gate, ml, mr),
+            None => 0,
+        };
+        let level = gate + d;
+        self.tip_step = (d, level);
+        let ratio = level_ratio(level);
+        self.l = self.l0 * ratio;
+        self.radius = self.radius0 * ratio;
     }
 
     /// The loop neighbour of gate `gr` (prev(GR) or next(GL)) whose angle
@@ -321,6 +340,7 @@ impl Retiler<'_> {
         self.push_triangle([x, vl, vr]);
         self.symbols.push(Symbol::C);
         self.codes.push(q);
+        self.steps.push(self.tip_step.0);
         Some((self.front.apply_c(gr, x), vl))
     }
 }

@@ -33,6 +33,7 @@
 
 mod budget;
 pub mod compose;
+mod density;
 pub mod fill;
 mod front;
 mod gate;
@@ -81,6 +82,9 @@ pub struct RetileOptions {
     /// error of its triangles (`offset`), instead of at M itself as the
     /// thesis does. Default `true`.
     pub approximate_tips: bool,
+    /// Let the edge length follow M's curvature (`density`; the file
+    /// then carries `DENS`, format 1.1) instead of one L everywhere.
+    pub adaptive_density: bool,
 }
 
 pub use crate::error::RetileFailure as Failure;
@@ -122,13 +126,20 @@ fn retile_piece(
     let area = mesh.area();
     let tri_area = l * l * 3f64.sqrt() / 4.0;
     let cap = (8.0 * area / tri_area) as usize + 64;
+    let density = opt.adaptive_density.then(|| density::Field::new(&s, l));
     let mut r = Retiler {
         s,
         table: AngleTable::new(opt.angle_bits),
         l,
+        l0: l,
         fixed: fixed.is_some(),
         handles,
         radius: tip_radius(l),
+        radius0: tip_radius(l),
+        level: Vec::new(),
+        steps: Vec::new(),
+        tip_step: (0, 0),
+        density,
         xhat: Vec::new(),
         msample: Vec::new(),
         adj: Vec::new(),
@@ -168,7 +179,8 @@ fn retile_piece(
         positions: r.xhat.iter().map(|p| p.to_array()).collect(),
         symbols: r.symbols,
         codes: r.codes,
-        edge_length: r.l,
+        edge_length: r.l0,
+        steps: r.steps,
         hole_mask: Vec::new(),
         rest: None,
     };
@@ -185,12 +197,26 @@ type Gate = (u32, u32);
 struct Retiler<'b> {
     s: Surface,
     table: AngleTable,
+    /// The edge length of the gate at hand: `l0` scaled by its level.
     l: f64,
+    /// The base edge length (level 0): the first edge's.
+    l0: f64,
     /// `l` is an earlier component's and must not change.
     fixed: bool,
     /// M has handles: a tip may snap to another loop (an S\*).
     handles: bool,
+    /// The tip radius of the gate at hand, `radius0` scaled by its level
+    /// exactly as the decoder scales it.
     radius: f64,
+    radius0: f64,
+    /// Per M′ vertex: its level (`swing::density`).
+    level: Vec<i8>,
+    /// Per C tip: its level step.
+    steps: Vec<i8>,
+    /// The step and level a C at the gate at hand takes.
+    tip_step: (i8, i8),
+    /// The target levels, when the density adapts.
+    density: Option<density::Field>,
     /// Per M′ vertex: decoded position.
     xhat: Vec<DVec3>,
     /// Per M′ vertex: the vertex of M where its paths meet.
@@ -222,6 +248,7 @@ impl Retiler<'_> {
     fn add_vertex(&mut self, xhat: DVec3, m: u32) -> u32 {
         let id = self.xhat.len() as u32;
         self.xhat.push(xhat);
+        self.level.push(self.tip_step.1);
         self.msample.push(m);
         self.adj.push(Vec::new());
         if m != NONE {
@@ -301,6 +328,7 @@ impl Retiler<'_> {
             }
         }
         self.xhat.pop();
+        self.level.pop();
         self.adj.pop();
     }
 
@@ -400,6 +428,7 @@ impl Retiler<'_> {
             // The decoder's L: the distance of the explicit p1 and p2.
             self.l = first_edge_length(&[x1.to_array(), DVec3::ZERO.to_array(), x2.to_array()]);
             self.radius = tip_radius(self.l);
+            (self.l0, self.radius0) = (self.l, self.radius);
         }
         let snap = 1e-9 * self.l;
         let m2 = self

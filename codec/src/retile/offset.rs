@@ -80,6 +80,76 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
     if s.patch[f as usize] != NONE {
         return DVec3::ZERO;
     }
+    let Some((n, coherence)) = sample_disk(s, f, v, l, sc) else {
+        return DVec3::ZERO;
+    };
+    // Coherence of the normals: |Σw·n| / Σw is about 1 − (L/R)²/8 on a
+    // smooth patch, far less where the disk wraps a thin part or spans a
+    // crease; the quadratic model fails there, so the offset fades out.
+    let trust = ((coherence - COHERENT_LOW) / (COHERENT_HIGH - COHERENT_LOW)).clamp(0.0, 1.0);
+    if trust == 0.0 {
+        return DVec3::ZERO;
+    }
+    // Per sample, k = 2h/ρ² is the curvature of the normal section
+    // through it; weighted by w·ρ², their mean is the least-squares fit
+    // of h = κ·ρ²/2 and estimates −H. Their weighted median does too on a
+    // smooth patch (the sections' curvatures are symmetric about H) and
+    // ignores a minority of samples across a crease, which would make
+    // the mean large and push a tip beside a sharp edge off its plane.
+    let Some(total) = sections(sc, n) else {
+        return DVec3::ZERO;
+    };
+    sc.sections.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    let mut acc = 0.0;
+    let kappa = sc
+        .sections
+        .iter()
+        .find(|&&(_, w)| {
+            acc += w;
+            acc >= 0.5 * total
+        })
+        .map_or(0.0, |&(k, _)| k);
+    // The mesh lies κ·L²/8 along n from M on average (κ < 0 on a convex
+    // part, whose heights are negative under the outward normal), so the
+    // tip moves the other way.
+    let delta = (-kappa * l * l / 8.0).clamp(-MAX_OFFSET * l, MAX_OFFSET * l);
+    n * (trust * delta)
+}
+
+impl Scratch {
+    /// (weight, sample − V) of the last [`sample_disk`].
+    pub(super) fn samples(&self) -> &[(f64, DVec3)] {
+        &self.samples
+    }
+}
+
+/// Fills `sc.sections` with (section curvature 2h/ρ², weight w·ρ²) of
+/// the samples of the last [`sample_disk`], heights along `n`; returns
+/// Σ w·ρ², or `None` when it is not positive.
+fn sections(sc: &mut Scratch, n: DVec3) -> Option<f64> {
+    sc.sections.clear();
+    let mut total = 0.0;
+    for &(w, d) in &sc.samples {
+        let h = d.dot(n);
+        let r2 = d.length_squared() - h * h;
+        if r2 > 0.0 {
+            sc.sections.push((2.0 * h / r2, w * r2));
+            total += w * r2;
+        }
+    }
+    (total > 0.0).then_some(total)
+}
+
+/// Samples the faces of M within [`REACH`]·`l` of point `v` of face `f`
+/// (hole patches left out) into `sc.samples`; returns their mean normal
+/// and its coherence |Σw·n| / Σw, or `None` without a sample.
+pub(super) fn sample_disk(
+    s: &Surface,
+    f: u32,
+    v: DVec3,
+    l: f64,
+    sc: &mut Scratch,
+) -> Option<(DVec3, f64)> {
     let reach2 = (REACH * l) * (REACH * l);
     sc.queued.clear(s.face_count());
     sc.queued.insert(f);
@@ -121,51 +191,7 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
         }
     }
     let n = normal.normalize_or_zero();
-    if n == DVec3::ZERO {
-        return DVec3::ZERO;
-    }
-    // Coherence of the normals: |Σw·n| / Σw is about 1 − (L/R)²/8 on a
-    // smooth patch, far less where the disk wraps a thin part or spans a
-    // crease; the quadratic model fails there, so the offset fades out.
-    let coherence = normal.length() / weight;
-    let trust = ((coherence - COHERENT_LOW) / (COHERENT_HIGH - COHERENT_LOW)).clamp(0.0, 1.0);
-    if trust == 0.0 {
-        return DVec3::ZERO;
-    }
-    // Per sample, k = 2h/ρ² is the curvature of the normal section
-    // through it; weighted by w·ρ², their mean is the least-squares fit
-    // of h = κ·ρ²/2 and estimates −H. Their weighted median does too on a
-    // smooth patch (the sections' curvatures are symmetric about H) and
-    // ignores a minority of samples across a crease, which would make
-    // the mean large and push a tip beside a sharp edge off its plane.
-    sc.sections.clear();
-    let mut total = 0.0;
-    for &(w, d) in &sc.samples {
-        let h = d.dot(n);
-        let r2 = d.length_squared() - h * h;
-        if r2 > 0.0 {
-            sc.sections.push((2.0 * h / r2, w * r2));
-            total += w * r2;
-        }
-    }
-    if total <= 0.0 || total.is_nan() {
-        return DVec3::ZERO;
-    }
-    sc.sections.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-    let mut acc = 0.0;
-    let kappa = sc
-        .sections
-        .iter()
-        .find(|&&(_, w)| {
-            acc += w;
-            acc >= 0.5 * total
-        })
-        .map_or(0.0, |&(k, _)| k);
-    // The mesh lies κ·L²/8 along n from M on average (κ < 0 on a convex
-    // part, whose heights are negative under the outward normal), so the
-    // tip moves the other way.
-    let delta = (-kappa * l * l / 8.0).clamp(-MAX_OFFSET * l, MAX_OFFSET * l);
-    n * (trust * delta)
+    (n != DVec3::ZERO).then(|| (n, normal.length() / weight))
 }
 
 #[cfg(test)]

@@ -15,6 +15,7 @@ fn options(l: f64) -> RetileOptions {
         start_vertex: None,
         start_rank: 0,
         approximate_tips: true,
+        adaptive_density: false,
     }
 }
 

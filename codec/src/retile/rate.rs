@@ -66,6 +66,8 @@ pub struct Knobs {
     pub angle_bits: u8,
     /// [`RetileOptions::approximate_tips`].
     pub approximate_tips: bool,
+    /// [`RetileOptions::adaptive_density`].
+    pub adaptive_density: bool,
 }
 
 /// A finished encoding.
@@ -94,6 +96,7 @@ fn run(
         start_vertex: None,
         start_rank,
         approximate_tips: knobs.approximate_tips,
+        adaptive_density: knobs.adaptive_density,
     };
     match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {
@@ -180,12 +183,12 @@ pub fn at_size_auto(
     pieces: &[Piece],
     target: u64,
     max_bytes: Option<u64>,
-    approximate_tips: bool,
+    tuning: Knobs,
     budget: &Budget,
 ) -> Result<Chosen, Error> {
     let knobs = |angle_bits| Knobs {
         angle_bits,
-        approximate_tips,
+        ..tuning
     };
     let [fine, coarse] = AUTO_ANGLE_BITS;
     let first = search(pieces, target, max_bytes, knobs(fine), budget, None);

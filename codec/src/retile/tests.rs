@@ -82,6 +82,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             start_vertex: None,
             start_rank: 0,
             approximate_tips: true,
+            adaptive_density: false,
         },
     )
 }
@@ -197,6 +198,7 @@ fn probe() {
                     .map(|s| s.parse().unwrap()),
                 start_rank: std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap()),
                 approximate_tips: std::env::var_os("SWM_RETILE_ON_SURFACE").is_none(),
+                adaptive_density: std::env::var_os("SWM_RETILE_ADAPTIVE").is_some(),
             },
         );
         let dt = t0.elapsed().as_secs_f64();
@@ -271,6 +273,7 @@ fn decoding_reproduces_the_retiled_mesh_exactly() {
 const KNOBS: rate::Knobs = rate::Knobs {
     angle_bits: 8,
     approximate_tips: true,
+    adaptive_density: false,
 };
 
 #[test]

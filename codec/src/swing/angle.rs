@@ -329,7 +329,9 @@ fn bad(why: &'static str) -> Error {
 /// is the next vertex is a C, whose tip is
 /// `Frame::new(X[V[3t+1]], X[V[3t+2]], X[V[O[3t]]], r).point(q)`; every
 /// other triangle places nothing. r = [`tip_radius`] of
-/// [`first_edge_length`] of `first[0]`, for the whole mesh.
+/// [`first_edge_length`] of `first[0]`, for the whole mesh, times
+/// 2^(ℓ/4) for the k-th C tip of level ℓ = `levels[k]` when the file
+/// carries levels (`DENS`, format 1.1; `None`: every level is 0).
 ///
 /// Fails (format error, never a panic) when the table is not numbered
 /// that way, the number of codes or first triangles is wrong, a code is
@@ -341,7 +343,14 @@ pub fn rebuild_positions(
     first: &[[[f64; 3]; 3]],
     bits: u8,
     codes: &[u32],
+    levels: Option<&[i8]>,
 ) -> Result<Vec<[f64; 3]>, Error> {
+    if let Some(l) = levels {
+        if l.len() != codes.len() || l.iter().any(|l| l.abs() > super::density::LEVEL_MAX) {
+            return Err(bad("levels are not one per angle code, or out of range"));
+        }
+    }
+    let mut k = 0usize;
     if !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(&bits) {
         return Err(bad("angle bits out of range"));
     }
@@ -381,7 +390,12 @@ pub fn rebuild_positions(
             if q >= angles.codes() {
                 return Err(bad("angle code out of range"));
             }
-            let frame = Frame::new(x[b as usize], x[c as usize], x[prev as usize], r);
+            let rk = match levels {
+                Some(l) => r * super::density::ratio(l[k]),
+                None => r,
+            };
+            k += 1;
+            let frame = Frame::new(x[b as usize], x[c as usize], x[prev as usize], rk);
             push_point(&mut x, frame.point(&angles, q))?;
         } else if a > next || c >= next {
             return Err(bad("vertices are not numbered in coding order"));

@@ -15,7 +15,7 @@
 //!   lossless (mode 0) file, whose mesh follows the retiled one.
 //!
 //! The decoder rebuilds the corner table, then every vertex in one pass
-//! over the triangles ([`rebuild_positions`]); the encoder runs the same
+//! over the triangles ([`angle::rebuild_positions`]); the encoder runs the same
 //! pass on the retiler's output before writing, so the file decodes to
 //! exactly the retiler's positions. Then masked triangles and the
 //! vertices only they used are dropped, and `REST`'s mesh appended.
@@ -28,16 +28,21 @@
 use crate::prelude::*;
 
 mod angle;
+mod density;
 mod hole;
 mod read;
 mod residual;
 #[cfg(feature = "encoder")]
 mod write;
 
+#[cfg(all(test, feature = "encoder"))]
+mod measure;
 #[cfg(test)]
 mod tests;
 
-pub use angle::{first_edge_length, rebuild_positions, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+pub use angle::{first_edge_length, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+#[cfg(feature = "encoder")]
+pub(crate) use density::{gate_level, ratio as level_ratio, LEVEL_MAX};
 // What the retiler builds its tips with: the decoder's own arithmetic.
 #[cfg(feature = "encoder")]
 pub use angle::{quantize, tip_radius, AngleTable, Frame};
@@ -76,6 +81,11 @@ pub struct Retiled {
     pub symbols: Vec<Symbol>,
     /// The angle code q of each C tip, in order.
     pub codes: Vec<u32>,
+    /// The level step d (−1, 0 or 1) of each C tip, in order: its circle
+    /// has radius r·2^(ℓ/4), ℓ the mean level of its gate rounded down
+    /// plus d (`DENS`, format 1.1). Empty, or all zero: every radius is r
+    /// and the file is format 1.0.
+    pub steps: Vec<i8>,
     /// L = |first[0][0] − first[0][2]| ([`first_edge_length`]); every
     /// component's tips use its radius.
     pub edge_length: f64,

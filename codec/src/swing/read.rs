@@ -6,7 +6,7 @@
 
 use crate::prelude::*;
 
-use super::{angle, hole, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+use super::{angle, density, hole, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
 use crate::container::{check_count_fits, parse_container, Container, Mode, Section, Tag};
 use crate::edgebreaker::{self, Connectivity, Symbol};
 use crate::varint::Reader;
@@ -100,7 +100,7 @@ pub(crate) fn read_head(bytes: &[u8], components: u32) -> Result<Head, Error> {
 }
 
 /// Reads `HEAD`, `TOPO` and `CLRS` and decodes the connectivity.
-fn read_connectivity(
+pub(super) fn read_connectivity(
     file: &Container<'_>,
     limits: &Limits,
 ) -> Result<(Head, Connectivity, CornerTable), Error> {
@@ -211,7 +211,24 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let (v, t) = (table.vertex_count() as u64, table.face_count() as u64);
     limits.check_alloc(v.saturating_mul(45).saturating_add(t.saturating_mul(13)))?;
     let codes = residual::decode(&table, geom, count, head.bits, head.predicted)?;
-    let x = super::rebuild_positions(&table, &head.first, head.bits, &codes)?;
+    let levels = match file.find(Tag::DENS) {
+        Some(s) => {
+            // A step costs more than 1/2^16 bit: each of its model's three
+            // symbols keeps a frequency of at least 1.
+            check_count_fits(
+                "level step",
+                count as u64,
+                s.bytes.len(),
+                1,
+                1 << crate::entropy::PRECISION,
+            )
+            .map_err(|e| in_section(s.offset)(e.into()))?;
+            Some(density::decode(&table, s.bytes, count).map_err(in_section(s.offset))?)
+        }
+        None => None,
+    };
+    let x =
+        super::angle::rebuild_positions(&table, &head.first, head.bits, &codes, levels.as_deref())?;
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
     let triangles = table.triangles();
     if triangles.len() != file.header.triangle_count as usize {

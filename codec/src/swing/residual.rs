@@ -57,7 +57,7 @@ impl Models {
 /// 3t+2 are not yet numbered start a component (three new vertices);
 /// one whose tip is the next vertex is a C. The decoded table is numbered
 /// this way; anything else is an error.
-fn for_each_c(
+pub(super) fn for_each_c(
     table: &CornerTable,
     mut f: impl FnMut(usize, usize, usize, usize) -> Result<(), Error>,
 ) -> Result<(), Error> {

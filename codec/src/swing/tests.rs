@@ -75,6 +75,7 @@ pub(super) fn emulate(mesh: &TriMesh, bits: u8) -> Retiled {
         symbols: eb.connectivity.symbols,
         codes,
         edge_length,
+        steps: Vec::new(),
         hole_mask: Vec::new(),
         rest: None,
     }
@@ -995,6 +996,7 @@ fn a_file_may_be_all_rest() {
         symbols: Vec::new(),
         codes: Vec::new(),
         edge_length: 0.0,
+        steps: Vec::new(),
         hole_mask: Vec::new(),
         rest: Some((rest_mesh(), 10)),
     };

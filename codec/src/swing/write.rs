@@ -7,7 +7,7 @@
 //! retiler, reported as an error rather than a panic.
 
 use super::read::{write_head, Head};
-use super::{angle, hole, residual, Retiled, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+use super::{angle, density, hole, residual, Retiled, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
 use crate::container::{write_container, Header, Mode, Tag};
 use crate::edgebreaker;
 use crate::lossless::{write_clers, write_topo};
@@ -141,8 +141,23 @@ pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
             "the decoded triangles differ from the retiled ones",
         ));
     }
-    let rebuilt = super::rebuild_positions(&decoded, first, bits, &retiled.codes)
-        .map_err(|_| internal("the angle codes do not rebuild the vertices"))?;
+    // DENS only when some step is not 0: a file without is format 1.0.
+    let graded = retiled.steps.iter().any(|&d| d != 0);
+    let dens = if graded {
+        Some(density::encode(&decoded, &retiled.steps)?)
+    } else {
+        None
+    };
+    let levels = match &dens {
+        Some(b) => Some(
+            density::decode(&decoded, b, retiled.codes.len())
+                .map_err(|_| internal("the level steps do not decode"))?,
+        ),
+        None => None,
+    };
+    let rebuilt =
+        angle::rebuild_positions(&decoded, first, bits, &retiled.codes, levels.as_deref())
+            .map_err(|_| internal("the angle codes do not rebuild the vertices"))?;
     if !same_bits(&rebuilt, positions) {
         return Err(internal("positions differ from the decoder's"));
     }
@@ -167,18 +182,25 @@ pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
         }
         _ => (None, 0),
     };
-    let header = Header::new(
+    let mut header = Header::new(
         Mode::Swing,
         nv as u32,
         triangles.len() as u32,
         first.len() as u32,
     );
+    if dens.is_some() {
+        // DENS is a format 1.1 section.
+        header.minor = 1;
+    }
     let mut sections: Vec<(Tag, &[u8])> = vec![
         (Tag::HEAD, &head_bytes),
         (Tag::TOPO, &topo),
         (Tag::CLRS, &clrs),
         (Tag::GEOM, &geom),
     ];
+    if let Some(b) = &dens {
+        sections.push((Tag::DENS, b));
+    }
     if let Some(b) = &hole_bytes {
         sections.push((Tag::HOLE, b));
     }

@@ -30,6 +30,10 @@ pub enum Config {
     /// them (the ablation of approximating tips).
     #[value(name = "swing-on-surface")]
     SwingOnSurface,
+    /// `swing` with the edge length following the shape (adaptive
+    /// sampling, `swm encode --adaptive`; not yet the default).
+    #[value(name = "swing-adaptive")]
+    SwingAdaptive,
     /// The `swing` file decoded with EdgeSharpener (no extra bits).
     #[value(name = "swing+sharpen")]
     SwingSharpen,
@@ -40,11 +44,12 @@ pub enum Config {
 
 impl Config {
     /// Every configuration, in table order.
-    pub const ALL: [Config; 6] = [
+    pub const ALL: [Config; 7] = [
         Config::Lossless,
         Config::Baseline,
         Config::Swing,
         Config::SwingOnSurface,
+        Config::SwingAdaptive,
         Config::SwingSharpen,
         Config::SwingSharpenBend,
     ];
@@ -53,7 +58,7 @@ impl Config {
     pub fn default_set() -> Vec<Config> {
         Config::ALL
             .into_iter()
-            .filter(|&c| c != Config::SwingOnSurface)
+            .filter(|&c| !matches!(c, Config::SwingOnSurface | Config::SwingAdaptive))
             .collect()
     }
 
@@ -64,6 +69,7 @@ impl Config {
             Config::Baseline => "baseline",
             Config::Swing => "swing",
             Config::SwingOnSurface => "swing-on-surface",
+            Config::SwingAdaptive => "swing-adaptive",
             Config::SwingSharpen => "swing+sharpen",
             Config::SwingSharpenBend => "swing+sharpen+bend",
         }
@@ -87,6 +93,7 @@ impl Config {
     fn tuning(self) -> swm::SwingTuning {
         swm::SwingTuning {
             approximate_tips: self != Config::SwingOnSurface,
+            adaptive_density: self == Config::SwingAdaptive,
         }
     }
 
@@ -103,6 +110,7 @@ impl Config {
             Config::Baseline => crate::rd::baseline::run(case, budget, samples)?,
             Config::Swing
             | Config::SwingOnSurface
+            | Config::SwingAdaptive
             | Config::SwingSharpen
             | Config::SwingSharpenBend => {
                 return swing(case, budget, samples, self.tuning(), &self.decode_options())

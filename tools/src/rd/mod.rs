@@ -354,6 +354,7 @@ fn summary(r: &Row) -> String {
             match r.config {
                 Config::Swing
                 | Config::SwingOnSurface
+                | Config::SwingAdaptive
                 | Config::SwingSharpen
                 | Config::SwingSharpenBend => {
                     format!("{} angle bits", c.qp)

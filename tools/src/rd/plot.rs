@@ -28,6 +28,7 @@ fn color(config: Config) -> RGBColor {
         Config::SwingSharpen => RGBColor(245, 130, 49),
         Config::SwingSharpenBend => RGBColor(145, 30, 180),
         Config::SwingOnSurface => RGBColor(66, 212, 244),
+        Config::SwingAdaptive => RGBColor(128, 128, 0),
     }
 }
 
