@@ -25,7 +25,7 @@ from conftest import ROOT, mesh_files
 pytest.importorskip("distributed", reason="Dask distributed not installed (pip install 'dask[distributed]')")
 psutil = pytest.importorskip("psutil", reason="psutil not installed (it comes with dask[distributed])")
 
-BPV = "1"  # a low rate: the cheapest retiling; cow.obj then needs the lossless fallback.
+BPV = "1"  # a low rate: the cheapest retiling.
 SAMPLES = "2000"
 # Skipped from the shared corpus: a million vertices take minutes to retile.
 TOO_SLOW = {"bunny-1m.ply"}
@@ -148,8 +148,6 @@ def test_batch_with_a_worker_killed_then_a_rerun(library, tmp_path):
         assert 0 < float(row["l2_estimate"]) < 0.2, row
         assert row["method"] in ("swing", "lossless")
     assert sum(r["status"] == "encoded" for r in rows.values()) >= len(inputs) - 2
-    if "cow.obj" in rows:  # no retiling of cow at 1 bit per vertex: lossless fallback
-        assert rows["cow.obj"]["method"] == "lossless"
     assert rows["torus.obj"]["method"] == "swing"
     files = check_outputs(out, names)
     # The batch's files are those swm.encode makes (small inputs checked).

@@ -149,8 +149,13 @@ fn retile_tries(
 ) -> Result<(Retiled, Vec<mask::Cover>), Failure> {
     let mut result = Err(Failure::BadInput);
     for k in 0..PIECE_TRIES {
+        // The last start may close a gate that nothing else closes with
+        // a long edge or a large triangle (`gate::SLACK`): a few poor
+        // triangles where earlier starts failed outright, rather than a
+        // failed run that costs the next edge length its own tries.
         let o = RetileOptions {
             start_rank: opt.start_rank + k,
+            last_resort: k + 1 == PIECE_TRIES,
             ..opt.clone()
         };
         result = retile_piece(

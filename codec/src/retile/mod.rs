@@ -85,6 +85,11 @@ pub struct RetileOptions {
     /// Let the edge length follow M's curvature (`density`; the file
     /// then carries `DENS`, format 1.1) instead of one L everywhere.
     pub adaptive_density: bool,
+    /// Close a gate that nothing else closes with a loop neighbour
+    /// allowed [`gate::SLACK`] times longer edges and larger triangloids,
+    /// instead of failing the run. Default `false`; the retries of
+    /// `compose` set it on a piece's last start.
+    pub last_resort: bool,
 }
 
 pub use crate::error::RetileFailure as Failure;
@@ -151,6 +156,8 @@ fn retile_piece(
         codes: Vec::new(),
         scratch: path::Scratch::default(),
         flood: region::Flood::default(),
+        slack: 1.0,
+        last_resort: opt.last_resort,
         approximate: opt.approximate_tips,
         offsets: offset::Scratch::default(),
         run_steps: budget::RUN_STEPS_PER_ELEMENT
@@ -233,6 +240,11 @@ struct Retiler<'b> {
     codes: Vec<u32>,
     scratch: path::Scratch,
     flood: region::Flood,
+    /// Scale of the edge and area limits: 1, or `gate::SLACK` for a
+    /// gate's last resort.
+    slack: f64,
+    /// The last resort is allowed ([`RetileOptions::last_resort`]).
+    last_resort: bool,
     /// Aim C tips off M by the curvature offset (`offset`).
     approximate: bool,
     offsets: offset::Scratch,
@@ -378,7 +390,7 @@ impl Retiler<'_> {
             for (a, b) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
                 boundary.extend(self.path_steps(a, b).map(|(x, _)| x));
             }
-            let max_area = gate::MAX_REGION_AREA * self.l * self.l;
+            let max_area = gate::MAX_REGION_AREA * (self.slack * self.l).powi(2);
             match region::claim(&mut self.s, &boundary, id, max_area, &mut self.flood) {
                 Ok(_) => {
                     for &(a, b) in &made {

@@ -16,6 +16,7 @@ fn options(l: f64) -> RetileOptions {
         start_rank: 0,
         approximate_tips: true,
         adaptive_density: false,
+        last_resort: false,
     }
 }
 

@@ -97,6 +97,7 @@ fn run(
         start_rank,
         approximate_tips: knobs.approximate_tips,
         adaptive_density: knobs.adaptive_density,
+        last_resort: false,
     };
     match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {

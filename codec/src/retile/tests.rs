@@ -83,6 +83,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             start_rank: 0,
             approximate_tips: true,
             adaptive_density: false,
+            last_resort: false,
         },
     )
 }
@@ -199,6 +200,7 @@ fn probe() {
                 start_rank: std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap()),
                 approximate_tips: std::env::var_os("SWM_RETILE_ON_SURFACE").is_none(),
                 adaptive_density: std::env::var_os("SWM_RETILE_ADAPTIVE").is_some(),
+                last_resort: std::env::var_os("SWM_RETILE_LAST_RESORT").is_some(),
             },
         );
         let dt = t0.elapsed().as_secs_f64();
