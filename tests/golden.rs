@@ -358,6 +358,10 @@ fn swing_v1_1_decodes_to_its_test_vector() {
         swing.sections.iter().any(|(t, _)| t == b"DENS"),
         "the 1.1 golden file has a DENS section"
     );
+    assert_eq!(
+        (swing.density_levels, swing.density_bytes),
+        (Some((-1, 2)), 20)
+    );
     let mesh = swm::decode(SWING_V1_1, &DecodeOptions::default())
         .expect("golden file swing-v1.1.swm must decode");
     assert_eq!(

@@ -84,6 +84,16 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
             rest.set_item("triangles", s.rest_triangles)?;
             rest.set_item("bytes", s.rest_bytes)?;
             d.set_item("rest", rest)?;
+            match s.density_levels {
+                Some((lo, hi)) => {
+                    let density = PyDict::new(py);
+                    density.set_item("min_level", lo)?;
+                    density.set_item("max_level", hi)?;
+                    density.set_item("bytes", s.density_bytes)?;
+                    d.set_item("density", density)?;
+                }
+                None => d.set_item("density", py.None())?,
+            }
             d.set_item("clers", clers(py, s.clers)?)?;
             d.set_item("sections", sections(py, &s.sections, t)?)?;
         }

@@ -212,6 +212,15 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
             100.0 * s.hole_bytes as f64 / s.file_bytes.max(1) as f64
         );
     }
+    if let Some((lo, hi)) = s.density_levels {
+        say!(
+            "  density               levels {lo} to {hi} (tip radius {:.2}-{:.2} times the first's), {} bytes ({:.1}% of the file)",
+            2f64.powf(f64::from(lo) / 4.0),
+            2f64.powf(f64::from(hi) / 4.0),
+            s.density_bytes,
+            100.0 * s.density_bytes as f64 / s.file_bytes.max(1) as f64
+        );
+    }
     if s.rest_bytes > 0 {
         say!(
             "  kept losslessly       {} triangles, {} bytes",

@@ -91,6 +91,11 @@ pub fn swing_json(s: &swm::SwingStats) -> Value {
             "file_share": s.hole_bytes as f64 / s.file_bytes.max(1) as f64,
         },
         "rest": { "triangles": s.rest_triangles, "bytes": s.rest_bytes },
+        "density": s.density_levels.map(|(lo, hi)| json!({
+            "min_level": lo,
+            "max_level": hi,
+            "bytes": s.density_bytes,
+        })),
         "clers": { "C": c, "L": l, "E": e, "R": r, "S": s_ },
         "sections": sections,
     })

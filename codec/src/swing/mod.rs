@@ -140,6 +140,18 @@ pub struct SwingStats {
     pub rest_bytes: u64,
     /// Triangles of the lossless remainder, appended to the decoded mesh.
     pub rest_triangles: u64,
+    /// Bytes of the density (`DENS`, format 1.1; 0 without one).
+    pub density_bytes: u64,
+    /// The lowest and highest level of the C tips (radius r·2^(ℓ/4)), when
+    /// the file has `DENS`.
+    pub density_levels: Option<(i8, i8)>,
+}
+
+/// The lowest and highest of `levels` (`None` when empty).
+pub(crate) fn level_range(levels: &[i8]) -> Option<(i8, i8)> {
+    let lo = *levels.iter().min()?;
+    let hi = *levels.iter().max()?;
+    Some((lo, hi))
 }
 
 impl SwingStats {
@@ -177,6 +189,7 @@ impl SwingStats {
         let geom = bytes_of(&[b"GEOM"]);
         let hole_bytes = bytes_of(&[&crate::container::Tag::HOLE.0]) as u64;
         let rest_bytes = bytes_of(&[&crate::container::Tag::REST.0]) as u64;
+        let density_bytes = bytes_of(&[&crate::container::Tag::DENS.0]) as u64;
         SwingStats {
             edge_length: head.first.first().map_or(0.0, first_edge_length),
             angle_bits: head.bits,
@@ -197,6 +210,8 @@ impl SwingStats {
             holes_masked_triangles: masked,
             rest_bytes,
             rest_triangles,
+            density_bytes,
+            density_levels: None,
         }
     }
 }

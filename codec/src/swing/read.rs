@@ -211,22 +211,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let (v, t) = (table.vertex_count() as u64, table.face_count() as u64);
     limits.check_alloc(v.saturating_mul(45).saturating_add(t.saturating_mul(13)))?;
     let codes = residual::decode(&table, geom, count, head.bits, head.predicted)?;
-    let levels = match file.find(Tag::DENS) {
-        Some(s) => {
-            // A step costs more than 1/2^16 bit: each of its model's three
-            // symbols keeps a frequency of at least 1.
-            check_count_fits(
-                "level step",
-                count as u64,
-                s.bytes.len(),
-                1,
-                1 << crate::entropy::PRECISION,
-            )
-            .map_err(|e| in_section(s.offset)(e.into()))?;
-            Some(density::decode(&table, s.bytes, count).map_err(in_section(s.offset))?)
-        }
-        None => None,
-    };
+    let levels = read_levels(file, &table, count)?;
     let x =
         super::angle::rebuild_positions(&table, &head.first, head.bits, &codes, levels.as_deref())?;
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
@@ -256,6 +241,31 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
             .extend(kept.triangles.iter().map(|t| t.map(|v| v + first)));
     }
     Ok(mesh)
+}
+
+/// The level of each of the `count` C tips, from `DENS` (`None` without
+/// one); the count is checked against the section's length first.
+fn read_levels(
+    file: &Container<'_>,
+    table: &CornerTable,
+    count: usize,
+) -> Result<Option<Vec<i8>>, Error> {
+    let Some(s) = file.find(Tag::DENS) else {
+        return Ok(None);
+    };
+    // A step costs more than 1/2^16 bit: each of its model's three
+    // symbols keeps a frequency of at least 1.
+    check_count_fits(
+        "level step",
+        count as u64,
+        s.bytes.len(),
+        1,
+        1 << crate::entropy::PRECISION,
+    )
+    .map_err(|e| in_section(s.offset)(e.into()))?;
+    density::decode(table, s.bytes, count)
+        .map(Some)
+        .map_err(in_section(s.offset))
 }
 
 /// The figures of a SwingWrapper file, read without decoding geometry:
@@ -289,7 +299,10 @@ pub(crate) fn inspect(
         None => 0,
     };
     let sections = file.sections().map(|s| (s.tag.0, s.bytes.len())).collect();
-    let stats = SwingStats::new(
+    // The density needs only the corner table, like the mask.
+    let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
+    let levels = read_levels(file, &table, count)?;
+    let mut stats = SwingStats::new(
         &head,
         &table,
         &conn,
@@ -298,5 +311,6 @@ pub(crate) fn inspect(
         masked,
         rest_triangles,
     );
+    stats.density_levels = levels.as_deref().and_then(super::level_range);
     Ok((conn, stats))
 }

@@ -209,7 +209,7 @@ pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
     }
     let bytes = write_container(&header, &sections)?;
     let tags = sections.iter().map(|(t, b)| (t.0, b.len())).collect();
-    let stats = SwingStats::new(
+    let mut stats = SwingStats::new(
         &head,
         &decoded,
         &conn,
@@ -218,5 +218,6 @@ pub(crate) fn write(retiled: &Retiled) -> Result<(Vec<u8>, SwingStats), Error> {
         masked,
         rest_triangles,
     );
+    stats.density_levels = levels.as_deref().and_then(super::level_range);
     Ok((bytes, stats))
 }
