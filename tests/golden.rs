@@ -235,28 +235,28 @@ fn golden_swing_options() -> EncodeOptions {
     }
 }
 
+/// Encodes `mesh` with `options`, writes the bytes to
+/// `format-spec/golden/NAME` and prints the figures its spec page quotes.
+fn write_golden(name: &str, mesh: &TriMesh, options: &EncodeOptions) {
+    let encoded = swm::encode(mesh, options).unwrap();
+    let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
+    let path = format!("{}/../format-spec/golden/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::write(path, &encoded.bytes).unwrap();
+    println!(
+        "{} bytes, {} vertices, {} triangles, hash {:#018X}",
+        encoded.bytes.len(),
+        decoded.positions.len(),
+        decoded.triangles.len(),
+        mesh_hash(&decoded)
+    );
+}
+
 /// Writes the golden swing file (run once, by hand, when the file is
 /// made: `cargo test --test golden -- --ignored write_swing_golden`).
 #[test]
 #[ignore]
 fn write_swing_golden() {
-    let encoded = swm::encode(&golden_sphere(), &golden_swing_options()).unwrap();
-    let mesh = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
-    std::fs::write(
-        concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../format-spec/golden/swing-v1.0.swm"
-        ),
-        &encoded.bytes,
-    )
-    .unwrap();
-    println!(
-        "{} bytes, {} vertices, {} triangles, hash {:#018X}",
-        encoded.bytes.len(),
-        mesh.positions.len(),
-        mesh.triangles.len(),
-        mesh_hash(&mesh)
-    );
+    write_golden("swing-v1.0.swm", &golden_sphere(), &golden_swing_options());
 }
 
 /// Must hold forever: a failure means the decoder no longer reads the
@@ -328,23 +328,7 @@ fn golden_adaptive_options() -> EncodeOptions {
 #[test]
 #[ignore]
 fn write_swing_v1_1_golden() {
-    let encoded = swm::encode(&golden_ellipsoid(), &golden_adaptive_options()).unwrap();
-    let mesh = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
-    std::fs::write(
-        concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../format-spec/golden/swing-v1.1.swm"
-        ),
-        &encoded.bytes,
-    )
-    .unwrap();
-    println!(
-        "{} bytes, {} vertices, {} triangles, hash {:#018X}",
-        encoded.bytes.len(),
-        mesh.positions.len(),
-        mesh.triangles.len(),
-        mesh_hash(&mesh)
-    );
+    write_golden("swing-v1.1.swm", &golden_ellipsoid(), &golden_adaptive_options());
 }
 
 /// Must hold forever: a failure means the decoder no longer reads the
