@@ -5,7 +5,9 @@
 //!
 //! Groups:
 //! * `swing-encode`: the whole `encode` (cleaning, rate control with its
-//!   several retilings, writing) at 1 b/v, in input triangles per second;
+//!   several retilings, writing) at 1 b/v with 8 angle bits, and with
+//!   the CLI's defaults (angle bits by rate control), in input triangles
+//!   per second;
 //!   on `horse.ply` (97k triangles) and on a generated closed surface of
 //!   1.3 M triangles (an icosahedron subdivided 8 times and pushed onto a
 //!   bumpy ellipsoid: no closed mesh of that size is in the corpus);
@@ -133,6 +135,19 @@ fn run(c: &mut Criterion, name: &str, mesh: &TriMesh) {
     g.throughput(Throughput::Elements(triangles));
     g.bench_function(format!("{name} 1 b/v"), |b| {
         b.iter(|| swm::encode(black_box(mesh), &options(1.0)).unwrap())
+    });
+    // What `swm encode IN --bpv 1` runs: angle bits chosen by rate
+    // control (issue 19's encode-time bound is on this row).
+    let default = EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: SwingTarget::BitsPerVertex(1.0),
+            angle_bits: None,
+            max_bytes: None,
+        },
+        ..Default::default()
+    };
+    g.bench_function(format!("{name} 1 b/v, CLI defaults"), |b| {
+        b.iter(|| swm::encode(black_box(mesh), &default).unwrap())
     });
     g.finish();
 
