@@ -240,7 +240,10 @@ fn golden_swing_options() -> EncodeOptions {
 fn write_golden(name: &str, mesh: &TriMesh, options: &EncodeOptions) {
     let encoded = swm::encode(mesh, options).unwrap();
     let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
-    let path = format!("{}/../format-spec/golden/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../format-spec/golden/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
     std::fs::write(path, &encoded.bytes).unwrap();
     println!(
         "{} bytes, {} vertices, {} triangles, hash {:#018X}",
@@ -328,7 +331,11 @@ fn golden_adaptive_options() -> EncodeOptions {
 #[test]
 #[ignore]
 fn write_swing_v1_1_golden() {
-    write_golden("swing-v1.1.swm", &golden_ellipsoid(), &golden_adaptive_options());
+    write_golden(
+        "swing-v1.1.swm",
+        &golden_ellipsoid(),
+        &golden_adaptive_options(),
+    );
 }
 
 /// Must hold forever: a failure means the decoder no longer reads the

@@ -12,18 +12,21 @@
 //! ℓ = round(−(4/3)·log2(κ / κ_ref))        (ℓ in quarter octaves of L0)
 //! ```
 //!
-//! clamped to [`FINEST`]..=[`COARSEST`], with κ the RMS curvature of the
-//! normal sections through the edge midpoints of M within L0 (the
-//! samples of `offset::sample_disk`), floored at [`FLAT`]/L0. κ_ref makes
+//! clamped to [`FINEST`]..=[`COARSEST`], with κ the RMS curvature
+//! sqrt((k1² + k2²)/2) of a least-squares quadric fitted to the edge
+//! midpoints of M within [`SCALE`]·L0 (the samples of
+//! `offset::sample_disk`), floored at [`FLAT`]/L0. κ_ref makes
 //! the mean of (κ/κ_ref)^(2/3) over M's area 1, so that before clamping
 //! the retiling has as many triangles as a uniform one at L0 and rate
-//! control's search over L0 keeps its meaning. RMS rather than the
-//! median `offset` uses: a saddle or a crease needs short edges as much
-//! as a dome (the chord error grows with |κ|, whatever its sign), and the
-//! samples across a thin part or a crease rightly count as high
-//! curvature.
+//! control's search over L0 keeps its meaning. RMS rather than the mean
+//! curvature `offset` uses: a saddle or a crease needs short edges as
+//! much as a dome (the chord error grows with |κ|, whatever its sign),
+//! and the samples across a thin part or a crease rightly count as high
+//! curvature. A tip steps only when the target is more than
+//! [`HYSTERESIS`] levels from its gate's.
 //!
-//! Measured before keeping it: BENCHMARKS.md, "Adaptive sampling".
+//! Measured: BENCHMARKS.md, "Adaptive sampling in the file" (opt-in: it
+//! does not yet pay for its section on every mesh).
 //!
 //! Invariants: deterministic (fixed sample order, no threads); every
 //! flood is bounded by `offset::MAX_FACES` faces and charged to the run's
@@ -126,16 +129,23 @@ impl Field {
     /// `a` and `b` steps to: the mean of their targets, at most one step
     /// away, within the format's range.
     pub(super) fn step(&mut self, s: &Surface, gate: i8, a: u32, b: u32) -> i8 {
-        let targets: Vec<f32> = [a, b]
-            .into_iter()
-            .filter(|&x| x != NONE)
-            .map(|x| self.at(s, x))
-            .filter(|t| t.is_finite())
-            .collect();
-        if targets.is_empty() {
+        // Called once per gate: no allocation for the two targets.
+        let (mut sum, mut n) = (0.0, 0u32);
+        for x in [a, b] {
+            let t = if x == NONE {
+                f32::INFINITY
+            } else {
+                self.at(s, x)
+            };
+            if t.is_finite() {
+                sum += f64::from(t);
+                n += 1;
+            }
+        }
+        if n == 0 {
             return 0;
         }
-        let mean = targets.iter().map(|&t| f64::from(t)).sum::<f64>() / targets.len() as f64;
+        let mean = sum / f64::from(n);
         // A dead zone of one level either side: the target wanders by a
         // fraction of a level from vertex to vertex (scan noise, the two
         // anchors), and a step at every wobble would cost more bits than

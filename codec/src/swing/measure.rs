@@ -3,7 +3,8 @@
 //! swing::measure -- --ignored --nocapture`. Not part of the format.
 
 use super::*;
-use crate::container::{parse_container, Tag};
+use crate::container::{parse_container, Container, Tag};
+use crate::edgebreaker::{Connectivity, Symbol};
 use crate::entropy::{AdaptiveModel, ContextModel, Encoder};
 use crate::mesh::CornerId;
 use crate::{CornerTable, Limits};
@@ -63,10 +64,8 @@ fn code_residuals(table: &CornerTable, zs: &[u32], bits: u8) -> usize {
         .collect();
     let mut lengths = vec![0u8; table.vertex_count()];
     let mut enc = Encoder::new();
-    let mut k = 0;
-    for_each_c_tip(table, |tip, gl, gr| {
+    residual::for_each_c(table, |k, tip, gl, gr| {
         let z = zs[k];
-        k += 1;
         let l = 32 - z.leading_zeros();
         let ctx = lengths[gl].max(lengths[gr]) as usize;
         enc.encode(len.get(ctx), l);
@@ -79,21 +78,10 @@ fn code_residuals(table: &CornerTable, zs: &[u32], bits: u8) -> usize {
             }
         }
         lengths[tip] = l as u8;
-    });
+        Ok(())
+    })
+    .unwrap();
     enc.finish().len()
-}
-
-fn for_each_c_tip(table: &CornerTable, mut f: impl FnMut(usize, usize, usize)) {
-    let mut next = 0;
-    for t in table.vertices().chunks_exact(3) {
-        let [a, b, c] = [t[0].idx(), t[1].idx(), t[2].idx()];
-        if b >= next {
-            next += 3;
-        } else if a == next {
-            f(a, b, c);
-            next += 1;
-        }
-    }
 }
 
 fn zig(q: u32, pred: i64, bits: u8) -> u32 {
@@ -105,7 +93,7 @@ fn zig(q: u32, pred: i64, bits: u8) -> u32 {
     (if s >= 0 { 2 * s } else { -2 * s - 1 }) as u32
 }
 
-fn clers_bytes(symbols: &[crate::edgebreaker::Symbol], order: usize) -> usize {
+fn clers_bytes(symbols: &[Symbol], order: usize) -> usize {
     let mut models: Vec<AdaptiveModel> = (0..5usize.pow(order as u32))
         .map(|_| AdaptiveModel::new(5))
         .collect();
@@ -122,25 +110,42 @@ fn clers_bytes(symbols: &[crate::edgebreaker::Symbol], order: usize) -> usize {
     enc.finish().len()
 }
 
+/// The files named by `SWM_MEASURE` (comma-separated), read; none (and
+/// a hint printed) when it is unset.
+fn measured_files() -> Vec<(String, Vec<u8>)> {
+    let Ok(list) = std::env::var("SWM_MEASURE") else {
+        println!("set SWM_MEASURE=a.swm,b.swm");
+        return Vec::new();
+    };
+    list.split(',')
+        .map(|p| (p.to_string(), std::fs::read(p).unwrap()))
+        .collect()
+}
+
+/// A SwingWrapper file's container, head, connectivity, decoded corner
+/// table and number of C tips.
+fn open(bytes: &[u8]) -> (Container<'_>, read::Head, Connectivity, CornerTable, usize) {
+    let file = parse_container(bytes, &Limits::default()).unwrap();
+    let (head, conn, table) = read::read_connectivity(&file, &Limits::default()).unwrap();
+    let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
+    (file, head, conn, table, count)
+}
+
 #[test]
 #[ignore]
 fn measure_contexts() {
-    let Ok(list) = std::env::var("SWM_MEASURE") else {
-        println!("set SWM_MEASURE=a.swm,b.swm");
-        return;
-    };
-    for path in list.split(',') {
-        let bytes = std::fs::read(path).unwrap();
-        let file = parse_container(&bytes, &Limits::default()).unwrap();
-        let (head, conn, table) = read::read_connectivity(&file, &Limits::default()).unwrap();
-        let count = conn
-            .symbols
-            .iter()
-            .filter(|&&s| s == crate::edgebreaker::Symbol::C)
-            .count();
+    for (path, bytes) in measured_files() {
+        let (file, head, conn, table, count) = open(&bytes);
         let geom = file.require(Tag::GEOM).unwrap().bytes;
         let codes = residual::decode(&table, geom, count, head.bits, head.predicted).unwrap();
-        let x = angle::rebuild_positions(&table, &head.first, head.bits, &codes, None).unwrap();
+        let x = angle::rebuild_positions(
+            &table,
+            &head.first,
+            head.bits,
+            &codes,
+            read::read_levels(&file, &table, count).unwrap().as_deref(),
+        )
+        .unwrap();
         let bits = head.bits;
         let n = (1u32 << bits) as f64;
         let to_code = |beta: f64| {
@@ -247,19 +252,8 @@ fn measure_contexts() {
 #[test]
 #[ignore]
 fn measure_density_contexts() {
-    let Ok(list) = std::env::var("SWM_MEASURE") else {
-        println!("set SWM_MEASURE=a.swm,b.swm");
-        return;
-    };
-    for path in list.split(',') {
-        let bytes = std::fs::read(path).unwrap();
-        let file = parse_container(&bytes, &Limits::default()).unwrap();
-        let (_, conn, table) = read::read_connectivity(&file, &Limits::default()).unwrap();
-        let count = conn
-            .symbols
-            .iter()
-            .filter(|&&s| s == crate::edgebreaker::Symbol::C)
-            .count();
+    for (path, bytes) in measured_files() {
+        let (file, _, _, table, count) = open(&bytes);
         let Some(dens) = file.find(Tag::DENS) else {
             continue;
         };
@@ -267,14 +261,14 @@ fn measure_density_contexts() {
         let mut lv = vec![0i8; table.vertex_count()];
         let mut dv = vec![0i8; table.vertex_count()];
         let mut rows = Vec::new();
-        let mut k = 0;
-        for_each_c_tip(&table, |tip, gl, gr| {
+        residual::for_each_c(&table, |k, tip, gl, gr| {
             let d = levels[k] - density::gate_level(lv[gl], lv[gr]);
-            k += 1;
-            lv[tip] = levels[k - 1];
+            lv[tip] = levels[k];
             dv[tip] = d;
             rows.push((d, dv[gl], dv[gr], lv[gl] - lv[gr]));
-        });
+            Ok(())
+        })
+        .unwrap();
         let sym = |d: i8| (d + 1) as u32;
         let cost = |ctx: &dyn Fn(usize) -> usize, n: usize| {
             let mut m: Vec<AdaptiveModel> = (0..n).map(|_| AdaptiveModel::new(3)).collect();

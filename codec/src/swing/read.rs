@@ -245,7 +245,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
 
 /// The level of each of the `count` C tips, from `DENS` (`None` without
 /// one); the count is checked against the section's length first.
-fn read_levels(
+pub(super) fn read_levels(
     file: &Container<'_>,
     table: &CornerTable,
     count: usize,
