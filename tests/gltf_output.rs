@@ -172,22 +172,18 @@ fn empty_mesh_is_a_scene_without_a_mesh() {
     }
 }
 
-/// `.glb` is output only: reading one is a typed error that says so.
+/// `.glb` is read back (by `swm info` and `read_mesh`) to the mesh the
+/// OBJ output holds.
 #[test]
-fn glb_input_is_refused() {
-    let dir = scratch("gltf_input");
+fn glb_reads_back() {
+    let dir = scratch("gltf_back");
     let glb = dir.join("m.glb");
-    swm::io::write_mesh(&glb, &swm_corpus::icosphere(1.0, 1)).unwrap();
-    let o = swm(&["info", s(&glb)]);
-    assert!(!o.status.success());
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        stderr.contains("GLB files can be written but not read"),
-        "{stderr}"
-    );
-    assert!(matches!(
-        swm::io::read_mesh(&glb),
-        Err(swm::Error::Parameter(swm::ParameterError::WriteOnly { .. }))
-    ));
+    let mesh = swm_corpus::icosphere(1.0, 1);
+    swm::io::write_mesh(&glb, &mesh).unwrap();
+    let back = swm::io::read_mesh(&glb).unwrap();
+    assert_eq!(back.positions, mesh.positions);
+    assert_eq!(back.triangles, mesh.triangles);
+    let info = json(&swm(&["info", s(&glb), "--json"]));
+    assert_eq!(info["faces"], mesh.face_count());
     let _ = std::fs::remove_dir_all(&dir);
 }

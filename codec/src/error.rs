@@ -39,6 +39,17 @@ pub enum Error {
     /// SwingWrapper retiling found no edge length that works.
     #[error("{0}")]
     Retile(#[from] RetileError),
+    /// A file the input refers to could not be read (a glTF buffer's
+    /// external `.bin` file): `error` is why, `path` is that file as
+    /// resolved against the input's folder.
+    #[cfg(feature = "std")]
+    #[error("{}: {error}", path.display())]
+    ExternalFile {
+        /// The referenced file.
+        path: std::path::PathBuf,
+        /// Why it could not be read: I/O, not a regular file, too long.
+        error: Box<Error>,
+    },
 }
 
 /// Why one SwingWrapper retiling run failed; every case means "the edge
@@ -279,6 +290,13 @@ pub enum Malformed {
     Utf16,
     /// The bytes are binary data, not text of this format.
     Binary,
+    /// A glTF mesh primitive draws something other than triangles:
+    /// points (mode 0) or lines (modes 1 to 3). Triangles, strips and
+    /// fans (modes 4 to 6) are read.
+    UnsupportedPrimitive {
+        /// The primitive's `mode`, as in the file.
+        mode: u32,
+    },
 }
 
 impl fmt::Display for Malformed {
@@ -325,6 +343,16 @@ impl fmt::Display for Malformed {
             ),
             Malformed::Utf16 => write!(f, "UTF-16 text is not supported; save the file as UTF-8"),
             Malformed::Binary => write!(f, "binary data, not a text file of this format"),
+            Malformed::UnsupportedPrimitive { mode } => {
+                let name = match mode {
+                    0 => "POINTS",
+                    1 => "LINES",
+                    2 => "LINE_LOOP",
+                    3 => "LINE_STRIP",
+                    _ => "unknown",
+                };
+                write!(f, "a mesh primitive has mode {mode} ({name}); only triangles, triangle strips and fans are read")
+            }
         }
     }
 }
@@ -344,8 +372,16 @@ pub enum ParameterError {
         /// Elements it has.
         given: u64,
     },
-    /// The format can be written but not read (GLB).
+    /// The format can be written but not read. Not produced any more
+    /// (GLB is read since glTF input came); kept so that code matching
+    /// on it still compiles.
     WriteOnly {
+        /// Short name of the format.
+        format: &'static str,
+    },
+    /// The format can be read but not written (`.gltf`, whose buffers
+    /// would need a second file or base64: write `.glb` instead).
+    ReadOnly {
         /// Short name of the format.
         format: &'static str,
     },
@@ -387,7 +423,7 @@ impl fmt::Display for ParameterError {
             ParameterError::UnknownExtension => {
                 write!(
                     f,
-                    "unknown mesh format (expected .obj, .ply, .off or .stl, or .glb for output)"
+                    "unknown mesh format (expected .obj, .ply, .off, .stl, .gltf or .glb)"
                 )
             }
             ParameterError::BufferTooSmall {
@@ -398,9 +434,12 @@ impl fmt::Display for ParameterError {
                 f,
                 "the {buffer} buffer holds {given} elements, the decoded mesh needs {needed}"
             ),
-            ParameterError::WriteOnly { format } => write!(
+            ParameterError::WriteOnly { format } => {
+                write!(f, "{format} files can be written but not read")
+            }
+            ParameterError::ReadOnly { format } => write!(
                 f,
-                "{format} files can be written but not read (inputs: .obj, .ply, .off or .stl)"
+                "{format} files can be read but not written (write .glb for glTF)"
             ),
             ParameterError::FileTooLarge { format, bytes, max } => write!(
                 f,

@@ -19,6 +19,8 @@ fn class_name(e: &swm::Error) -> &'static str {
         swm::Error::Topology(_) => "TopologyError",
         swm::Error::Unsupported(_) => "UnsupportedError",
         swm::Error::Retile(_) => "RetileError",
+        // A glTF buffer file that could not be read: the class of why.
+        swm::Error::ExternalFile { error, .. } => class_name(error),
         // `swm::Error` is `#[non_exhaustive]`: a kind added later is still
         // an `SwmError` until it gets its own class.
         _ => "SwmError",

@@ -287,7 +287,7 @@ fn distance<'py>(
     Ok(out)
 }
 
-/// Reads a mesh file (.obj, .ply, .off, .stl) as the command line does.
+/// Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb) as the command line does.
 #[pyfunction]
 #[pyo3(signature = (path, *, limits=None))]
 fn read<'py>(

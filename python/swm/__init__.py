@@ -185,7 +185,7 @@ def distance(
 
 
 def read(path: PathLike, *, limits: Optional[Limits] = None) -> Tuple[Vertices, Faces]:
-    """Reads a mesh file (.obj, .ply, .off, .stl; the extension picks the
+    """Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb; the extension picks the
     format) as ``swm encode`` reads it: the raw mesh, polygons
     fan-triangulated, nothing merged."""
     return _swm.read(os.fspath(path), limits=limits)

@@ -153,8 +153,8 @@ def test_file_errors(tmp_path):
     assert e.value.filename == str(tmp_path / "missing.obj")
     with pytest.raises(swm.ParameterError, match="unknown mesh format"):
         swm.read(tmp_path / "mesh.xyz")
-    with pytest.raises(swm.ParameterError, match="written but not read"):
-        swm.read(tmp_path / "mesh.glb")
+    with pytest.raises(swm.ParameterError, match="read but not written"):
+        swm.write(tmp_path / "mesh.gltf", [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
     bad = tmp_path / "bad.obj"
     bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
     with pytest.raises(swm.FormatError, match="line 4"):

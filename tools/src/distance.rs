@@ -25,7 +25,7 @@ pub enum Sampling {
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The reference mesh (.obj, .ply, .off, .stl).
+    /// The reference mesh (.obj, .ply, .off, .stl, .gltf, .glb).
     reference: PathBuf,
     /// The mesh measured against it.
     other: PathBuf,

@@ -18,7 +18,7 @@ pub enum ModeArg {
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The mesh to encode (.obj, .ply, .off, .stl).
+    /// The mesh to encode (.obj, .ply, .off, .stl, .gltf, .glb).
     input: PathBuf,
     /// The .swm file to write.
     #[arg(short, long)]

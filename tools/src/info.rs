@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// A mesh file (.obj, .ply, .off, .stl) or a .swm file.
+    /// A mesh file (.obj, .ply, .off, .stl, .gltf, .glb) or a .swm file.
     file: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]

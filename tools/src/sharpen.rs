@@ -9,7 +9,7 @@ use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The mesh to sharpen (.obj, .ply, .off, .stl).
+    /// The mesh to sharpen (.obj, .ply, .off, .stl, .gltf, .glb).
     input: PathBuf,
     /// The mesh file to write; its extension picks the format.
     #[arg(short, long)]

@@ -1,10 +1,13 @@
-//! Mesh file readers and writers: Wavefront OBJ, PLY, OFF and STL, and a
-//! writer for glTF 2.0 binary (GLB), which is output only.
+//! Mesh file readers and writers: Wavefront OBJ, PLY, OFF and STL, and
+//! glTF 2.0, read as `.gltf` (JSON with external or embedded buffers) or
+//! `.glb` (binary) and written as `.glb`.
 //!
 //! Readers return the *raw* mesh of a file: positions as written
 //! (converted to `f32`), polygons fan-triangulated as (v0, vi, vi+1), no
 //! vertex merging and no dropping of degenerate faces; cleaning is the
-//! job of `clean` (feature `encoder`). What every reader guarantees on success:
+//! job of `clean` (feature `encoder`). A glTF scene is merged into one
+//! mesh, each node's transform applied (see `gltf`). What every reader
+//! guarantees on success:
 //! - every position is finite and every index is in range, so the result
 //!   passes [`TriMesh::validate`];
 //! - nothing was allocated because a file said so before that count was
@@ -26,6 +29,8 @@
 //! Files are read only if they are regular files no longer than
 //! [`Limits::max_input_bytes`]: a FIFO, a device such as `/dev/zero` or a
 //! directory is refused before anything is read ([`InputError`](crate::InputError)).
+//! The external buffers of a `.gltf` file are read the same way, within
+//! the same byte budget as the file that names them.
 //! Outputs go through an exclusive, unpredictably named temporary file
 //! that is renamed into place; [`discard_unfinished`] removes those of
 //! writes in progress, for programs that end on a signal.
@@ -50,8 +55,9 @@ use std::io::{self, BufWriter, Write};
 use std::ops::Deref;
 use std::path::Path;
 
-/// What every reader is: the bytes of a whole file to its raw mesh.
-type Reader = fn(&[u8], &Limits) -> Result<TriMesh, Error>;
+/// What every reader is: the bytes of a whole file, and the folder it
+/// was read from (for files that name other files), to its raw mesh.
+type Reader = fn(&[u8], Option<&Path>, &Limits) -> Result<TriMesh, Error>;
 
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,8 +71,11 @@ pub enum MeshFormat {
     Off,
     /// STL (ASCII or binary).
     Stl,
-    /// glTF 2.0 binary: written, not read.
+    /// glTF 2.0 binary (`.glb`).
     Glb,
+    /// glTF 2.0 JSON (`.gltf`), its buffers in other files or embedded
+    /// as base64 `data:` URIs: read, not written (write `.glb`).
+    Gltf,
 }
 
 impl MeshFormat {
@@ -79,6 +88,7 @@ impl MeshFormat {
             ("off", MeshFormat::Off),
             ("stl", MeshFormat::Stl),
             ("glb", MeshFormat::Glb),
+            ("gltf", MeshFormat::Gltf),
         ]
         .into_iter()
         .find(|(name, _)| ext.eq_ignore_ascii_case(name))
@@ -86,7 +96,14 @@ impl MeshFormat {
         .ok_or(Error::Parameter(ParameterError::UnknownExtension))
     }
 
-    /// Short upper-case name: "OBJ", "PLY", "OFF", "STL" or "GLB".
+    /// The format a short name names, ignoring case: `obj`, `ply`, `off`,
+    /// `stl`, `glb` or `gltf`, as the file extensions (for data without
+    /// a file name, such as a pipe).
+    pub fn from_name(name: &str) -> Result<MeshFormat, Error> {
+        MeshFormat::from_path(Path::new(&format!("x.{name}")))
+    }
+
+    /// Short upper-case name: "OBJ", "PLY", "OFF", "STL", "GLB" or "GLTF".
     pub fn name(self) -> &'static str {
         match self {
             MeshFormat::Obj => "OBJ",
@@ -94,26 +111,31 @@ impl MeshFormat {
             MeshFormat::Off => "OFF",
             MeshFormat::Stl => "STL",
             MeshFormat::Glb => "GLB",
+            MeshFormat::Gltf => "GLTF",
         }
     }
 
-    /// Whether this crate reads the format (every format is written).
+    /// Whether this crate reads the format (every format is read).
     pub fn is_readable(self) -> bool {
-        self.reader().is_ok()
+        true
     }
 
-    /// The format's reader, or [`ParameterError::WriteOnly`].
-    fn reader(self) -> Result<Reader, Error> {
-        Ok(match self {
-            MeshFormat::Obj => obj::read,
-            MeshFormat::Ply => ply::read,
-            MeshFormat::Off => off::read,
-            MeshFormat::Stl => stl::read,
-            MeshFormat::Glb => {
-                let format = self.name();
-                return Err(Error::Parameter(ParameterError::WriteOnly { format }));
-            }
-        })
+    /// Whether this crate writes the format (all but `.gltf`).
+    pub fn is_writable(self) -> bool {
+        self != MeshFormat::Gltf
+    }
+
+    /// The format's reader.
+    fn reader(self) -> Reader {
+        // Only glTF files name other files; the other readers need no folder.
+        match self {
+            MeshFormat::Obj => |b, _, l| obj::read(b, l),
+            MeshFormat::Ply => |b, _, l| ply::read(b, l),
+            MeshFormat::Off => |b, _, l| off::read(b, l),
+            MeshFormat::Stl => |b, _, l| stl::read(b, l),
+            // One reader for both: it tells them apart by the GLB magic.
+            MeshFormat::Glb | MeshFormat::Gltf => gltf::read,
+        }
     }
 }
 
@@ -152,32 +174,44 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, Error> {
 /// that matters.
 pub fn read_mesh_with(path: &Path, limits: &Limits) -> Result<TriMesh, Error> {
     let format = MeshFormat::from_path(path)?;
-    // Before opening: a write-only format is refused without reading.
-    format.reader()?;
     let bytes = source::Source::open(path, limits)?;
-    read_mesh_bytes(&bytes, format, limits)
+    // A `.gltf` file's external buffers are beside it.
+    let folder = path.parent().unwrap_or(Path::new(""));
+    read_bytes_in(&bytes, format, Some(folder), limits)
 }
 
-/// Reads a mesh from the bytes of a file. A format that is only written
-/// ([`MeshFormat::is_readable`]) gives [`ParameterError::WriteOnly`].
+/// Reads a mesh from the bytes of a file. A `.gltf` file must then hold
+/// its buffers (as `data:` URIs): external ones cannot be found without
+/// the file's folder, and are refused ([`Malformed::Unsupported`]).
 pub fn read_mesh_bytes(
     bytes: &[u8],
     format: MeshFormat,
     limits: &Limits,
 ) -> Result<TriMesh, Error> {
-    let read = format.reader()?;
+    read_bytes_in(bytes, format, None, limits)
+}
+
+/// [`read_mesh_bytes`] for a file in `folder`.
+fn read_bytes_in(
+    bytes: &[u8],
+    format: MeshFormat,
+    folder: Option<&Path>,
+    limits: &Limits,
+) -> Result<TriMesh, Error> {
+    let read = format.reader();
     let empty = || Error::Format(FormatError::new(format.name(), Malformed::Empty));
     if text::is_blank(bytes) {
         return Err(empty());
     }
-    let mesh = read(bytes, limits)?;
+    let mesh = read(bytes, folder, limits)?;
     if mesh.positions.is_empty() && mesh.triangles.is_empty() {
         return Err(empty());
     }
     Ok(mesh)
 }
 
-/// Writes a mesh file, its format given by the extension.
+/// Writes a mesh file, its format given by the extension; `.gltf` is
+/// refused ([`ParameterError::ReadOnly`]), before anything is created.
 ///
 /// The mesh is written to a temporary file next to `path`, created
 /// exclusively under an unpredictable name (`.{name}.XXXXXX.tmp`, never
@@ -189,6 +223,7 @@ pub fn read_mesh_bytes(
 /// refused before anything is created.
 pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), Error> {
     let format = MeshFormat::from_path(path)?;
+    writable(format)?;
     mesh.validate()?;
     write_atomic(path, |file| write_mesh_to(file, format, mesh))
 }
@@ -203,8 +238,10 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), Error> {
 /// `BufWriter`). OBJ, PLY and OFF keep the mesh exactly; STL is written
 /// as binary STL, three corners per triangle; GLB keeps positions and
 /// triangles and adds unit vertex normals (a mesh without triangles gives
-/// a GLB file whose scene has no mesh).
+/// a GLB file whose scene has no mesh). `.gltf` is not written
+/// ([`ParameterError::ReadOnly`]).
 pub fn write_mesh_to<W: Write>(w: W, format: MeshFormat, mesh: &TriMesh) -> Result<(), Error> {
+    writable(format)?;
     mesh.validate()?;
     let mut w = BufWriter::with_capacity(1 << 16, w);
     match format {
@@ -213,9 +250,19 @@ pub fn write_mesh_to<W: Write>(w: W, format: MeshFormat, mesh: &TriMesh) -> Resu
         MeshFormat::Off => off::write(&mut w, mesh)?,
         MeshFormat::Stl => stl::write(&mut w, mesh)?,
         MeshFormat::Glb => gltf::write(&mut w, mesh)?,
+        MeshFormat::Gltf => unreachable!("refused by `writable`"),
     }
     w.flush()?;
     Ok(())
+}
+
+/// [`ParameterError::ReadOnly`] for a format that is not written.
+fn writable(format: MeshFormat) -> Result<(), Error> {
+    if format.is_writable() {
+        return Ok(());
+    }
+    let format = format.name();
+    Err(Error::Parameter(ParameterError::ReadOnly { format }))
 }
 
 /// The mesh a reader is building, and the [`Limits`] it must stay within.

@@ -86,6 +86,9 @@ fn formats_by_extension() {
     assert_eq!(f("x.Off").unwrap(), MeshFormat::Off);
     assert_eq!(f("x.stl").unwrap(), MeshFormat::Stl);
     assert_eq!(f("x.GLB").unwrap(), MeshFormat::Glb);
+    assert_eq!(f("x.gltf").unwrap(), MeshFormat::Gltf);
+    assert_eq!(MeshFormat::from_name("Ply").unwrap(), MeshFormat::Ply);
+    assert!(MeshFormat::from_name("swm").is_err());
     for bad in ["x.xyz", "noext", "obj", ""] {
         assert!(matches!(
             f(bad),
@@ -97,31 +100,31 @@ fn formats_by_extension() {
 }
 
 #[test]
-fn glb_is_written_not_read() {
-    assert!(MeshFormat::Obj.is_readable());
-    assert!(!MeshFormat::Glb.is_readable());
-    let write_only = |r: Result<TriMesh, Error>| {
+fn glb_round_trips_and_gltf_is_read_only() {
+    assert!(MeshFormat::Glb.is_readable() && MeshFormat::Glb.is_writable());
+    assert!(MeshFormat::Gltf.is_readable() && !MeshFormat::Gltf.is_writable());
+    let mesh = awkward_mesh();
+    let back = round_trip(&mesh, MeshFormat::Glb);
+    assert_eq!(bits(&back), bits(&mesh));
+    assert_eq!(back.triangles, mesh.triangles);
+
+    let read_only = |r: Result<(), Error>| {
         matches!(
             r,
-            Err(Error::Parameter(ParameterError::WriteOnly {
-                format: "GLB"
+            Err(Error::Parameter(ParameterError::ReadOnly {
+                format: "GLTF"
             }))
         )
     };
-    let dir = scratch("glb");
-    let path = dir.join("m.glb");
-    // Refused by format before the (missing) file is opened.
-    assert!(write_only(read_mesh(&path)));
-    write_mesh(&path, &awkward_mesh()).unwrap();
-    let bytes = fs::read(&path).unwrap();
-    assert_eq!(&bytes[..4], b"glTF");
-    assert!(write_only(read(&bytes, MeshFormat::Glb)));
-    assert!(write_only(read(b"", MeshFormat::Glb)));
-    let message = read_mesh(&path).unwrap_err().to_string();
-    assert!(
-        message.contains("GLB files can be written but not read"),
-        "{message}"
-    );
+    let dir = scratch("gltf");
+    let path = dir.join("m.gltf");
+    assert!(read_only(write_mesh(&path, &mesh)));
+    assert!(!path.exists(), "refused before anything is created");
+    assert!(read_only(write_mesh_to(
+        Vec::new(),
+        MeshFormat::Gltf,
+        &mesh
+    )));
     let _ = fs::remove_dir_all(&dir);
 }
 

@@ -30,23 +30,17 @@
 //!   primitive needs triangles. Its vertices, which nothing draws, are not
 //!   written.
 //!
-//! Reading GLB is not supported (see `MeshFormat::Glb`).
+//! The reader (`read`) reads these files back to the same positions and
+//! triangles.
 
 use crate::mesh::vertex_normals;
 use crate::{Error, FormatError, Malformed, ParameterError, TriMesh};
 use core::fmt::Write as _;
 use std::io::Write;
 
-const FORMAT: &str = "GLB";
-
-const MAGIC: &[u8; 4] = b"glTF";
-const VERSION: u32 = 2;
-const CHUNK_JSON: &[u8; 4] = b"JSON";
-const CHUNK_BIN: &[u8; 4] = b"BIN\0";
-/// The file header: magic, version, total length.
-const HEADER_LEN: u64 = 12;
-/// A chunk header: length, type.
-const CHUNK_HEADER_LEN: u64 = 8;
+use super::container::{
+    CHUNK_BIN, CHUNK_HEADER_LEN, CHUNK_JSON, FORMAT, HEADER_LEN, MAGIC, VERSION,
+};
 
 /// bufferView targets (the WebGL buffer binding points).
 const ARRAY_BUFFER: u32 = 34962;
@@ -67,7 +61,7 @@ const FALLBACK_NORMAL: [f32; 3] = [0.0, 0.0, 1.0];
 /// Writes `mesh` as a GLB file. The mesh's indices must be in range
 /// (`write_mesh_to` validates it first); non-finite positions are refused
 /// here too, since they would make the JSON invalid.
-pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> Result<(), Error> {
+pub(in crate::io) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> Result<(), Error> {
     let (min, max) = bounds(&mesh.positions)?;
     let vertices = mesh.positions.len() as u64;
     let triangles = mesh.triangles.len() as u64;

@@ -1,0 +1,46 @@
+//! glTF 2.0: a reader for `.gltf` (JSON, buffers external or embedded as
+//! `data:` URIs) and `.glb` (binary) files, and a GLB writer, after the
+//! Khronos "glTF 2.0 Specification" (§3.5 "Scenes", §3.6 "Binary Data
+//! Storage", §3.7 "Geometry", §4.4 "GLB File Format Specification").
+//!
+//! Reading goes in four steps, one file each:
+//! - `container`: a GLB file is split into its JSON and BIN chunks here
+//!   (the `gltf` crate's own splitter subtracts before it checks and so
+//!   panics on a short length field);
+//! - the JSON is parsed and validated by the `gltf` crate (every index
+//!   in range, every required field present), which gives the document
+//!   model: scenes, nodes and their transforms, meshes, accessors;
+//! - `scene` walks the scene graph to the list of triangle primitives to
+//!   draw, each with its world transform;
+//! - `buffers` loads the buffers those primitives use, and `accessor`
+//!   reads their positions and indices with checked arithmetic (the
+//!   crate's accessor reader trusts counts, offsets and component types
+//!   enough to panic on a hostile file);
+//! - `read` merges the primitives into one [`TriMesh`].
+//!
+//! What is read: every TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
+//! primitive of the default scene (scene 0 when `scene` is absent; every
+//! root node when the file has no scene), once per node that instances
+//! its mesh, with the node's world transform applied. Strips and fans are
+//! converted to triangles (§3.7.2.1); a node whose world transform has a
+//! negative determinant mirrors its mesh, so its triangles are flipped to
+//! keep their front faces (§3.7.2.1, "winding order"). Points and lines
+//! are refused ([`Malformed::UnsupportedPrimitive`]). Skins, morph
+//! targets and instancing extensions are not applied: the mesh is read in
+//! its bind pose with its base positions. Every other attribute
+//! (normals, texture coordinates, colours) is ignored.
+//!
+//! [`Malformed::UnsupportedPrimitive`]: crate::Malformed::UnsupportedPrimitive
+
+mod accessor;
+mod buffers;
+mod container;
+mod read;
+mod scene;
+mod write;
+
+pub(super) use read::read;
+pub(super) use write::write;
+
+#[cfg(test)]
+mod tests;

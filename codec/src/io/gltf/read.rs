@@ -1,0 +1,216 @@
+//! The glTF reader: a `.gltf` or `.glb` file's scene, merged into one
+//! [`TriMesh`] (see the module header of `gltf` for what is read).
+//!
+//! Each drawn primitive adds its own vertices, transformed to world
+//! space, and its triangles: a list as written (§3.7.2.1: `3k`, `3k+1`,
+//! `3k+2`), a strip as `(i, i+1, i+2)` with every other triangle's first
+//! two corners swapped to keep one orientation, a fan as `(0, i+1, i+2)`.
+//! A primitive without indices uses its vertices in order. A mesh that
+//! two nodes instance is added twice, once per node.
+//!
+//! Invariants: the limits are checked for each primitive before its
+//! vertices and triangles are allocated (`Builder`); every index is
+//! checked against its primitive's vertex count; a transformed position
+//! that overflows `f32` is [`Malformed::NonFinite`]; a primitive under
+//! no transform keeps its positions bit for bit.
+
+use super::accessor::{self, Context};
+use super::buffers::{Buffers, Origin};
+use super::container;
+use super::scene::{self, Draw};
+use crate::io::Builder;
+use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
+use ::gltf::json::validation::Error as Invalid;
+use ::gltf::mesh::Mode;
+use ::gltf::Semantic;
+use glam::{DMat4, DVec3};
+use std::path::Path;
+
+/// The format name in errors about JSON glTF files.
+const FORMAT: &str = "GLTF";
+
+/// Reads a glTF file, JSON or binary; `base` is the folder its external
+/// buffers are resolved against (`None` refuses them).
+pub(in crate::io) fn read(
+    bytes: &[u8],
+    base: Option<&Path>,
+    limits: &Limits,
+) -> Result<TriMesh, Error> {
+    let (format, json, bin) = if container::is_glb(bytes) {
+        let chunks = container::split(bytes)?;
+        (container::FORMAT, chunks.json, chunks.bin)
+    } else {
+        (FORMAT, bytes, None)
+    };
+    let bad = |what| Error::from(FormatError::new(format, what));
+    let root = ::gltf::json::Root::from_slice(json).map_err(|e| json_error(format, &e))?;
+    if let Some(name) = root.extensions_required.first() {
+        return Err(bad(Malformed::Unsupported(extension(name))));
+    }
+    if let Some(e) = validate(&root) {
+        return Err(bad(Malformed::BadSyntax(invalid(&e))));
+    }
+    let doc = ::gltf::Document::from_json_without_validation(root);
+    let draws = scene::draws(&doc, format)?;
+
+    let mut needed = vec![false; doc.buffers().len()];
+    for d in &draws {
+        let p = &d.primitive;
+        for a in p.get(&Semantic::Positions).into_iter().chain(p.indices()) {
+            accessor::mark_buffers(&a, &mut needed);
+        }
+    }
+    let origin = Origin { bin, base, format };
+    let buffers = Buffers::load(&doc, &needed, &origin, limits, bytes.len() as u64)?;
+    let cx = Context {
+        buffers: &buffers,
+        limits,
+        format,
+    };
+    let mut out = Builder::new(limits);
+    for d in &draws {
+        add(&mut out, d, &cx)?;
+    }
+    let mesh = out.finish();
+    // Vertices that no triangle uses are not a scene: a file that draws
+    // no triangle is empty, as for the other formats (`read_mesh_bytes`).
+    if mesh.triangles.is_empty() {
+        return Ok(TriMesh::default());
+    }
+    Ok(mesh)
+}
+
+/// Adds one drawn primitive to the mesh.
+fn add(out: &mut Builder, d: &Draw, cx: &Context) -> Result<(), Error> {
+    let bad = |what| Error::from(FormatError::new(cx.format, what));
+    let Some(a) = d.primitive.get(&Semantic::Positions) else {
+        // §3.7.2.1 lets a primitive omit POSITION (an extension may
+        // supply it); there is nothing to draw then.
+        return Ok(());
+    };
+    let positions = accessor::positions(&a, cx)?;
+    let n = positions.len();
+    let indices = match d.primitive.indices() {
+        Some(i) => accessor::indices(&i, cx)?,
+        None => (0..n as u32).collect(),
+    };
+    let triangles = triangles(d.primitive.mode(), &indices).ok_or_else(|| {
+        bad(Malformed::BadSyntax(
+            "a triangle list's index count is not a multiple of 3",
+        ))
+    })?;
+
+    out.reserve_vertices(n as u64)?;
+    let base = out.mesh.positions.len() as u64;
+    // Untransformed positions are kept bit for bit (-0.0 + 0.0 would be
+    // +0.0), so that a GLB this crate writes reads back exactly.
+    let identity = d.world == DMat4::IDENTITY;
+    for p in positions {
+        let p = match identity {
+            true => p,
+            false => {
+                let w = d
+                    .world
+                    .transform_point3(DVec3::from_array(p.map(f64::from)));
+                w.as_vec3().to_array()
+            }
+        };
+        if !p.iter().all(|c| c.is_finite()) {
+            let vertex = out.mesh.positions.len() as u64;
+            return Err(bad(Malformed::NonFinite { vertex }));
+        }
+        out.mesh.positions.push(p);
+    }
+    out.reserve_triangles(triangles.len() as u64)?;
+    // A mirroring transform turns counter-clockwise front faces clockwise
+    // (§3.7.2.1): swap two corners to keep them in front.
+    let mirrored = d.world.determinant() < 0.0;
+    for t in triangles {
+        if let Some(&index) = t.iter().find(|&&i| i as usize >= n) {
+            let what = Malformed::IndexOutOfRange {
+                index: index.into(),
+                vertices: n as u64,
+            };
+            return Err(bad(what));
+        }
+        // base + i < 2^32: reserve_vertices checked the total.
+        let [a, b, c] = t.map(|i| (base + u64::from(i)) as u32);
+        out.mesh
+            .triangles
+            .push(if mirrored { [a, c, b] } else { [a, b, c] });
+    }
+    Ok(())
+}
+
+/// The triangles of a primitive's index sequence; `None` for a list whose
+/// length is not a multiple of 3. Strips and fans with fewer than three
+/// indices draw nothing.
+fn triangles(mode: Mode, idx: &[u32]) -> Option<Vec<[u32; 3]>> {
+    let n = idx.len();
+    Some(match mode {
+        Mode::TriangleStrip => (0..n.saturating_sub(2))
+            .map(|i| {
+                // §3.7.2.1: p_i = {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}.
+                let odd = i % 2;
+                [idx[i], idx[i + 1 + odd], idx[i + 2 - odd]]
+            })
+            .collect(),
+        Mode::TriangleFan => (0..n.saturating_sub(2))
+            .map(|i| [idx[i + 1], idx[i + 2], idx[0]])
+            .collect(),
+        _ if !n.is_multiple_of(3) => return None,
+        _ => idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    })
+}
+
+/// A JSON parse error: located by line (of the JSON chunk in a GLB).
+fn json_error(format: &'static str, e: &::gltf::json::Error) -> Error {
+    let what = if e.is_eof() {
+        Malformed::Truncated
+    } else if e.is_data() {
+        Malformed::BadSyntax("the JSON does not follow the glTF 2.0 schema")
+    } else {
+        Malformed::BadSyntax("not valid JSON")
+    };
+    FormatError::new(format, what)
+        .at(Location::Line(e.line() as u64))
+        .into()
+}
+
+/// The first thing wrong with the document, as the `gltf` crate checks
+/// it, but for missing or malformed `min` and `max` of a POSITION
+/// accessor: the schema requires them, many writers leave them out, and
+/// nothing here needs them.
+fn validate(root: &::gltf::json::Root) -> Option<Invalid> {
+    use ::gltf::json::validation::Validate;
+    let mut first = None;
+    root.validate(root, ::gltf::json::Path::new, &mut |path, e| {
+        let path = path();
+        let bounds = path.as_str().ends_with(".min") || path.as_str().ends_with(".max");
+        if first.is_none() && !bounds {
+            first = Some(e);
+        }
+    });
+    first
+}
+
+/// What a validation error means, in words.
+fn invalid(e: &Invalid) -> &'static str {
+    match e {
+        Invalid::IndexOutOfBounds => "an index refers to an object the file does not have",
+        Invalid::Invalid => "a property has a value the glTF 2.0 schema does not allow",
+        Invalid::Missing => "a required property is missing",
+        Invalid::Oversize => "a size or offset is too large",
+        Invalid::Unsupported => "a required extension is not supported",
+    }
+}
+
+/// The name of a required extension, for the error that refuses it.
+fn extension(name: &str) -> &'static str {
+    match name {
+        "KHR_draco_mesh_compression" => "the required extension KHR_draco_mesh_compression",
+        "EXT_meshopt_compression" => "the required extension EXT_meshopt_compression",
+        "KHR_mesh_quantization" => "the required extension KHR_mesh_quantization",
+        _ => "a required glTF extension",
+    }
+}
