@@ -143,3 +143,152 @@ fn bunny_is_smaller_than_draco() {
         "{size} bytes: larger than Draco at its highest level"
     );
 }
+
+/// Runs swm with `stdin` piped in, returning its output.
+fn swm_piped(args: &[&str], stdin: &[u8]) -> std::process::Output {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_swm"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run swm");
+    let mut pipe = child.stdin.take().unwrap();
+    let input = stdin.to_vec();
+    // Written from another thread: swm may fill stdout before it has
+    // read all of stdin.
+    let writer = std::thread::spawn(move || {
+        let _ = pipe.write_all(&input);
+    });
+    let out = child.wait_with_output().expect("wait for swm");
+    writer.join().unwrap();
+    out
+}
+
+/// `-` for standard input and output: `encode - -o - --format obj` then
+/// `decode - -o - --format obj` gives the mesh a file round trip gives,
+/// with the reports on stderr and only the data on stdout.
+#[test]
+fn pipes_round_trip() {
+    let dir = scratch("cli-pipes");
+    let mesh = swm_corpus::torus(1.0, 0.35, 24, 8);
+    let obj = dir.join("torus.obj");
+    swm::io::write_mesh(&obj, &mesh).unwrap();
+    let text = std::fs::read(&obj).unwrap();
+
+    let args = [
+        "encode", "-", "-o", "-", "--format", "obj", "--mode", "lossless",
+    ];
+    let encoded = swm_piped(&args, &text);
+    ok(&encoded);
+    let from_file = dir.join("torus.swm");
+    encode(&obj, &from_file, "12");
+    assert_eq!(encoded.stdout, std::fs::read(&from_file).unwrap());
+    let report = String::from_utf8_lossy(&encoded.stderr);
+    assert!(
+        report.contains("bytes"),
+        "the summary goes to stderr: {report}"
+    );
+
+    let decoded = swm_piped(
+        &["decode", "-", "-o", "-", "--format", "obj"],
+        &encoded.stdout,
+    );
+    ok(&decoded);
+    let back = swm::io::read_mesh_bytes(
+        &decoded.stdout,
+        swm::io::MeshFormat::Obj,
+        &swm::Limits::default(),
+    )
+    .unwrap();
+    let out = dir.join("back.obj");
+    ok(&swm(&[
+        "decode",
+        from_file.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]));
+    assert_eq!(decoded.stdout, std::fs::read(&out).unwrap());
+    assert_eq!(back.face_count(), mesh.face_count());
+    // --json goes to stderr too, whole.
+    let args = ["decode", "-", "-o", "-", "--format", "glb", "--json"];
+    let glb = swm_piped(&args, &encoded.stdout);
+    ok(&glb);
+    assert_eq!(&glb.stdout[..4], b"glTF");
+    let v: serde_json::Value = serde_json::from_slice(&glb.stderr).unwrap();
+    assert_eq!(v["mode"], "lossless");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Without --format, standard input or output is a usage error; a
+/// format is taken from --format for a file without an extension; a
+/// failed decode writes nothing to stdout.
+#[test]
+fn pipes_need_a_format() {
+    let dir = scratch("cli-pipes-format");
+    let o = swm_piped(&["encode", "-", "-o", "x.swm", "--mode", "lossless"], b"");
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--format"));
+    let o = swm_piped(&["decode", "-", "-o", "-"], b"");
+    assert_eq!(o.status.code(), Some(2));
+    let o = swm_piped(&["decode", "-", "-o", "-", "--format", "gltf"], b"");
+    assert_eq!(o.status.code(), Some(2));
+    let o = swm_piped(&["decode", "-", "-o", "-", "--format", "xyz"], b"");
+    assert_eq!(o.status.code(), Some(2));
+    let o = swm_piped(
+        &["decode", "-", "-o", "-", "--format", "obj"],
+        b"not a swm file",
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(o.stdout.is_empty());
+    // Standard input is bounded as files are.
+    let args = [
+        "decode",
+        "-",
+        "-o",
+        "-",
+        "--format",
+        "obj",
+        "--max-input",
+        "10",
+    ];
+    let o = swm_piped(&args, &[0u8; 100]);
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("more than the input limit of 10"),
+        "{stderr}"
+    );
+
+    let bare = dir.join("mesh");
+    swm::io::write_mesh_as(
+        &bare,
+        swm::io::MeshFormat::Ply,
+        &swm_corpus::icosphere(1.0, 1),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let (b, o) = (bare.to_str().unwrap(), out.to_str().unwrap());
+    ok(&swm(&[
+        "encode", b, "-o", o, "--format", "ply", "--mode", "lossless",
+    ]));
+    let back = dir.join("back");
+    ok(&swm(&[
+        "decode",
+        o,
+        "-o",
+        back.to_str().unwrap(),
+        "--format",
+        "off",
+    ]));
+    let mesh = swm::io::read_mesh_as(&back, swm::io::MeshFormat::Off, &Default::default());
+    assert_eq!(mesh.unwrap().face_count(), 80);
+    let _ = std::fs::remove_dir_all(&dir);
+}

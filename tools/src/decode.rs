@@ -1,19 +1,27 @@
-//! `swm decode IN.swm -o OUT.(obj|ply|off|stl|glb) [--sharpen] [--bend N]
-//! [--max-vertices N] [--max-faces N] [--max-alloc BYTES] [--max-input BYTES]
-//! [--json]`.
+//! `swm decode IN.swm -o OUT.(obj|ply|off|stl|glb) [--format F] [--sharpen]
+//! [--bend N] [--max-vertices N] [--max-faces N] [--max-alloc BYTES]
+//! [--max-input BYTES] [--json]`. IN and OUT may be `-` (standard input
+//! and output, see `pipe`).
 
 use crate::CliError;
+use std::ops::Deref;
 use std::path::PathBuf;
 use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The .swm file to decode.
+    /// The .swm file to decode, or - for standard input.
     input: PathBuf,
     /// The mesh file to write; its extension picks the format: .obj, .ply,
-    /// .off, .stl, or .glb (glTF 2.0 binary, with vertex normals).
+    /// .off, .stl, or .glb (glTF 2.0 binary, with vertex normals). Or -
+    /// for standard output, with --format (reports then go to standard
+    /// error).
     #[arg(short, long)]
     output: PathBuf,
+    /// The output's format when its name does not say (standard output,
+    /// no extension): obj, ply, off, stl or glb.
+    #[arg(long, value_parser = crate::pipe::parse_format)]
+    format: Option<swm::io::MeshFormat>,
     /// Restore sharp edges and corners after decoding (EdgeSharpener).
     #[arg(long)]
     sharpen: bool,
@@ -41,8 +49,10 @@ pub struct Args {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
-    // Refuse an unknown output format before doing any work (bad usage).
-    swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::usage(&args.output, e))?;
+    crate::pipe::data_on_stdout(&args.output);
+    // Refuse an unknown or unwritable output format before doing any
+    // work (bad usage).
+    let format = crate::pipe::output_format(&args.output, args.format)?;
     let default = swm::Limits::default();
     let limits = swm::Limits {
         max_vertices: args.max_vertices.unwrap_or(default.max_vertices),
@@ -51,8 +61,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         max_input_bytes: args.max_input.unwrap_or(default.max_input_bytes),
     };
     // Mapped when large: the decoder reads the file once, front to back.
-    let bytes =
-        swm::io::read_file_with(&args.input, &limits).map_err(|e| CliError::new(&args.input, e))?;
+    let bytes: Box<dyn Deref<Target = [u8]>> = if crate::pipe::is_stdio(&args.input) {
+        crate::pipe::read_stdin(limits.max_input_bytes).map(|b| Box::new(b) as Box<_>)
+    } else {
+        swm::io::read_file_with(&args.input, &limits).map(|b| Box::new(b) as Box<_>)
+    }
+    .map_err(|e| CliError::new(&args.input, e))?;
     let options = swm::DecodeOptions {
         sharpen: args.sharpen,
         bend_steps: args.bend,
@@ -61,7 +75,14 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let start = Instant::now();
     let mesh = swm::decode(&bytes, &options).map_err(|e| CliError::new(&args.input, e))?;
     let seconds = start.elapsed().as_secs_f64();
-    swm::io::write_mesh(&args.output, &mesh).map_err(|e| CliError::new(&args.output, e))?;
+    if crate::pipe::is_stdio(&args.output) {
+        let mut out = Vec::new();
+        swm::io::write_mesh_to(&mut out, format, &mesh)
+            .and_then(|()| crate::pipe::write_stdout(&out))
+    } else {
+        swm::io::write_mesh_as(&args.output, format, &mesh)
+    }
+    .map_err(|e| CliError::new(&args.output, e))?;
     if args.json {
         let info =
             swm::inspect(&bytes, &options.limits).map_err(|e| CliError::new(&args.input, e))?;

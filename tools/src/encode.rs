@@ -1,6 +1,7 @@
 //! `swm encode IN -o OUT.swm [--mode swing|lossless] [--size B | --bpv X |
-//! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--json]
-//! [--verbose]`. Options of the other mode are refused, not ignored.
+//! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--format F]
+//! [--json] [--verbose]`. Options of the other mode are refused, not
+//! ignored. IN and OUT may be `-` (standard input and output, see `pipe`).
 
 use crate::CliError;
 use std::path::PathBuf;
@@ -18,11 +19,18 @@ pub enum ModeArg {
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The mesh to encode (.obj, .ply, .off, .stl, .gltf, .glb).
+    /// The mesh to encode (.obj, .ply, .off, .stl, .gltf, .glb), or - for
+    /// standard input (with --format).
     input: PathBuf,
-    /// The .swm file to write.
+    /// The .swm file to write, or - for standard output (reports then go
+    /// to standard error).
     #[arg(short, long)]
     output: PathBuf,
+    /// The input's format when its name does not say (standard input, no
+    /// extension): obj, ply, off, stl, glb or gltf (a .gltf on standard
+    /// input must embed its buffers).
+    #[arg(long, value_parser = crate::pipe::parse_format)]
+    format: Option<swm::io::MeshFormat>,
     /// The codec.
     #[arg(long, value_enum, default_value = "swing")]
     mode: ModeArg,
@@ -135,7 +143,9 @@ fn positive_seconds(s: &str) -> Result<f64, String> {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
-    let mesh = swm::io::read_mesh(&args.input).map_err(|e| CliError::new(&args.input, e))?;
+    crate::pipe::data_on_stdout(&args.output);
+    let format = crate::pipe::input_format(&args.input, args.format)?;
+    let mesh = crate::pipe::read_mesh(&args.input, format)?;
     let mode = match args.mode {
         ModeArg::Lossless => swm::EncodeMode::Lossless { qp: args.qp() },
         ModeArg::Swing => swm::EncodeMode::Swing {
@@ -168,8 +178,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let start = Instant::now();
     let encoded = swm::encode(&mesh, &options).map_err(|e| CliError::new(&args.input, e))?;
     let seconds = start.elapsed().as_secs_f64();
-    swm::io::write_bytes(&args.output, &encoded.bytes)
-        .map_err(|e| CliError::new(&args.output, e))?;
+    if crate::pipe::is_stdio(&args.output) {
+        crate::pipe::write_stdout(&encoded.bytes)
+    } else {
+        swm::io::write_bytes(&args.output, &encoded.bytes)
+    }
+    .map_err(|e| CliError::new(&args.output, e))?;
     let stats = &encoded.stats;
     let (mut json, vertices, triangles) = match (&stats.lossless, &stats.swing) {
         (Some(l), _) => (

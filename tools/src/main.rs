@@ -2,17 +2,23 @@
 //!
 //! Exit status: 0 on success, 1 when an input is bad or an operation
 //! fails, 2 on bad usage (clap's convention): clap's own messages, the
-//! value parsers of `args`, options of the other encoding mode, and an
-//! output extension no writer has. Every other failure prints one line on
+//! value parsers of `args`, options of the other encoding mode, an
+//! output extension no writer has, and `-` (a pipe, see `pipe`) without
+//! `--format`. Every other failure prints one line on
 //! stderr, `swm: error: FILE: what is wrong`. SIGINT and SIGTERM exit
 //! 130 and 143 after removing unfinished outputs (see `signals`).
 
 /// `println!` that ignores a closed stdout (`swm info x | head`): the
-/// reader has what it wanted, which is no reason to panic.
+/// reader has what it wanted, which is no reason to panic. On stderr
+/// instead while stdout carries an output file (`-o -`, see `pipe`).
 macro_rules! say {
     ($($t:tt)*) => {{
         use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($t)*);
+        if $crate::pipe::reports_to_stderr() {
+            let _ = writeln!(std::io::stderr(), $($t)*);
+        } else {
+            let _ = writeln!(std::io::stdout(), $($t)*);
+        }
     }};
 }
 
@@ -21,6 +27,7 @@ mod decode;
 mod distance;
 mod encode;
 mod info;
+mod pipe;
 mod rd;
 mod report;
 mod sharpen;
@@ -94,7 +101,8 @@ impl CliError {
 /// output is written in full before it replaces anything, but a command
 /// that replaced its own input would still destroy the original.
 pub fn refuse_same_file(input: &Path, output: &Path) -> Result<(), CliError> {
-    if same_file(input, output) {
+    // `-` is a pipe, whatever a file named `-` may be.
+    if !pipe::is_stdio(input) && !pipe::is_stdio(output) && same_file(input, output) {
         let e = std::io::Error::new(
             std::io::ErrorKind::InvalidInput,
             "the output is the input file; refusing to overwrite it",

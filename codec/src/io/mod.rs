@@ -173,7 +173,12 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, Error> {
 /// (`SIGBUS`). Read the bytes yourself and call [`read_mesh_bytes`] when
 /// that matters.
 pub fn read_mesh_with(path: &Path, limits: &Limits) -> Result<TriMesh, Error> {
-    let format = MeshFormat::from_path(path)?;
+    read_mesh_as(path, MeshFormat::from_path(path)?, limits)
+}
+
+/// [`read_mesh_with`] for a file of the given format, whatever its name
+/// says (for names without an extension).
+pub fn read_mesh_as(path: &Path, format: MeshFormat, limits: &Limits) -> Result<TriMesh, Error> {
     let bytes = source::Source::open(path, limits)?;
     // A `.gltf` file's external buffers are beside it.
     let folder = path.parent().unwrap_or(Path::new(""));
@@ -222,7 +227,11 @@ fn read_bytes_in(
 /// replaced, not followed. An invalid mesh (see [`TriMesh::validate`]) is
 /// refused before anything is created.
 pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), Error> {
-    let format = MeshFormat::from_path(path)?;
+    write_mesh_as(path, MeshFormat::from_path(path)?, mesh)
+}
+
+/// [`write_mesh`] in the given format, whatever the name says.
+pub fn write_mesh_as(path: &Path, format: MeshFormat, mesh: &TriMesh) -> Result<(), Error> {
     writable(format)?;
     mesh.validate()?;
     write_atomic(path, |file| write_mesh_to(file, format, mesh))
