@@ -81,10 +81,10 @@ fn small_table_run(name: &str) -> (PathBuf, PathBuf, Output) {
     (dir.clone(), dir.join("rd.csv"), out)
 }
 
-/// CSV rows as maps from column to cell (comments skipped).
+/// CSV rows as maps from column to cell (the header is the first line).
 fn read_csv(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
     let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     lines
         .map(|l| {
@@ -101,7 +101,7 @@ fn read_csv(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
 /// with `row`.
 fn tamper(csv: &Path, row: &str, column: &str, f: impl Fn(&str) -> String) -> String {
     let text = std::fs::read_to_string(csv).unwrap();
-    let header: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
     let col = header.iter().position(|h| *h == column).unwrap();
     let mut found = false;
     let lines: Vec<String> = text
@@ -422,7 +422,8 @@ fn bad_inputs_give_one_line_errors() {
     let text = std::fs::read_to_string(&csv).unwrap();
     std::fs::write(&bad, text.replacen(",lossless,", ",lossy,", 1)).unwrap();
     let err = one_line_error(&swm(&["rd", "--check", s(&bad)]), 1);
-    assert!(err.contains("line 3") && err.contains("config"), "{err}");
+    // The first row, after the header on line 1.
+    assert!(err.contains("line 2") && err.contains("config"), "{err}");
     let err = one_line_error(&swm(&["rd", "--check", s(&csv), "--only", "bunny"]), 1);
     assert!(err.contains("bunny"), "{err}");
 }
@@ -455,4 +456,59 @@ fn committed_shared_table_holds_for_fandisk() {
     assert!(rows >= 10, "{rows} fandisk rows");
     let expect = format!("{rows} rows checked, 0 regressed");
     assert!(text.contains(&expect), "{text}");
+}
+
+/// The columns README.md documents for `rd.csv`.
+const COLUMNS: &str = "mesh,rate_bpv,config,status,vertices,budget_bytes,bytes,bpv,faces,qp,samples,l2_rel,hausdorff_rel,encode_s,decode_s";
+
+/// Python's `csv.DictReader`, with no options, finds the documented
+/// columns in a fresh table (one mesh, one rate, `lossless`) and in the
+/// committed one: the header is the first line (issue 23).
+#[test]
+fn csv_loads_in_python() {
+    let python = std::process::Command::new("python3")
+        .arg("--version")
+        .output();
+    if !python.is_ok_and(|o| o.status.success()) {
+        println!("skipped: python3 not found");
+        return;
+    }
+    let dir = scratch("rd-python");
+    ok(&swm(&[
+        "rd",
+        "generated:cube",
+        "--rates",
+        "8",
+        "--configs",
+        "lossless",
+        "--samples",
+        "1000",
+        "--out",
+        s(&dir),
+    ]));
+    let script = r#"
+import csv, sys
+with open(sys.argv[1], newline="") as f:
+    rows = list(csv.DictReader(f))
+missing = [c for c in sys.argv[2].split(",") if c not in rows[0]]
+assert not missing, f"missing columns {missing}; header {list(rows[0])}"
+float(rows[0]["rate_bpv"])
+print(len(rows), rows[0]["mesh"], rows[0]["config"], rows[0]["status"])
+"#;
+    let run = |table: &Path| {
+        let out = std::process::Command::new("python3")
+            .args(["-c", script, s(table), COLUMNS])
+            .output()
+            .expect("run python3");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    assert_eq!(run(&dir.join("rd.csv")), "1 generated:cube lossless ok\n");
+    let committed = Path::new(env!("CARGO_MANIFEST_DIR")).join("../corpus/rd/generated.csv");
+    assert!(run(&committed).starts_with(&format!("{} ", read_csv(&committed).len())));
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -24,8 +24,15 @@
 //! Rows without a file (every status but `ok`) leave the measured columns
 //! empty. Numbers other than
 //! times are printed in Rust's shortest round-trip form, so a table read
-//! back compares bit for bit with a fresh run. Lines starting with `#` are
-//! comments.
+//! back compares bit for bit with a fresh run.
+//!
+//! The CSV is plain (RFC 4180): the header is its first line, so that
+//! Python's `csv.DictReader` and pandas' `read_csv` find the columns
+//! without options. The units, which tables used to carry in a leading
+//! `#` comment (taken as the header by those readers), are in the
+//! README's `swm rd` section and in the Markdown written beside the CSV.
+//! Lines starting with `#` are still skipped when a table is read, so
+//! `--check` reads tables written before.
 
 use crate::rd::config::Config;
 use serde_json::{json, Value};
@@ -186,11 +193,8 @@ pub const COLUMNS: [&str; 15] = [
 
 /// The table as CSV.
 pub fn to_csv(rows: &[Row]) -> String {
-    let mut out = String::from(
-        "# swm rd table: l2_rel and hausdorff_rel in units of 1e-4 of the input's bounding-box diagonal; \
-         bpv = bits per vertex of the mesh as read. Check with: swm rd --check THIS_FILE\n",
-    );
-    out.push_str(&COLUMNS.join(","));
+    // No comment line before the header: see the module header.
+    let mut out = COLUMNS.join(",");
     out.push('\n');
     for r in rows {
         let c = r.coded();
@@ -259,7 +263,9 @@ fn bad(line: usize, why: &'static str) -> swm::Error {
         .into()
 }
 
-/// Reads a table written by [`to_csv`]. Columns are found by name.
+/// Reads a table written by [`to_csv`]. Columns are found by name;
+/// lines starting with `#` (the units note of tables written before the
+/// CSV became plain) are skipped.
 pub fn from_csv(text: &str) -> Result<Vec<Row>, swm::Error> {
     let mut lines = text
         .lines()
@@ -346,7 +352,9 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
         "L2 and Hausdorff distances in units of 1e-4 of the input's bounding-box diagonal; \
          rates in bits per vertex of the mesh as read. `—` = nothing fits the budget, \
          `failed` = the encoder gave up, `n/a` = the configuration does not take the mesh. \
-         Written by `swm rd`; the CSV beside this file is the record `swm rd --check` compares against.\n",
+         Written by `swm rd`; the CSV beside this file is the record `swm rd --check` compares against \
+         (its `l2_rel` and `hausdorff_rel` in the same units, `rate_bpv` and `bpv` in bits per vertex, \
+         `encode_s` and `decode_s` in seconds).\n",
     );
     let mut meshes: Vec<&str> = Vec::new();
     let mut rates: Vec<f64> = Vec::new();
@@ -457,7 +465,12 @@ mod tests {
             row(Config::Swing, 1.0, Outcome::Failed { why: why.clone() }),
             row(Config::Swing, 4.0, Outcome::NotApplicable { why }),
         ];
-        let back = from_csv(&to_csv(&rows)).expect("a table");
+        let csv = to_csv(&rows);
+        assert!(csv.starts_with("mesh,rate_bpv,config,"), "plain CSV: {csv}");
+        let back = from_csv(&csv).expect("a table");
+        // Tables written with the old comment line read the same.
+        let old = format!("# swm rd table: units\n{csv}");
+        assert_eq!(from_csv(&old).expect("an old table"), back);
         let statuses: Vec<&str> = back.iter().map(Row::status).collect();
         assert_eq!(statuses, ["ok", "infeasible", "failed", "n/a"]);
         assert_eq!(back[0], rows[0], "numbers round-trip bit for bit");
