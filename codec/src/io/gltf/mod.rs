@@ -3,7 +3,7 @@
 //! Khronos "glTF 2.0 Specification" (§3.5 "Scenes", §3.6 "Binary Data
 //! Storage", §3.7 "Geometry", §4.4 "GLB File Format Specification").
 //!
-//! Reading goes in four steps, one file each:
+//! Reading goes in steps, one file each:
 //! - `container`: a GLB file is split into its JSON and BIN chunks here
 //!   (the `gltf` crate's own splitter subtracts before it checks and so
 //!   panics on a short length field);
@@ -16,7 +16,7 @@
 //!   reads their positions and indices with checked arithmetic (the
 //!   crate's accessor reader trusts counts, offsets and component types
 //!   enough to panic on a hostile file);
-//! - `read` merges the primitives into one [`TriMesh`].
+//! - `read` merges the primitives into one [`TriMesh`](crate::TriMesh).
 //!
 //! What is read: every TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN
 //! primitive of the default scene (scene 0 when `scene` is absent; every
@@ -30,7 +30,16 @@
 //! its bind pose with its base positions. Every other attribute
 //! (normals, texture coordinates, colours) is ignored.
 //!
+//! Memory: a file cannot make the reader allocate beyond the [`Limits`],
+//! which every primitive's counts are checked against before its
+//! vertices and triangles are allocated. But unlike the other formats,
+//! glTF can describe more mesh than it holds bytes: a mesh instanced by
+//! many nodes is added once per node, and an accessor without a
+//! bufferView is all zeros whatever its count. For untrusted files, set
+//! the limits to what the application can afford.
+//!
 //! [`Malformed::UnsupportedPrimitive`]: crate::Malformed::UnsupportedPrimitive
+//! [`Limits`]: crate::Limits
 
 mod accessor;
 mod buffers;
