@@ -178,12 +178,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let start = Instant::now();
     let encoded = swm::encode(&mesh, &options).map_err(|e| CliError::new(&args.input, e))?;
     let seconds = start.elapsed().as_secs_f64();
-    if crate::pipe::is_stdio(&args.output) {
-        crate::pipe::write_stdout(&encoded.bytes)
-    } else {
-        swm::io::write_bytes(&args.output, &encoded.bytes)
-    }
-    .map_err(|e| CliError::new(&args.output, e))?;
+    crate::pipe::write_bytes(&args.output, &encoded.bytes)
+        .map_err(|e| CliError::new(&args.output, e))?;
     let stats = &encoded.stats;
     let (mut json, vertices, triangles) = match (&stats.lossless, &stats.swing) {
         (Some(l), _) => (

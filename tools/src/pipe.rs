@@ -116,6 +116,15 @@ pub fn write_stdout(bytes: &[u8]) -> Result<(), swm::Error> {
     Ok(())
 }
 
+/// Writes `bytes` (a `.swm` file) to `path`, or to standard output for `-`.
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), swm::Error> {
+    if is_stdio(path) {
+        write_stdout(bytes)
+    } else {
+        swm::io::write_bytes(path, bytes)
+    }
+}
+
 /// Reads the mesh `path` names (standard input for `-`) in `format`,
 /// within the default limits.
 pub fn read_mesh(path: &Path, format: swm::io::MeshFormat) -> Result<swm::TriMesh, CliError> {
