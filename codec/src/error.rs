@@ -39,7 +39,32 @@ pub enum Error {
     /// SwingWrapper retiling found no edge length that works.
     #[error("{0}")]
     Retile(#[from] RetileError),
+    /// No file of the requested size can represent the mesh.
+    #[error("{0}")]
+    Size(#[from] SizeError),
 }
+
+/// The requested size is below the smallest file the encoder can make
+/// of the mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SizeError {
+    /// The size asked for (or the cap), in bytes.
+    pub requested: u64,
+    /// The smallest file that represents the mesh, in bytes.
+    pub smallest: u64,
+}
+
+impl fmt::Display for SizeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "no file of {} bytes can hold this mesh: the smallest possible is {} bytes",
+            self.requested, self.smallest
+        )
+    }
+}
+
+impl core::error::Error for SizeError {}
 
 /// Why one SwingWrapper retiling run failed; every case means "the edge
 /// length L is too large for this part of the shape".
@@ -379,6 +404,13 @@ pub enum ParameterError {
         /// Largest accepted value.
         max: f64,
     },
+    /// An option that the chosen mode has no use for.
+    NotApplicable {
+        /// The option's name.
+        name: &'static str,
+        /// The mode.
+        mode: &'static str,
+    },
 }
 
 impl fmt::Display for ParameterError {
@@ -429,6 +461,9 @@ impl fmt::Display for ParameterError {
             }
             ParameterError::NotPositive { name, value } => {
                 write!(f, "{name} = {value}: must be a positive finite number")
+            }
+            ParameterError::NotApplicable { name, mode } => {
+                write!(f, "the {mode} mode takes no {name}")
             }
         }
     }

@@ -19,6 +19,7 @@ fn class_name(e: &swm::Error) -> &'static str {
         swm::Error::Topology(_) => "TopologyError",
         swm::Error::Unsupported(_) => "UnsupportedError",
         swm::Error::Retile(_) => "RetileError",
+        swm::Error::Size(_) => "SizeError",
         // `swm::Error` is `#[non_exhaustive]`: a kind added later is still
         // an `SwmError` until it gets its own class.
         _ => "SwmError",
@@ -45,6 +46,10 @@ fn build(py: Python<'_>, e: &swm::Error, filename: Option<&str>) -> PyResult<PyE
         if let Some(code) = io.raw_os_error() {
             instance.setattr("errno", code)?;
         }
+    }
+    if let swm::Error::Size(size) = e {
+        instance.setattr("requested", size.requested)?;
+        instance.setattr("smallest", size.smallest)?;
     }
     if let Some(name) = filename {
         instance.setattr("filename", name)?;
