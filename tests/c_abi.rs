@@ -46,7 +46,12 @@ fn example() -> &'static Path {
             .arg("-I")
             .arg(ffi_dir().join("include"))
             .arg(static_library())
-            .args(["-lpthread", "-ldl", "-lm", "-o"])
+            // -lstdc++: built inside this workspace, the library is
+            // compiled with the features the CLI asks for (cargo unifies
+            // them), the encoder's C++ simplifier (meshoptimizer)
+            // included; `cargo build -p swm-ffi` alone, as an embedder
+            // builds it, needs no C++ runtime.
+            .args(["-lpthread", "-ldl", "-lm", "-lstdc++", "-o"])
             .arg(&out)
             .status()
             .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));

@@ -78,6 +78,8 @@ fn encoded_cube(name: &str) -> (PathBuf, PathBuf) {
         s(&input),
         "-o",
         s(&file),
+        "--mode",
+        "swing",
         "--edge-length",
         "0.08",
         "--on-surface",

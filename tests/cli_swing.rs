@@ -195,7 +195,10 @@ fn the_three_targets_decode_and_inspect() {
 #[test]
 fn encoding_is_deterministic() {
     let (dir, input) = ellipsoid("swing-determinism");
-    for extra in [&["--bpv", "3"][..], &["--size", "700", "--angle-bits", "6"]] {
+    for extra in [
+        &["--bpv", "3"][..],
+        &["--mode", "swing", "--size", "700", "--angle-bits", "6"],
+    ] {
         let a = dir.join("a.swm");
         let b = dir.join("b.swm");
         for f in [&a, &b] {
@@ -369,8 +372,11 @@ fn bad_swing_options_are_usage_errors() {
     for (extra, named) in [
         (&["--qp", "10"][..], &["--qp"][..]),
         (&["--mode", "swing", "--qp", "12"], &["--qp"]),
-        (&["--mode", "lossless", "--size", "900"], &["--size"]),
-        (&["--mode", "lossless", "--bpv", "2"], &["--bpv"]),
+        (&["--mode", "auto", "--angle-bits", "6"], &["--angle-bits"]),
+        (
+            &["--mode", "lossless", "--size", "900", "--qp", "9"],
+            &["--qp with --size"],
+        ),
         (
             &["--mode", "lossless", "--edge-length", "0.1"],
             &["--edge-length"],

@@ -46,7 +46,15 @@ fn double_fan(dir: &Path, n: u32) -> String {
 }
 
 fn work(input: &str, out: &Path, target: &[&str]) -> u64 {
-    let mut args = vec!["encode", input, "-o", out.to_str().unwrap(), "--json"];
+    let mut args = vec![
+        "encode",
+        input,
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+        "--mode",
+        "swing",
+    ];
     args.extend_from_slice(target);
     let j = json(&swm(&args));
     j["rate_control"]["work"]
@@ -83,6 +91,8 @@ fn a_double_fan_of_high_valence_costs_the_same_at_four_times_the_valence() {
         &double_fan(&dir, 20_000),
         "-o",
         out.to_str().unwrap(),
+        "--mode",
+        "swing",
         "--size",
         "1000",
         "--json",
@@ -112,7 +122,16 @@ fn encode_limits_end_a_run_with_a_clear_error_and_no_file() {
             "milliseconds, more than the limit of 1",
         ),
     ] {
-        let r = swm(&["encode", &input, "-o", out.to_str().unwrap(), flag, value]);
+        let r = swm(&[
+            "encode",
+            &input,
+            "-o",
+            out.to_str().unwrap(),
+            "--mode",
+            "swing",
+            flag,
+            value,
+        ]);
         let err = String::from_utf8_lossy(&r.stderr);
         assert_eq!(r.status.code(), Some(1), "{flag}: {err}");
         assert!(

@@ -124,7 +124,7 @@ fn tamper(csv: &Path, row: &str, column: &str, f: impl Fn(&str) -> String) -> St
 fn writes_csv_markdown_and_plots() {
     let (dir, csv, out) = small_table_run("rd-files");
     let rows = read_csv(&csv);
-    // 2 meshes x 2 rates x 5 configurations, sorted by mesh (as given),
+    // 2 meshes x 2 rates x 6 configurations, sorted by mesh (as given),
     // rate, configuration.
     let order: Vec<(String, String, String)> = rows
         .iter()
@@ -143,6 +143,7 @@ fn writes_csv_markdown_and_plots() {
                 [
                     "lossless",
                     "baseline",
+                    "auto",
                     "swing",
                     "swing+sharpen",
                     "swing+sharpen+bend",
@@ -314,7 +315,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
         .lines()
         .filter(|l| !l.contains("rows checked"))
         .collect();
-    assert_eq!(verdicts.len(), 20, "{text}");
+    assert_eq!(verdicts.len(), 24, "{text}");
     assert!(verdicts.iter().all(|l| l.starts_with("same ")), "{text}");
 
     // Halve the L2 of the torus's 8 bpv lossless row.

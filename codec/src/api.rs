@@ -39,6 +39,103 @@ pub enum EncodeMode {
         /// A size in bytes never to exceed. Default none.
         max_bytes: Option<u64>,
     },
+    /// Quadric simplification, then the lossless mode: the largest face
+    /// count and the quantization (7..=14 bits) of lowest measured error
+    /// whose file fits the size ([`simplify`](crate::simplify)).
+    Simplified {
+        /// A size or a rate; an edge length is refused (this method has
+        /// none).
+        target: SwingTarget,
+        /// A size in bytes never to exceed. Default none.
+        max_bytes: Option<u64>,
+    },
+    /// SwingWrapper and [`Simplified`](EncodeMode::Simplified) at the same
+    /// size, each decoded and measured against the cleaned input with the
+    /// encoder's own distance (L2, [`AUTO_SAMPLES`] area-uniform samples
+    /// each way); the lower error wins, and a SwingWrapper encode that
+    /// fails (or whose nearest file misses the size by more than 3%)
+    /// falls back. With an edge length, the SwingWrapper file's size is
+    /// the size both get. A size below both methods' smallest files is an
+    /// [`Error::Size`](crate::Error::Size) naming the smaller.
+    Auto {
+        /// What to aim at.
+        target: SwingTarget,
+        /// A size in bytes never to exceed. Default none.
+        max_bytes: Option<u64>,
+    },
+}
+
+#[cfg(feature = "encoder")]
+/// Area-uniform face samples per direction with which the automatic mode
+/// and the simplified method's choice of quantization measure their
+/// candidates: enough to tell apart errors 2-3% apart on the corpus.
+pub const AUTO_SAMPLES: u64 = 30_000;
+
+#[cfg(feature = "encoder")]
+/// A method of the encoder, as [`EncodeMode::Auto`] chooses between them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Method {
+    /// SwingWrapper retiling (mode 1).
+    Swing,
+    /// Quadric simplification, then the lossless mode (mode 0).
+    Simplified,
+}
+
+#[cfg(feature = "encoder")]
+/// One candidate of the automatic mode, as measured by the encoder.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Candidate {
+    /// Its file size.
+    pub bytes: u64,
+    /// Its L2 distance to the cleaned input, relative to the input's
+    /// bounding-box diagonal.
+    pub l2_relative: f64,
+}
+
+#[cfg(feature = "encoder")]
+/// How [`EncodeMode::Auto`] chose.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct MethodChoice {
+    /// The method of the file written.
+    pub chosen: Method,
+    /// The SwingWrapper candidate; `None` when its encode failed.
+    pub swing: Option<Candidate>,
+    /// Why the SwingWrapper encode failed.
+    pub swing_failure: Option<SwingFailure>,
+    /// The simplified candidate; `None` when nothing fits the size.
+    pub simplified: Option<Candidate>,
+}
+
+#[cfg(feature = "encoder")]
+/// Why the SwingWrapper candidate of [`EncodeMode::Auto`] is missing.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SwingFailure {
+    /// No edge length retiled the surface (within the size cap).
+    Retile(crate::RetileError),
+    /// The encoder's limits stopped the retiling.
+    Limit(crate::LimitError),
+    /// The nearest retiled file missed the requested size by more than
+    /// 3% (it was `bytes` long) while the simplified file fits.
+    Oversized {
+        /// Its size.
+        bytes: u64,
+    },
+}
+
+#[cfg(feature = "encoder")]
+/// What the simplified method kept.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SimplifiedStats {
+    /// Faces of the cleaned input.
+    pub input_faces: u64,
+    /// Faces of the simplified mesh written.
+    pub faces: u64,
+    /// Its bits per coordinate.
+    pub qp: u8,
 }
 
 #[cfg(feature = "encoder")]
@@ -148,6 +245,10 @@ pub struct EncodeStats {
     /// What a SwingWrapper encoder did with each connected component of
     /// the cleaned input, in order (empty in the lossless mode).
     pub pieces: Vec<PieceReport>,
+    /// What the simplified method kept (when it wrote the file).
+    pub simplified: Option<SimplifiedStats>,
+    /// How the automatic mode chose the method.
+    pub choice: Option<MethodChoice>,
 }
 
 #[cfg(feature = "encoder")]
@@ -185,6 +286,8 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
                     swing: None,
                     rate: None,
                     pieces: Vec::new(),
+                    simplified: None,
+                    choice: None,
                 },
             })
         }
@@ -192,13 +295,104 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
             target,
             angle_bits,
             max_bytes,
-        } => encode_swing(mesh, options, target, angle_bits, max_bytes),
+        } => {
+            let cleaned = crate::clean(mesh, &options.clean)?;
+            let n = mesh.vertex_count();
+            encode_swing(&cleaned, n, options, target, angle_bits, max_bytes)
+        }
+        EncodeMode::Simplified { target, max_bytes } => {
+            let cleaned = crate::clean(mesh, &options.clean)?;
+            let budget = simplified_budget(target, mesh.vertex_count(), max_bytes)?;
+            let s = crate::simplify::Simplifier::new(&cleaned.mesh);
+            let reference = crate::metrics::Surface::new(&cleaned.mesh)?;
+            encode_simplified(cleaned.report, &s, budget, &reference)
+        }
+        EncodeMode::Auto { target, max_bytes } => {
+            crate::auto::encode(mesh, options, target, max_bytes)
+        }
     }
 }
 
 #[cfg(feature = "encoder")]
-fn encode_swing(
-    mesh: &TriMesh,
+/// Bytes the requested size or rate gives `vertices` input vertices.
+fn bytes_for(bpv: f64, vertices: usize) -> u64 {
+    ((bpv * vertices as f64 / 8.0).round() as u64).max(1)
+}
+
+#[cfg(feature = "encoder")]
+/// A positive finite option, or the error that names it.
+fn positive(name: &'static str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::from(ParameterError::NotPositive { name, value }))
+    }
+}
+
+#[cfg(feature = "encoder")]
+/// The byte budget of the simplified method: the size asked for (or the
+/// rate's), never above the cap. An edge length is refused.
+pub(crate) fn simplified_budget(
+    target: SwingTarget,
+    vertices: usize,
+    max_bytes: Option<u64>,
+) -> Result<u64, Error> {
+    let b = match target {
+        SwingTarget::Bytes(b) => positive("size", b as f64)? as u64,
+        SwingTarget::BitsPerVertex(bpv) => bytes_for(positive("bits per vertex", bpv)?, vertices),
+        SwingTarget::EdgeLength(_) => {
+            return Err(ParameterError::NotApplicable {
+                name: "edge length",
+                mode: "simplified",
+            }
+            .into())
+        }
+    };
+    Ok(max_bytes.map_or(b, |cap| b.min(cap)))
+}
+
+#[cfg(feature = "encoder")]
+/// The simplified method at `budget` bytes: the file of lowest measured
+/// error against `reference` (the cleaned input) among the quantizations.
+pub(crate) fn encode_simplified(
+    clean: CleanReport,
+    s: &crate::simplify::Simplifier<'_>,
+    budget: u64,
+    reference: &crate::metrics::Surface,
+) -> Result<Encoded, Error> {
+    let Some(fit) = crate::simplify::best_fit(s, budget, reference, AUTO_SAMPLES)? else {
+        return Err(crate::SizeError {
+            requested: budget,
+            smallest: crate::simplify::smallest_bytes(s)?,
+        }
+        .into());
+    };
+    // The winner's figures, from the same deterministic encode.
+    let cleaned = crate::clean(&fit.mesh, &CleanOptions::default())?;
+    let (bytes, lossless, _) = crate::lossless::encode(&cleaned.table, &cleaned.mesh, fit.qp)?;
+    debug_assert_eq!(bytes, fit.bytes, "lossless encoding is deterministic");
+    Ok(Encoded {
+        bytes,
+        stats: EncodeStats {
+            clean,
+            lossless: Some(lossless),
+            swing: None,
+            rate: None,
+            pieces: Vec::new(),
+            simplified: Some(SimplifiedStats {
+                input_faces: s.faces() as u64,
+                faces: cleaned.mesh.triangles.len() as u64,
+                qp: fit.qp,
+            }),
+            choice: None,
+        },
+    })
+}
+
+#[cfg(feature = "encoder")]
+pub(crate) fn encode_swing(
+    cleaned: &crate::Cleaned,
+    input_vertices: usize,
     options: &EncodeOptions,
     target: SwingTarget,
     angle_bits: Option<u8>,
@@ -216,14 +410,6 @@ fn encode_swing(
         }
         .into());
     }
-    let positive = |name: &'static str, value: f64| {
-        if value.is_finite() && value > 0.0 {
-            Ok(value)
-        } else {
-            Err(Error::from(ParameterError::NotPositive { name, value }))
-        }
-    };
-    let cleaned = crate::clean(mesh, &options.clean)?;
     let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     let budget = crate::retile::Budget::new(options.limits);
     let knobs = rate::Knobs {
@@ -235,7 +421,6 @@ fn encode_swing(
         Some(_) => rate::at_size(&pieces, b, max_bytes, knobs, &budget),
         None => rate::at_size_auto(&pieces, b, max_bytes, knobs, &budget),
     };
-    let bytes_for = |bpv: f64| (bpv * mesh.vertex_count() as f64 / 8.0).round() as u64;
     let chosen = match target {
         SwingTarget::EdgeLength(l) => {
             rate::at_length(&pieces, positive("edge length", l)?, knobs, &budget)?
@@ -245,7 +430,7 @@ fn encode_swing(
             at_size(b)?
         }
         SwingTarget::BitsPerVertex(bpv) => {
-            let b = bytes_for(positive("bits per vertex", bpv)?).max(1);
+            let b = bytes_for(positive("bits per vertex", bpv)?, input_vertices);
             at_size(b)?
         }
     };
@@ -268,11 +453,13 @@ fn encode_swing(
     Ok(Encoded {
         bytes: chosen.bytes,
         stats: EncodeStats {
-            clean: cleaned.report,
+            clean: cleaned.report.clone(),
             lossless: None,
             swing: Some(chosen.stats),
             rate: Some(chosen.report),
             pieces: chosen.pieces,
+            simplified: None,
+            choice: None,
         },
     })
 }

@@ -50,7 +50,32 @@ pub enum Error {
         /// Why it could not be read: I/O, not a regular file, too long.
         error: Box<Error>,
     },
+    /// No file of the requested size can represent the mesh.
+    #[error("{0}")]
+    Size(#[from] SizeError),
 }
+
+/// The requested size is below the smallest file the encoder can make
+/// of the mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SizeError {
+    /// The size asked for (or the cap), in bytes.
+    pub requested: u64,
+    /// The smallest file that represents the mesh, in bytes.
+    pub smallest: u64,
+}
+
+impl fmt::Display for SizeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "no file of {} bytes can hold this mesh: the smallest possible is {} bytes",
+            self.requested, self.smallest
+        )
+    }
+}
+
+impl core::error::Error for SizeError {}
 
 /// Why one SwingWrapper retiling run failed; every case means "the edge
 /// length L is too large for this part of the shape".
@@ -415,6 +440,13 @@ pub enum ParameterError {
         /// Largest accepted value.
         max: f64,
     },
+    /// An option that the chosen mode has no use for.
+    NotApplicable {
+        /// The option's name.
+        name: &'static str,
+        /// The mode.
+        mode: &'static str,
+    },
 }
 
 impl fmt::Display for ParameterError {
@@ -468,6 +500,9 @@ impl fmt::Display for ParameterError {
             }
             ParameterError::NotPositive { name, value } => {
                 write!(f, "{name} = {value}: must be a positive finite number")
+            }
+            ParameterError::NotApplicable { name, mode } => {
+                write!(f, "the {mode} mode takes no {name}")
             }
         }
     }

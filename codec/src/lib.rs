@@ -27,6 +27,8 @@ mod prelude {
 }
 
 mod api;
+#[cfg(feature = "encoder")]
+mod auto;
 mod buffers;
 pub mod container;
 pub mod edgebreaker;
@@ -42,6 +44,8 @@ pub mod metrics;
 pub mod post;
 #[cfg(feature = "encoder")]
 mod retile;
+#[cfg(feature = "encoder")]
+pub mod simplify;
 mod stream;
 mod swing;
 mod varint;
@@ -52,14 +56,15 @@ pub mod io;
 pub use api::{decode, inspect, DecodeOptions, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
-    encode, Attempt, EncodeMode, EncodeOptions, EncodeStats, Encoded, PieceOutcome, PieceReport,
-    RateReport, SwingTarget, SwingTuning, DEFAULT_ANGLE_BITS,
+    encode, Attempt, Candidate, EncodeMode, EncodeOptions, EncodeStats, Encoded, Method,
+    MethodChoice, PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingFailure,
+    SwingTarget, SwingTuning, AUTO_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::Mode;
 pub use error::{
     Error, FileKind, FormatError, InputError, LimitError, Limited, Location, Malformed,
-    ParameterError, RetileError, RetileFailure, TopologyError,
+    ParameterError, RetileError, RetileFailure, SizeError, TopologyError,
 };
 #[cfg(feature = "encoder")]
 pub use limits::EncodeLimits;

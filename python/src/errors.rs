@@ -21,6 +21,7 @@ fn class_name(e: &swm::Error) -> &'static str {
         swm::Error::Retile(_) => "RetileError",
         // A glTF buffer file that could not be read: the class of why.
         swm::Error::ExternalFile { error, .. } => class_name(error),
+        swm::Error::Size(_) => "SizeError",
         // `swm::Error` is `#[non_exhaustive]`: a kind added later is still
         // an `SwmError` until it gets its own class.
         _ => "SwmError",
@@ -47,6 +48,10 @@ fn build(py: Python<'_>, e: &swm::Error, filename: Option<&str>) -> PyResult<PyE
         if let Some(code) = io.raw_os_error() {
             instance.setattr("errno", code)?;
         }
+    }
+    if let swm::Error::Size(size) = e {
+        instance.setattr("requested", size.requested)?;
+        instance.setattr("smallest", size.smallest)?;
     }
     if let Some(name) = filename {
         instance.setattr("filename", name)?;

@@ -110,11 +110,157 @@ fn with_value(e: swm::Error, name: &str, value: i64) -> swm::Error {
     }
 }
 
-/// Encodes a mesh into `.swm` bytes. See `swm/__init__.py` for the
-/// documented wrapper.
+/// The `EncodeMode` for the options of `swm.encode`, with the rules of
+/// `swm encode`: options the chosen mode has no use for are refused (a
+/// `ValueError` naming them), not ignored.
+#[allow(clippy::too_many_arguments)]
+fn encode_mode(
+    py: Python<'_>,
+    bpv: Option<f64>,
+    size: Option<i128>,
+    edge_length: Option<f64>,
+    mode: &str,
+    max_size: Option<i128>,
+    angle_bits: Option<i64>,
+    qp: Option<i64>,
+) -> PyResult<swm::EncodeMode> {
+    if !matches!(mode, "auto" | "swing" | "lossless") {
+        return Err(PyValueError::new_err(format!(
+            "mode must be \"auto\", \"swing\" or \"lossless\", got {mode:?}"
+        )));
+    }
+    let refuse = |given: bool, message: &str| -> PyResult<()> {
+        match given {
+            true => Err(PyValueError::new_err(format!("mode=\"{mode}\" {message}"))),
+            false => Ok(()),
+        }
+    };
+    let targets = [bpv.is_some(), size.is_some(), edge_length.is_some()];
+    if targets.iter().filter(|&&t| t).count() > 1 {
+        return Err(PyValueError::new_err(
+            "give at most one of bpv, size and edge_length",
+        ));
+    }
+    let sized = size.is_some() || bpv.is_some();
+    match mode {
+        "auto" => {
+            refuse(
+                angle_bits.is_some(),
+                "takes no angle_bits: the encoder chooses them (set them with mode=\"swing\")",
+            )?;
+            refuse(
+                qp.is_some(),
+                "takes no qp: the encoder chooses it \
+                 (set it with mode=\"lossless\" and no size or bpv)",
+            )?;
+        }
+        "swing" => refuse(qp.is_some(), "takes no qp (it is for mode=\"lossless\")")?,
+        _ => {
+            refuse(
+                edge_length.is_some(),
+                "takes no edge_length (size or bpv simplify the mesh to a size; \
+                 edge_length is for mode=\"swing\" or \"auto\")",
+            )?;
+            refuse(
+                angle_bits.is_some(),
+                "takes no angle_bits (they are for mode=\"swing\")",
+            )?;
+            refuse(
+                qp.is_some() && sized,
+                "takes no qp with size or bpv: the encoder chooses it \
+                 (give qp without a size for a file of all the input's triangles)",
+            )?;
+            refuse(
+                max_size.is_some() && !sized,
+                "takes max_size only with size or bpv",
+            )?;
+        }
+    }
+    let target = match (bpv, size, edge_length) {
+        (_, Some(b), _) => swm::SwingTarget::Bytes(count("size", b).py_err(py)?),
+        (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
+        // `swm encode`'s default target: 2 bits per input vertex.
+        (bpv, _, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
+    };
+    let max_bytes = match max_size {
+        Some(m) => Some(count("max size", m).py_err(py)?),
+        None => None,
+    };
+    Ok(match mode {
+        "auto" => swm::EncodeMode::Auto { target, max_bytes },
+        "swing" => swm::EncodeMode::Swing {
+            target,
+            angle_bits: angle_bits.map(bits),
+            max_bytes,
+        },
+        // Quadric simplification to the size, then lossless.
+        _ if sized => swm::EncodeMode::Simplified { target, max_bytes },
+        _ => swm::EncodeMode::Lossless {
+            qp: bits(qp.unwrap_or(12)),
+        },
+    })
+}
+
+/// What `swm.encode(..., report=True)` returns beside the bytes: the
+/// method that made the file and, as `swm encode --json` reports them,
+/// the automatic mode's choice and what simplification kept.
+fn encode_report<'py>(py: Python<'py>, stats: &swm::EncodeStats) -> PyResult<Bound<'py, PyDict>> {
+    let method_name = |m: swm::Method| match m {
+        swm::Method::Swing => "swing",
+        swm::Method::Simplified => "simplified",
+        _ => "other",
+    };
+    let method = match (&stats.choice, &stats.simplified, &stats.swing) {
+        (Some(c), _, _) => method_name(c.chosen),
+        (None, Some(_), _) => "simplified",
+        (None, None, Some(_)) => "swing",
+        (None, None, None) => "lossless",
+    };
+    let candidate = |c: &Option<swm::Candidate>| -> PyResult<Option<Bound<'py, PyDict>>> {
+        c.map(|c| {
+            let d = PyDict::new(py);
+            d.set_item("bytes", c.bytes)?;
+            d.set_item("l2_rel", c.l2_relative)?;
+            Ok(d)
+        })
+        .transpose()
+    };
+    let out = PyDict::new(py);
+    out.set_item("method", method)?;
+    match &stats.choice {
+        Some(c) => {
+            let d = PyDict::new(py);
+            d.set_item("chosen", method_name(c.chosen))?;
+            d.set_item("swing", candidate(&c.swing)?)?;
+            let failure = c.swing_failure.as_ref().map(|f| match f {
+                swm::SwingFailure::Retile(e) => e.to_string(),
+                swm::SwingFailure::Limit(e) => e.to_string(),
+                _ => "failed".to_string(),
+            });
+            d.set_item("swing_failure", failure)?;
+            d.set_item("simplified", candidate(&c.simplified)?)?;
+            out.set_item("choice", d)?;
+        }
+        None => out.set_item("choice", py.None())?,
+    }
+    match &stats.simplified {
+        Some(s) => {
+            let d = PyDict::new(py);
+            d.set_item("input_faces", s.input_faces)?;
+            d.set_item("faces", s.faces)?;
+            d.set_item("qp", s.qp)?;
+            out.set_item("simplified", d)?;
+        }
+        None => out.set_item("simplified", py.None())?,
+    }
+    Ok(out)
+}
+
+/// Encodes a mesh into `.swm` bytes (with `report`, `(bytes, dict)`).
+/// See `swm/__init__.py` for the documented wrapper.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
-                    mode="swing", max_size=None, angle_bits=None, qp=12))]
+                    mode="auto", max_size=None, angle_bits=None, qp=None, report=false))]
 #[allow(clippy::too_many_arguments)]
 fn encode<'py>(
     py: Python<'py>,
@@ -126,47 +272,10 @@ fn encode<'py>(
     mode: &str,
     max_size: Option<i128>,
     angle_bits: Option<i64>,
-    qp: i64,
-) -> PyResult<Bound<'py, PyBytes>> {
-    let targets = [bpv.is_some(), size.is_some(), edge_length.is_some()];
-    let mode = match mode {
-        "swing" => {
-            if targets.iter().filter(|&&t| t).count() > 1 {
-                return Err(PyValueError::new_err(
-                    "give at most one of bpv, size and edge_length",
-                ));
-            }
-            let target = match (bpv, size, edge_length) {
-                (_, Some(b), _) => swm::SwingTarget::Bytes(count("size", b).py_err(py)?),
-                (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
-                // `swm encode`'s default target: 2 bits per input vertex.
-                (bpv, _, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
-            };
-            let max_bytes = match max_size {
-                Some(m) => Some(count("max size", m).py_err(py)?),
-                None => None,
-            };
-            swm::EncodeMode::Swing {
-                target,
-                angle_bits: angle_bits.map(bits),
-                max_bytes,
-            }
-        }
-        "lossless" => {
-            if targets.contains(&true) || max_size.is_some() {
-                return Err(PyValueError::new_err(
-                    "bpv, size, edge_length and max_size apply to mode=\"swing\" only; \
-                     mode=\"lossless\" takes qp",
-                ));
-            }
-            swm::EncodeMode::Lossless { qp: bits(qp) }
-        }
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "mode must be \"swing\" or \"lossless\", got {other:?}"
-            )))
-        }
-    };
+    qp: Option<i64>,
+    report: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let mode = encode_mode(py, bpv, size, edge_length, mode, max_size, angle_bits, qp)?;
     let mesh = arrays::mesh(&vertices, &faces)?;
     let options = swm::EncodeOptions {
         mode,
@@ -174,9 +283,19 @@ fn encode<'py>(
     };
     let encoded = py
         .detach(|| swm::encode(&mesh, &options))
-        .map_err(|e| with_value(with_value(e, "angle bits", angle_bits.unwrap_or(0)), "qp", qp))
+        .map_err(|e| {
+            let e = with_value(e, "angle bits", angle_bits.unwrap_or(0));
+            with_value(e, "qp", qp.unwrap_or(12))
+        })
         .py_err(py)?;
-    Ok(PyBytes::new(py, &encoded.bytes))
+    let bytes = PyBytes::new(py, &encoded.bytes);
+    if report {
+        (bytes, encode_report(py, &encoded.stats)?)
+            .into_pyobject(py)
+            .map(Bound::into_any)
+    } else {
+        Ok(bytes.into_any())
+    }
 }
 
 type Arrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);

@@ -15,7 +15,7 @@ same ``.swm`` bytes as the command line, and :func:`decode` gives the mesh
 from __future__ import annotations
 
 import os
-from typing import Any, Optional, Tuple, Union
+from typing import Any, Literal, Optional, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -28,6 +28,7 @@ from .errors import (
     LimitError,
     ParameterError,
     RetileError,
+    SizeError,
     SwmError,
     TopologyError,
     UnsupportedError,
@@ -100,6 +101,7 @@ def _mesh(mesh: MeshLike, what: str) -> Tuple[Vertices, Faces]:
     return _vertices(v, f"{what} vertices"), _faces(f, f"{what} faces")
 
 
+@overload
 def encode(
     vertices: npt.ArrayLike,
     faces: npt.ArrayLike,
@@ -107,21 +109,79 @@ def encode(
     bpv: Optional[float] = None,
     size: Optional[int] = None,
     edge_length: Optional[float] = None,
-    mode: str = "swing",
+    mode: str = "auto",
     max_size: Optional[int] = None,
     angle_bits: Optional[int] = None,
-    qp: int = 12,
-) -> bytes:
+    qp: Optional[int] = None,
+    report: Literal[False] = False,
+) -> bytes: ...
+
+
+@overload
+def encode(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    max_size: Optional[int] = None,
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: Literal[True],
+) -> Tuple[bytes, "dict[str, Any]"]: ...
+
+
+def encode(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    max_size: Optional[int] = None,
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool = False,
+) -> Union[bytes, Tuple[bytes, "dict[str, Any]"]]:
     """Cleans and encodes a mesh into the bytes of a ``.swm`` file.
 
-    ``mode`` is ``"swing"`` (SwingWrapper retiling, the default, as for
-    ``swm encode``) or ``"lossless"`` (the input's triangles, positions on
-    ``qp`` bits). A swing encode aims at one of ``bpv`` (bits per input
-    vertex; 2 when no target is given), ``size`` (bytes, met within 3%) or
-    ``edge_length`` (the retiling edge L), with ``angle_bits`` bits per
-    dihedral angle (by default chosen as ``swm encode`` does: 6, or 5 when
-    rate control finds the angles spread widely), and never exceeds
-    ``max_size`` bytes when given.
+    The options and defaults are those of ``swm encode``. The target is
+    one of ``bpv`` (bits per input vertex; 2 when no target is given),
+    ``size`` (bytes) or ``edge_length`` (the retiling edge L); ``max_size``
+    is a size in bytes never to exceed. ``mode`` is:
+
+    * ``"auto"`` (the default): both SwingWrapper retiling and quadric
+      simplification then lossless coding at the target size; each is
+      decoded and measured against the input (L2) and the closer one is
+      written. A retiling that fails falls back to the simplified file.
+      With ``edge_length``, the simplified candidate gets the retiled
+      file's size. Takes no ``angle_bits`` and no ``qp`` (the encoder
+      chooses them): a ``ValueError`` says so.
+    * ``"swing"``: SwingWrapper retiling only, ``size`` met within 3%,
+      with ``angle_bits`` bits per dihedral angle (by default chosen as
+      ``swm encode`` does: 6, or 5 when rate control finds the angles
+      spread widely). Takes no ``qp``.
+    * ``"lossless"``: without ``size`` or ``bpv``, the input's own
+      triangles with positions on ``qp`` bits (default 12; ``max_size``
+      refused). With ``size`` or ``bpv``, the mesh is first simplified
+      (quadric error, meshoptimizer) to the largest face count and the
+      quantization that fit the size, ``max_size`` included; ``qp`` is
+      then refused. ``edge_length`` and ``angle_bits`` are refused.
+
+    A size no file can meet raises :class:`SizeError` (which names the
+    smallest possible size); options the mode has no use for raise
+    ``ValueError``. With ``report=True`` the result is ``(bytes, report)``,
+    ``report`` a dict: ``method``, what made the file (``"swing"``,
+    ``"simplified"`` or ``"lossless"``); ``choice``, in the automatic
+    mode, the ``method`` object of ``swm encode --json`` (``chosen``, the
+    ``swing`` and ``simplified`` candidates as ``{"bytes", "l2_rel"}`` or
+    ``None``, and ``swing_failure``, the retiling's error or ``None``),
+    else ``None``; ``simplified``, when a simplified file was written,
+    ``{"input_faces", "faces", "qp"}``, else ``None``.
+
     Deterministic: the same arrays and options give the same bytes.
     """
     return _swm.encode(
@@ -134,6 +194,7 @@ def encode(
         max_size=max_size,
         angle_bits=angle_bits,
         qp=qp,
+        report=report,
     )
 
 
@@ -244,5 +305,6 @@ __all__ = [
     "TopologyError",
     "UnsupportedError",
     "RetileError",
+    "SizeError",
     "__version__",
 ]

@@ -2,7 +2,7 @@
 for the documented wrappers, which normalize NumPy inputs first)."""
 
 from os import PathLike
-from typing import Any, Optional, Tuple, Union
+from typing import Any, Literal, Optional, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -29,6 +29,7 @@ class Limits:
         max_alloc_bytes: Optional[int] = None,
     ) -> None: ...
 
+@overload
 def encode(
     vertices: _V,
     faces: _F,
@@ -36,11 +37,26 @@ def encode(
     bpv: Optional[float] = None,
     size: Optional[int] = None,
     edge_length: Optional[float] = None,
-    mode: str = "swing",
+    mode: str = "auto",
     max_size: Optional[int] = None,
     angle_bits: Optional[int] = None,
-    qp: int = 12,
+    qp: Optional[int] = None,
+    report: Literal[False] = False,
 ) -> bytes: ...
+@overload
+def encode(
+    vertices: _V,
+    faces: _F,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    max_size: Optional[int] = None,
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: Literal[True],
+) -> Tuple[bytes, dict[str, Any]]: ...
 def decode(
     data: bytes,
     *,

@@ -1,7 +1,7 @@
 """Batch compression of a mesh library on Dask distributed.
 
     python -m swm.batch MANIFEST --out DIR [--bpv R | --size B | --edge-length L]
-                        [--mode swing|lossless] [--address tcp://HOST:8786]
+                        [--mode auto|swing|lossless] [--address tcp://HOST:8786]
 
 MANIFEST is a directory (every .obj, .ply, .off and .stl under it) or a
 text file listing one input path per line (blank lines and ``#`` comments
@@ -21,10 +21,19 @@ What a run guarantees:
   whatever is killed when.
 * An input whose output exists and decodes is skipped, so a rerun after
   an interruption encodes only what is missing (or damaged).
-* When the SwingWrapper encoder finds no retiling of a mesh
+* ``--mode`` and the target options are those of ``swm encode`` (and
+  :func:`swm.encode`), with its defaults and its rules: ``auto`` (the
+  default) writes whichever of SwingWrapper and simplify-then-lossless
+  the encoder measures closer to the input, ``swing`` retiles,
+  ``lossless`` keeps every triangle (``--qp``) or, with ``--size`` or
+  ``--bpv``, simplifies to fit. Options the mode has no use for are a
+  usage error.
+* In ``--mode swing``, when the encoder finds no retiling of a mesh
   (``swm.RetileError``), the mesh is encoded lossless instead
   (``--fallback lossless``, the default; ``--fallback none`` records the
-  failure); the ``method`` column says which coder made each file.
+  failure). ``--mode auto`` needs no fallback: the library itself falls
+  back to the simplified file. The ``method`` column says what made each
+  file.
 * A task that fails for a reason outside the mesh (an I/O error, a worker
   that died under it) is retried (``--retries``); one the library refuses
   (a malformed file, a topology the codec cannot take) is recorded, not
@@ -55,8 +64,11 @@ import swm
 MESH_EXTENSIONS = (".obj", ".ply", ".off", ".stl")
 
 #: Columns of the summary table. ``status`` is ``encoded``, ``skipped``
-#: (a valid output was already there) or ``failed``; ``method`` is the
-#: file's coding mode; ``bits_per_vertex`` counts against the input's
+#: (a valid output was already there) or ``failed``; ``method`` is what
+#: made the file: ``swing``, ``simplified`` (simplification, then the
+#: lossless coder) or ``lossless`` (every input triangle), for a skipped
+#: input the file's mode (``swing`` or ``lossless``, which a simplified
+#: file is too); ``bits_per_vertex`` counts against the input's
 #: vertices; ``l2_estimate`` is the symmetric L2 distance between input
 #: and decoded mesh over the input's bounding-box diagonal, from
 #: area-uniform face samples (``--samples``); ``seconds`` is the encode
@@ -83,7 +95,8 @@ class Job:
     output: str
     options: Dict[str, Any] = field(default_factory=dict)
     samples: int = 10_000
-    #: Encode lossless when SwingWrapper retiling fails.
+    #: Encode lossless when SwingWrapper retiling fails (``mode="swing"``;
+    #: the automatic mode falls back by itself).
     fallback: bool = True
 
 
@@ -194,21 +207,24 @@ def compress(job: Job) -> Dict[str, Any]:
         if found is not None:
             data, decoded = found
             row["status"] = "skipped"
+            method = swm.info(data)["mode"]
         else:
             start = time.perf_counter()
             try:
-                data = swm.encode(vertices, faces, **job.options)
+                data, report = swm.encode(vertices, faces, **job.options, report=True)
+                method = report["method"]
             except swm.RetileError:
                 if not job.fallback:
                     raise
                 data = swm.encode(vertices, faces, mode="lossless")
+                method = "lossless"
             row["seconds"] = time.perf_counter() - start
             write_atomic(output, data)
             row["status"] = "encoded"
             decoded = swm.decode(data)
         d = swm.distance((vertices, faces), decoded, samples=job.samples, sampling="faces")
         row.update(
-            method=swm.info(data)["mode"],
+            method=method,
             bytes=len(data),
             vertices=len(vertices),
             bits_per_vertex=8 * len(data) / max(len(vertices), 1),
@@ -305,14 +321,22 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("manifest", type=Path, help="a directory of meshes or a file listing mesh paths")
     p.add_argument("--out", type=Path, required=True, help="folder of the .swm files")
-    p.add_argument("--mode", choices=("swing", "lossless"), default="swing")
+    p.add_argument(
+        "--mode",
+        choices=("auto", "swing", "lossless"),
+        default="auto",
+        help="auto (default): the better of swing and simplify-then-lossless at the size; "
+        "swing: retiling; lossless: every triangle, or simplified to --size/--bpv",
+    )
     target = p.add_mutually_exclusive_group()
-    target.add_argument("--bpv", type=float, help="swing: bits per input vertex (default 2)")
-    target.add_argument("--size", type=int, help="swing: bytes per file")
-    target.add_argument("--edge-length", type=float, help="swing: the edge length L")
+    target.add_argument(
+        "--bpv", type=float, help="bits per input vertex (auto and swing: default 2; lossless: simplify to fit)"
+    )
+    target.add_argument("--size", type=int, help="bytes per file (lossless: simplify to fit)")
+    target.add_argument("--edge-length", type=float, help="swing and auto: the edge length L")
     p.add_argument("--angle-bits", type=int, help="swing: bits per dihedral angle (default: chosen by rate control, as swm encode)")
-    p.add_argument("--max-size", type=int, help="swing: never more bytes than this")
-    p.add_argument("--qp", type=int, default=12, help="lossless: bits per coordinate")
+    p.add_argument("--max-size", type=int, help="never more bytes than this (lossless: with --size or --bpv)")
+    p.add_argument("--qp", type=int, help="lossless without a size: bits per coordinate (default 12)")
     p.add_argument(
         "--fallback",
         choices=("lossless", "none"),
@@ -339,15 +363,24 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _options(args: argparse.Namespace) -> Dict[str, Any]:
-    if args.mode == "lossless":
-        swing_only = {"--bpv": args.bpv, "--size": args.size, "--edge-length": args.edge_length,
-                      "--max-size": args.max_size}
-        given = [k for k, v in swing_only.items() if v is not None]
-        if given:
-            raise ValueError(f"{', '.join(given)} apply to --mode swing only")
-        return {"mode": "lossless", "qp": args.qp}
-    options: Dict[str, Any] = {"mode": "swing"}
-    for key in ("angle_bits", "bpv", "size", "edge_length", "max_size"):
+    """The options of :func:`swm.encode`, refusing (``ValueError``) those
+    the mode has no use for, as ``swm encode`` does."""
+    sized = args.size is not None or args.bpv is not None
+    refused = {
+        "auto": {"--qp": args.qp, "--angle-bits": args.angle_bits},
+        "swing": {"--qp": args.qp},
+        "lossless": {
+            "--edge-length": args.edge_length,
+            "--angle-bits": args.angle_bits,
+            "--qp with --size or --bpv": args.qp if sized else None,
+            "--max-size without --size or --bpv": None if sized else args.max_size,
+        },
+    }[args.mode]
+    given = [k for k, v in refused.items() if v is not None]
+    if given:
+        raise ValueError(f"--mode {args.mode} takes no {', '.join(given)}")
+    options: Dict[str, Any] = {"mode": args.mode}
+    for key in ("angle_bits", "bpv", "size", "edge_length", "max_size", "qp"):
         if getattr(args, key) is not None:
             options[key] = getattr(args, key)
     return options

@@ -51,6 +51,17 @@ class RetileError(SwmError):
     """SwingWrapper retiling found no edge length that works or fits."""
 
 
+class SizeError(SwmError, ValueError):
+    """No file of the requested size (or ``max_size``) can hold the mesh.
+
+    ``requested`` is the size asked for and ``smallest`` the smallest file
+    the encoder can make of the mesh, both in bytes (``None`` on an
+    instance not raised by the library)."""
+
+    requested: Optional[int] = None
+    smallest: Optional[int] = None
+
+
 __all__ = [
     "SwmError",
     "IoError",
@@ -60,4 +71,5 @@ __all__ = [
     "TopologyError",
     "UnsupportedError",
     "RetileError",
+    "SizeError",
 ]

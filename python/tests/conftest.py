@@ -2,9 +2,9 @@
 with), the shared corpus and the generated corpus.
 
 tests/python.rs (run by `cargo test`) sets SWM_BIN, SWM_SHARED_CORPUS and
-SWM_GENERATED_CORPUS. Run by hand, the suite looks for the CLI in
-../target/{debug,release}/swm and the shared corpus at ../../shared/corpus,
-and skips what it cannot find, saying so.
+SWM_GENERATED_CORPUS. Run by hand, the suite takes the newer of
+../target/{debug,release}/swm as the CLI and the shared corpus at
+../../shared/corpus, and skips what it cannot find, saying so.
 """
 
 from __future__ import annotations
@@ -28,11 +28,11 @@ def _existing(*candidates: Optional[str]) -> Optional[Path]:
 
 @pytest.fixture(scope="session")
 def swm_bin() -> Path:
-    found = _existing(
-        os.environ.get("SWM_BIN"),
-        str(ROOT / "target" / "debug" / "swm"),
-        str(ROOT / "target" / "release" / "swm"),
-    )
+    # Without SWM_BIN, the newer of the two builds: an old debug build
+    # beside a fresh release one would compare with yesterday's encoder.
+    builds = [p for p in (ROOT / "target" / "debug" / "swm", ROOT / "target" / "release" / "swm") if p.exists()]
+    builds.sort(key=lambda p: p.stat().st_mtime, reverse=True)
+    found = _existing(os.environ.get("SWM_BIN"), *map(str, builds))
     if found is None:
         pytest.skip("the swm CLI not found (cargo build -p swm-cli, or set SWM_BIN)")
     return found

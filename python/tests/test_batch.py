@@ -146,9 +146,10 @@ def test_batch_with_a_worker_killed_then_a_rerun(library, tmp_path):
         # Relative to the bounding-box diagonal; suzanne at 1 bit per
         # vertex is the coarsest (about 0.12).
         assert 0 < float(row["l2_estimate"]) < 0.2, row
-        assert row["method"] in ("swing", "lossless")
+        # What made each file (the automatic mode's choice), or for a
+        # file found there, its mode.
+        assert row["method"] in (("swing", "simplified") if row["status"] == "encoded" else ("swing", "lossless"))
     assert sum(r["status"] == "encoded" for r in rows.values()) >= len(inputs) - 2
-    assert rows["torus.obj"]["method"] == "swing"
     files = check_outputs(out, names)
     # The batch's files are those swm.encode makes (small inputs checked).
     for p in inputs:
@@ -266,31 +267,57 @@ def test_write_atomic(tmp_path, monkeypatch):
 
 def test_compress_task(generated_corpus, tmp_path):
     mesh = generated_corpus / "torus.obj"
-    job = batch.Job(str(mesh), str(tmp_path / "t.swm"), {"bpv": 2.0}, 1000)
+    job = batch.Job(str(mesh), str(tmp_path / "t.swm"), {"mode": "swing", "bpv": 2.0}, 1000)
     row = batch.compress(job)
     assert row["status"] == "encoded" and row["method"] == "swing" and row["error"] == ""
-    assert (tmp_path / "t.swm").read_bytes() == swm.encode(*swm.read(mesh), bpv=2.0)
+    assert (tmp_path / "t.swm").read_bytes() == swm.encode(*swm.read(mesh), mode="swing", bpv=2.0)
     assert batch.compress(job)["status"] == "skipped"
     # An unusable output is replaced.
     (tmp_path / "t.swm").write_bytes(b"SWM garbage")
     assert batch.compress(job)["status"] == "encoded"
     # No retiling fits a size of 1 byte; with the fallback the mesh is
     # stored lossless, without it the row records the library's error.
-    tiny = batch.Job(str(mesh), str(tmp_path / "u.swm"), {"max_size": 1}, 1000)
+    tiny = batch.Job(str(mesh), str(tmp_path / "u.swm"), {"mode": "swing", "max_size": 1}, 1000)
     assert batch.compress(tiny)["method"] == "lossless"
-    no_fallback = batch.Job(str(mesh), str(tmp_path / "v.swm"), {"max_size": 1}, 1000, fallback=False)
+    no_fallback = batch.Job(str(mesh), str(tmp_path / "v.swm"), {"mode": "swing", "max_size": 1}, 1000,
+                            fallback=False)
     row = batch.compress(no_fallback)
     assert row["status"] == "failed" and row["error"].startswith("RetileError: ")
     assert not (tmp_path / "v.swm").exists()
+    # The automatic mode: the method column is the one the encoder chose;
+    # a size no file meets is the row's error (no fallback would fit it).
+    data, report = swm.encode(*swm.read(mesh), size=600, report=True)
+    row = batch.compress(batch.Job(str(mesh), str(tmp_path / "a.swm"), {"size": 600}, 1000))
+    assert row["method"] == report["method"] and (tmp_path / "a.swm").read_bytes() == data
+    row = batch.compress(batch.Job(str(mesh), str(tmp_path / "s.swm"), {"mode": "lossless", "size": 600}, 1000))
+    assert row["method"] == "simplified" and int(row["bytes"]) <= 600
+    row = batch.compress(batch.Job(str(mesh), str(tmp_path / "w.swm"), {"size": 10, "max_size": 10}, 1000))
+    assert row["status"] == "failed" and row["error"].startswith("SizeError: no file of 10 bytes")
+    assert not (tmp_path / "w.swm").exists()
     # An I/O error is not the mesh's fault: it propagates, for Dask to retry.
     with pytest.raises(swm.IoError):
         batch.compress(batch.Job(str(tmp_path / "missing.obj"), str(tmp_path / "m.swm")))
 
 
 def test_usage_errors(generated_corpus, tmp_path):
-    run = subprocess.run([sys.executable, "-m", "swm.batch", str(generated_corpus), "--out", str(tmp_path),
-                          "--mode", "lossless", "--bpv", "2"], capture_output=True, text=True)
-    assert run.returncode == 2 and "--bpv apply to --mode swing only" in run.stderr
+    for args, message in (
+        (["--angle-bits", "6"], "--mode auto takes no --angle-bits"),
+        (["--qp", "12"], "--mode auto takes no --qp"),
+        (["--mode", "swing", "--qp", "12"], "--mode swing takes no --qp"),
+        (["--mode", "lossless", "--edge-length", "0.1"], "--mode lossless takes no --edge-length"),
+        (["--mode", "lossless", "--bpv", "2", "--qp", "12"], "--mode lossless takes no --qp with --size or --bpv"),
+        (["--mode", "lossless", "--max-size", "500"], "--mode lossless takes no --max-size without --size or --bpv"),
+    ):
+        run = subprocess.run([sys.executable, "-m", "swm.batch", str(generated_corpus), "--out", str(tmp_path),
+                              *args], capture_output=True, text=True)
+        assert run.returncode == 2 and message in run.stderr, (args, run.stderr)
+    # The options each mode takes pass to swm.encode as they are.
+    parse = batch._parser().parse_args
+    assert batch._options(parse(["m", "--out", "o"])) == {"mode": "auto"}
+    assert batch._options(parse(["m", "--out", "o", "--mode", "lossless", "--size", "500", "--max-size", "400"])) == {
+        "mode": "lossless", "size": 500, "max_size": 400}
+    assert batch._options(parse(["m", "--out", "o", "--mode", "lossless", "--qp", "14"])) == {
+        "mode": "lossless", "qp": 14}
     run = subprocess.run([sys.executable, "-m", "swm.batch", str(tmp_path / "nope"), "--out", str(tmp_path)],
                          capture_output=True, text=True)
     assert run.returncode == 2 and "no such file or directory" in run.stderr

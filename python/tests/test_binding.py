@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import errno
 import json
+import re
 import struct
+import subprocess
 import threading
 import time
 import zlib
@@ -18,12 +20,15 @@ import swm
 from conftest import cli_error, run_cli
 
 # (CLI arguments, the same options for swm.encode). Low rates keep the
-# retiling cheap; every target kind and both modes appear.
+# retiling cheap; every mode (the automatic one, the default, included),
+# both lossless kinds (exact, simplified to a size) and the targets appear.
 OPTIONS = [
     ([], {}),
-    (["--bpv", "3", "--angle-bits", "10"], {"bpv": 3.0, "angle_bits": 10}),
-    (["--size", "400"], {"size": 400}),
+    (["--size", "400", "--max-size", "410"], {"size": 400, "max_size": 410}),
+    (["--mode", "swing", "--bpv", "3", "--angle-bits", "10"], {"mode": "swing", "bpv": 3.0, "angle_bits": 10}),
+    (["--mode", "swing", "--size", "400"], {"mode": "swing", "size": 400}),
     (["--mode", "lossless", "--qp", "14"], {"mode": "lossless", "qp": 14}),
+    (["--mode", "lossless", "--size", "600"], {"mode": "lossless", "size": 600}),
 ]
 
 
@@ -63,7 +68,7 @@ def test_encode_gives_the_cli_bytes_on_the_shared_corpus(swm_bin, shared_corpus,
 )
 def test_decode_equals_the_cli_decode_bit_for_bit(swm_bin, generated_corpus, tmp_path, cli_args, options):
     mesh = generated_corpus / "cube.obj"
-    for mode_args, name in ((["--bpv", "3"], "swing"), (["--mode", "lossless"], "lossless")):
+    for mode_args, name in ((["--mode", "swing", "--bpv", "3"], "swing"), (["--mode", "lossless"], "lossless")):
         packed = tmp_path / f"{name}.swm"
         run_cli(swm_bin, "encode", mesh, "-o", packed, *mode_args)
         cli_ply = tmp_path / f"{name}-cli.ply"
@@ -79,7 +84,7 @@ def test_decode_equals_the_cli_decode_bit_for_bit(swm_bin, generated_corpus, tmp
 
 
 def test_decode_normals(torus):
-    data = swm.encode(*torus, bpv=4)
+    data = swm.encode(*torus, mode="swing", bpv=4)
     v, f, n = swm.decode(data, normals=True)
     assert n.shape == v.shape and n.dtype == np.float32
     assert np.allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-5)
@@ -117,7 +122,7 @@ def test_distance_has_the_cli_json(swm_bin, generated_corpus, tmp_path):
 
 
 def test_malformed_files_raise_format_error_with_the_cli_message(swm_bin, torus, tmp_path):
-    data = swm.encode(*torus, bpv=3)
+    data = swm.encode(*torus, mode="swing", bpv=3)
     for name, bad in (("empty", b""), ("truncated", data[: len(data) // 2]), ("garbage", b"x" * 64)):
         path = tmp_path / f"{name}.swm"
         path.write_bytes(bad)
@@ -130,7 +135,7 @@ def test_malformed_files_raise_format_error_with_the_cli_message(swm_bin, torus,
 
 
 def test_newer_version_raises_unsupported_error(torus):
-    data = bytearray(swm.encode(*torus, bpv=3))
+    data = bytearray(swm.encode(*torus, mode="swing", bpv=3))
     data[4] = 9  # the major version (format-spec/01-container.md)
     data[-4:] = struct.pack("<I", zlib.crc32(bytes(data[:-4])))
     with pytest.raises(swm.UnsupportedError, match="version 9"):
@@ -192,14 +197,12 @@ def test_non_orientable_mesh_raises_topology_error():
 
 def test_bad_options():
     v, f = np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], dtype=np.uint32)
-    with pytest.raises(ValueError, match=r'mode must be "swing" or "lossless", got "auto"'):
-        swm.encode(v, f, mode="auto")
+    with pytest.raises(ValueError, match=r'mode must be "auto", "swing" or "lossless", got "fast"'):
+        swm.encode(v, f, mode="fast")
     with pytest.raises(ValueError, match="at most one of bpv, size and edge_length"):
         swm.encode(v, f, bpv=2, size=100)
-    with pytest.raises(ValueError, match="swing"):
-        swm.encode(v, f, mode="lossless", bpv=2)
     with pytest.raises(swm.ParameterError, match=r"angle bits = 1000: must be between 4 and 12"):
-        swm.encode(v, f, angle_bits=1000)
+        swm.encode(v, f, mode="swing", angle_bits=1000)
     with pytest.raises(swm.ParameterError, match=r"qp = 3: must be between 6 and 24"):
         swm.encode(v, f, mode="lossless", qp=3)
     with pytest.raises(swm.ParameterError, match="size = -5"):
@@ -210,6 +213,103 @@ def test_bad_options():
         swm.distance((v, f), (v, f), sampling="grid")
     with pytest.raises(TypeError, match="bytes"):
         swm.decode("not bytes")  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    "options,refused",
+    [
+        ({"angle_bits": 6}, r'mode="auto" takes no angle_bits'),
+        ({"qp": 12}, r'mode="auto" takes no qp'),
+        ({"mode": "swing", "qp": 12}, r'mode="swing" takes no qp'),
+        ({"mode": "lossless", "edge_length": 0.1}, r'mode="lossless" takes no edge_length'),
+        ({"mode": "lossless", "angle_bits": 6}, r'mode="lossless" takes no angle_bits'),
+        ({"mode": "lossless", "size": 500, "qp": 12}, r'mode="lossless" takes no qp with size or bpv'),
+        ({"mode": "lossless", "bpv": 2, "qp": 12}, r'mode="lossless" takes no qp with size or bpv'),
+        ({"mode": "lossless", "max_size": 500}, r'mode="lossless" takes max_size only with size or bpv'),
+    ],
+)
+def test_options_the_mode_has_no_use_for_are_refused(torus, options, refused):
+    # Refused before any work, as `swm encode` refuses them.
+    with pytest.raises(ValueError, match=refused) as e:
+        swm.encode(*torus, **options)
+    assert not isinstance(e.value, swm.SwmError)
+
+
+def test_the_cli_refuses_the_same_combinations(swm_bin, generated_corpus, tmp_path):
+    mesh, out = generated_corpus / "cube.obj", tmp_path / "x.swm"
+    for args in (["--angle-bits", "6"], ["--qp", "12"], ["--mode", "swing", "--qp", "12"],
+                 ["--mode", "lossless", "--edge-length", "0.1"], ["--mode", "lossless", "--size", "500", "--qp", "12"],
+                 ["--mode", "lossless", "--max-size", "500"]):
+        run = subprocess.run([str(swm_bin), "encode", mesh, "-o", out, *args], capture_output=True)
+        assert run.returncode == 2, (args, run.stderr.decode())
+
+
+def test_auto_is_the_default_and_reports_the_cli_choice(swm_bin, generated_corpus, tmp_path):
+    mesh = generated_corpus / "torus.obj"
+    out = tmp_path / "torus.swm"
+    cli = json.loads(run_cli(swm_bin, "encode", mesh, "-o", out, "--json").stdout)
+    v, f = swm.read(mesh)
+    data, report = swm.encode(v, f, report=True)
+    assert data == out.read_bytes() == swm.encode(v, f, mode="auto", bpv=2)
+    # The choice, both candidates' sizes and errors, as `--json` has them.
+    assert report["choice"] == cli["method"]
+    assert report["method"] == cli["method"]["chosen"] in ("swing", "simplified")
+    assert report["simplified"] == cli.get("simplified")
+    both = report["choice"]
+    assert both["swing"] is not None and both["simplified"] is not None and both["swing_failure"] is None
+    chosen, other = both[both["chosen"]], both[{"swing": "simplified", "simplified": "swing"}[both["chosen"]]]
+    assert chosen["bytes"] == len(data) and chosen["l2_rel"] <= other["l2_rel"]
+    assert swm.info(data)["mode"] == {"swing": "swing", "simplified": "lossless"}[both["chosen"]]
+
+
+def test_lossless_with_a_size_simplifies_to_fit(torus):
+    v, f = torus
+    data, report = swm.encode(v, f, mode="lossless", size=700, report=True)
+    assert swm.info(data)["mode"] == "lossless" and len(data) <= 700
+    assert report["method"] == "simplified" and report["choice"] is None
+    kept = report["simplified"]
+    assert kept["input_faces"] == len(f) and 0 < kept["faces"] < len(f) and 6 <= kept["qp"] <= 16
+    dv, df = swm.decode(data)
+    assert len(df) == kept["faces"]
+    # A cap below the size wins; bpv is a size too.
+    assert len(swm.encode(v, f, mode="lossless", size=700, max_size=500)) <= 500
+    assert len(swm.encode(v, f, mode="lossless", bpv=8 * 700 / len(v))) <= 700
+    # Without a size: every triangle, at qp bits (default 12).
+    exact, report = swm.encode(v, f, mode="lossless", report=True)
+    assert report == {"method": "lossless", "choice": None, "simplified": None}
+    assert len(swm.decode(exact)[1]) == len(f)
+    assert exact == swm.encode(v, f, mode="lossless", qp=12) != swm.encode(v, f, mode="lossless", qp=14)
+
+
+def test_swing_mode_report(torus):
+    data, report = swm.encode(*torus, mode="swing", bpv=3, report=True)
+    assert report == {"method": "swing", "choice": None, "simplified": None}
+    assert swm.info(data)["mode"] == "swing"
+
+
+# Auto: SwingWrapper gives its nearest file when none is as small as the
+# size, so only a cap makes a size too small there (the retiling fails
+# under it, and so does simplification).
+@pytest.mark.parametrize(
+    "cli_args,options",
+    [
+        (["--mode", "lossless", "--size", "10"], {"mode": "lossless", "size": 10}),
+        (["--size", "10", "--max-size", "10"], {"size": 10, "max_size": 10}),
+    ],
+)
+def test_a_size_too_small_raises_size_error(swm_bin, generated_corpus, tmp_path, cli_args, options):
+    mesh = generated_corpus / "torus.obj"
+    with pytest.raises(swm.SizeError) as e:
+        swm.encode(*swm.read(mesh), **options)
+    error = e.value
+    assert isinstance(error, ValueError) and isinstance(error, swm.SwmError)
+    m = re.fullmatch(r"no file of 10 bytes can hold this mesh: the smallest possible is (\d+) bytes", str(error))
+    assert m, str(error)
+    assert error.requested == 10 and error.smallest == int(m.group(1)) > 10
+    # The CLI's message; and the smallest size named is one that works.
+    assert str(error) == cli_error(swm_bin, "encode", mesh, "-o", tmp_path / "x.swm", *cli_args)
+    data = swm.encode(*swm.read(mesh), mode="lossless", size=error.smallest)
+    assert len(data) <= error.smallest
 
 
 # -- arrays: dtypes, shapes, layouts ----------------------------------------
@@ -240,13 +340,13 @@ def test_wrong_dtypes_and_shapes_get_clear_errors(torus):
 
 def test_other_dtypes_and_layouts_give_the_same_bytes(torus):
     v, f = torus
-    expected = swm.encode(v, f, bpv=3)
-    assert swm.encode(v.astype(np.float64), f.astype(np.int64), bpv=3) == expected
-    assert swm.encode(np.asfortranarray(v), np.asfortranarray(f), bpv=3) == expected
-    assert swm.encode(v.tolist(), f.tolist(), bpv=3) == expected
+    expected = swm.encode(v, f, mode="swing", bpv=3)
+    assert swm.encode(v.astype(np.float64), f.astype(np.int64), mode="swing", bpv=3) == expected
+    assert swm.encode(np.asfortranarray(v), np.asfortranarray(f), mode="swing", bpv=3) == expected
+    assert swm.encode(v.tolist(), f.tolist(), mode="swing", bpv=3) == expected
     wide = np.zeros((len(v), 6), np.float32)
     wide[:, ::2] = v
-    assert swm.encode(wide[:, ::2], f, bpv=3) == expected
+    assert swm.encode(wide[:, ::2], f, mode="swing", bpv=3) == expected
     assert swm.decode(bytearray(expected))[0].tobytes() == swm.decode(memoryview(expected))[0].tobytes()
 
 
@@ -270,7 +370,7 @@ def test_the_gil_is_released_while_encoding(generated_corpus):
 
     def encode() -> None:
         for bpv in (4, 5, 6):
-            swm.encode(v, f, bpv=bpv)
+            swm.encode(v, f, mode="swing", bpv=bpv)
         done.set()
 
     worker = threading.Thread(target=encode)
@@ -290,7 +390,7 @@ def test_the_gil_is_released_while_encoding(generated_corpus):
 
 def test_trimesh_round_trip(torus):
     trimesh = pytest.importorskip("trimesh", reason="trimesh not installed (pip install trimesh)")
-    data = swm.encode(*torus, bpv=3)
+    data = swm.encode(*torus, mode="swing", bpv=3)
     v, f, n = swm.decode(data, normals=True)
     mesh = swm.to_trimesh(v, f, n)
     assert isinstance(mesh, trimesh.Trimesh)
@@ -299,4 +399,4 @@ def test_trimesh_round_trip(torus):
     assert bits_equal(back_v, v) and bits_equal(back_f, f)
     # A trimesh works wherever a mesh is taken.
     assert swm.distance(mesh, (v, f))["hausdorff_relative"] < 1e-12
-    assert swm.encode(*swm.from_trimesh(swm.to_trimesh(*torus)), bpv=3) == data
+    assert swm.encode(*swm.from_trimesh(swm.to_trimesh(*torus)), mode="swing", bpv=3) == data

@@ -1,6 +1,6 @@
-//! `swm encode IN -o OUT.swm [--mode swing|lossless] [--size B | --bpv X |
+//! `swm encode IN -o OUT.swm [--mode auto|swing|lossless] [--size B | --bpv X |
 //! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--format F]
-//! [--json] [--verbose]`. Options of the other mode are refused, not
+//! [--json] [--verbose]`. Options a mode does not use are refused, not
 //! ignored. IN and OUT may be `-` (standard input and output, see `pipe`).
 
 use crate::CliError;
@@ -9,11 +9,16 @@ use std::time::Instant;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeArg {
+    /// Both SwingWrapper and simplify-then-lossless at the requested size;
+    /// the one the encoder measures closer to the input is written (a
+    /// failed retiling falls back).
+    Auto,
     /// SwingWrapper: retile into near-equilateral triangles, one dihedral
     /// angle per vertex. Holes are masked, handles kept while L is below
     /// their thickness, and parts too small for L kept losslessly.
     Swing,
-    /// Keep the input's exact triangles; positions quantized to --qp bits.
+    /// Keep the input's exact triangles, positions quantized to --qp bits;
+    /// with --size or --bpv, quadric-simplify first to fit the size.
     Lossless,
 }
 
@@ -32,15 +37,17 @@ pub struct Args {
     #[arg(long, value_parser = crate::pipe::parse_format)]
     format: Option<swm::io::MeshFormat>,
     /// The codec.
-    #[arg(long, value_enum, default_value = "swing")]
+    #[arg(long, value_enum, default_value = "auto")]
     mode: ModeArg,
-    /// Swing: target file size in bytes (met within 3%).
+    /// Target file size in bytes (met within 3%; lossless: simplify to fit).
     #[arg(long, conflicts_with_all = ["bpv", "edge_length"], value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     size: Option<u64>,
-    /// Swing: target bits per input vertex (default 2 when no target is given).
+    /// Target bits per input vertex (auto and swing: default 2 when no
+    /// target is given; lossless: simplify to fit).
     #[arg(long, conflicts_with = "edge_length", value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
     bpv: Option<f64>,
-    /// Swing: the edge length L itself, in the mesh's units.
+    /// Swing: the edge length L itself, in the mesh's units (auto: the
+    /// simplified candidate gets the retiled file's size).
     #[arg(long, value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
     edge_length: Option<f64>,
     /// Swing: bits per dihedral angle [default: chosen by rate control, 6
@@ -58,10 +65,10 @@ pub struct Args {
     /// (experimental; the file is then format 1.1).
     #[arg(long)]
     adaptive: bool,
-    /// Swing: never write more than this many bytes.
+    /// Never write more than this many bytes (lossless: with --size or --bpv).
     #[arg(long, value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     max_size: Option<u64>,
-    /// Lossless: bits per coordinate [default: 12].
+    /// Lossless without a size: bits per coordinate [default: 12].
     #[arg(long, value_parser = clap::value_parser!(u8).range(6..=24))]
     qp: Option<u8>,
     /// Swing: stop with an error after this many steps of retiling work
@@ -100,18 +107,28 @@ impl Args {
     /// The options given that do not apply to the chosen mode, as a usage
     /// error: they would be silently ignored otherwise.
     pub fn check_mode(&self) -> Result<(), String> {
+        let sized = self.size.is_some() || self.bpv.is_some();
         let (mode, options) = match self.mode {
             ModeArg::Swing => ("swing", vec![(self.qp.is_some(), "--qp")]),
+            ModeArg::Auto => (
+                "auto",
+                vec![
+                    (self.qp.is_some(), "--qp"),
+                    (self.angle_bits.is_some(), "--angle-bits"),
+                ],
+            ),
             ModeArg::Lossless => (
                 "lossless",
                 vec![
-                    (self.size.is_some(), "--size"),
-                    (self.bpv.is_some(), "--bpv"),
+                    (self.qp.is_some() && sized, "--qp with --size or --bpv"),
+                    (
+                        self.max_size.is_some() && !sized,
+                        "--max-size without --size or --bpv",
+                    ),
                     (self.edge_length.is_some(), "--edge-length"),
                     (self.angle_bits.is_some(), "--angle-bits"),
                     (self.on_surface, "--on-surface"),
                     (self.adaptive, "--adaptive"),
-                    (self.max_size.is_some(), "--max-size"),
                     (self.max_work.is_some(), "--max-work"),
                     (self.max_memory.is_some(), "--max-memory"),
                     (self.time_limit.is_some(), "--time-limit"),
@@ -146,16 +163,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     crate::pipe::data_on_stdout(&args.output);
     let format = crate::pipe::input_format(&args.input, args.format)?;
     let mesh = crate::pipe::read_mesh(&args.input, format)?;
+    let target = match (args.size, args.bpv, args.edge_length) {
+        (Some(b), _, _) => swm::SwingTarget::Bytes(b),
+        (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
+        (_, bpv, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
+    };
+    let max_bytes = args.max_size;
     let mode = match args.mode {
-        ModeArg::Lossless => swm::EncodeMode::Lossless { qp: args.qp() },
+        ModeArg::Lossless if args.size.is_none() && args.bpv.is_none() => {
+            swm::EncodeMode::Lossless { qp: args.qp() }
+        }
+        ModeArg::Lossless => swm::EncodeMode::Simplified { target, max_bytes },
+        ModeArg::Auto => swm::EncodeMode::Auto { target, max_bytes },
         ModeArg::Swing => swm::EncodeMode::Swing {
-            target: match (args.size, args.bpv, args.edge_length) {
-                (Some(b), _, _) => swm::SwingTarget::Bytes(b),
-                (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
-                (_, bpv, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
-            },
+            target,
             angle_bits: args.angle_bits,
-            max_bytes: args.max_size,
+            max_bytes,
         },
     };
     let defaults = swm::EncodeLimits::default();
@@ -183,7 +206,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let stats = &encoded.stats;
     let (mut json, vertices, triangles) = match (&stats.lossless, &stats.swing) {
         (Some(l), _) => (
-            crate::report::lossless_json(l, args.qp()),
+            crate::report::lossless_json(l, stats.simplified.map_or(args.qp(), |s| s.qp)),
             l.vertices,
             l.triangles,
         ),
@@ -199,6 +222,14 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
         if !stats.pieces.is_empty() {
             json["components"] = stats.pieces.iter().map(piece_json).collect();
+        }
+        if let Some(s) = &stats.simplified {
+            json["simplified"] = serde_json::json!({
+                "input_faces": s.input_faces, "faces": s.faces, "qp": s.qp,
+            });
+        }
+        if let Some(c) = &stats.choice {
+            json["method"] = crate::report::choice_json(c);
         }
         crate::report::print_json(&json);
         return Ok(());
@@ -223,6 +254,32 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         triangles,
         seconds
     );
+    if let Some(c) = &stats.choice {
+        say!("{}", crate::report::choice_line(c));
+    }
+    if let Some(s) = &stats.simplified {
+        say!(
+            "simplified from {} to {} faces, {} bits per coordinate",
+            s.input_faces,
+            s.faces,
+            s.qp
+        );
+        // Never a silent miss: a request beyond what the whole mesh at
+        // the finest quantization needs gets that file, and a note.
+        let requested = match (args.size, args.bpv) {
+            (Some(b), _) => Some(b),
+            (_, Some(bpv)) => Some((bpv * mesh.vertex_count() as f64 / 8.0).round() as u64),
+            _ => None,
+        };
+        let bytes = encoded.bytes.len() as u64;
+        if let Some(r) = requested.filter(|&r| s.faces == s.input_faces && bytes * 100 < r * 97) {
+            eprintln!(
+                "swm: note: {}: the whole mesh at {} bits per coordinate takes {bytes} bytes, less than the {r} asked for; that file was written",
+                args.input.display(),
+                s.qp
+            );
+        }
+    }
     if let Some(r) = &stats.rate {
         let failed = r.attempts.iter().filter(|a| a.outcome.is_err()).count();
         say!(

@@ -135,3 +135,57 @@ pub fn clean_json(r: &swm::CleanReport) -> Value {
         "non_manifold_vertices": r.non_manifold_vertices,
     })
 }
+
+/// The automatic mode's choice: both candidates' sizes and measured L2
+/// (relative to the diagonal), and why SwingWrapper failed if it did.
+pub fn choice_json(c: &swm::MethodChoice) -> Value {
+    let candidate = |c: &Option<swm::Candidate>| {
+        c.map_or(
+            Value::Null,
+            |c| serde_json::json!({"bytes": c.bytes, "l2_rel": c.l2_relative}),
+        )
+    };
+    serde_json::json!({
+        "chosen": method_name(c.chosen),
+        "swing": candidate(&c.swing),
+        "swing_failure": c.swing_failure.as_ref().map(failure_text),
+        "simplified": candidate(&c.simplified),
+    })
+}
+
+/// One line: which method the automatic mode wrote, and why.
+pub fn choice_line(c: &swm::MethodChoice) -> String {
+    let figure = |c: &Option<swm::Candidate>| {
+        c.map_or("none".to_string(), |c| {
+            format!("L2 {:.3}e-4 at {} bytes", 1e4 * c.l2_relative, c.bytes)
+        })
+    };
+    let swing = match &c.swing_failure {
+        Some(f) => format!("failed ({})", failure_text(f)),
+        None => figure(&c.swing),
+    };
+    format!(
+        "method: {} (swing {swing}; simplified {})",
+        method_name(c.chosen),
+        figure(&c.simplified)
+    )
+}
+
+fn method_name(m: swm::Method) -> &'static str {
+    match m {
+        swm::Method::Swing => "swing",
+        swm::Method::Simplified => "simplified",
+        _ => "other",
+    }
+}
+
+fn failure_text(f: &swm::SwingFailure) -> String {
+    match f {
+        swm::SwingFailure::Retile(e) => e.to_string(),
+        swm::SwingFailure::Limit(e) => e.to_string(),
+        swm::SwingFailure::Oversized { bytes } => {
+            format!("its nearest file, {bytes} bytes, missed the size by more than 3%")
+        }
+        _ => "failed".to_string(),
+    }
+}

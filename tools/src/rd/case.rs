@@ -6,7 +6,6 @@
 //! an entry first, every job reads the same value: results do not depend
 //! on scheduling.
 
-use crate::rd::baseline::Simplifier;
 use crate::rd::source::Source;
 use crate::CliError;
 use std::collections::HashMap;
@@ -31,8 +30,6 @@ pub struct Case {
     /// SwingWrapper files by (byte budget, angle bits): the swing
     /// configurations differ only in how they decode the same file.
     swing_files: Mutex<HashMap<(u64, swm::SwingTuning), SwingCell>>,
-    /// The welded input the baseline simplifies, and its sizes.
-    pub simplifier: Simplifier,
 }
 
 impl Case {
@@ -40,7 +37,6 @@ impl Case {
     pub fn new(source: Source, table_name: String, mesh: TriMesh) -> Result<Case, CliError> {
         let err = |e| CliError::new(source.label(), e);
         let reference = Surface::new(&mesh).map_err(err)?;
-        let simplifier = Simplifier::new(&mesh).map_err(err)?;
         Ok(Case {
             source,
             table_name,
@@ -48,7 +44,6 @@ impl Case {
             reference,
             lossless_sizes: Mutex::new(HashMap::new()),
             swing_files: Mutex::new(HashMap::new()),
-            simplifier,
         })
     }
 

@@ -20,9 +20,12 @@ pub enum Config {
     /// (6..=24) whose file fits.
     Lossless,
     /// "Simplify, then lossless" (thesis Table 7-3): quadric simplification
-    /// (meshoptimizer) to the face count and qp (7..=14) with the lowest L2
-    /// that fits.
+    /// (meshoptimizer) to the face count and qp (6..=16) with the lowest L2
+    /// that fits (`swm encode --mode lossless --size B`).
     Baseline,
+    /// `swm encode`'s default: SwingWrapper or `baseline`, whichever the
+    /// encoder measures closer (`--mode auto`).
+    Auto,
     /// SwingWrapper as `swm encode` runs it by default, asked for the
     /// budget and capped at it.
     Swing,
@@ -44,9 +47,10 @@ pub enum Config {
 
 impl Config {
     /// Every configuration, in table order.
-    pub const ALL: [Config; 7] = [
+    pub const ALL: [Config; 8] = [
         Config::Lossless,
         Config::Baseline,
+        Config::Auto,
         Config::Swing,
         Config::SwingOnSurface,
         Config::SwingAdaptive,
@@ -67,6 +71,7 @@ impl Config {
         match self {
             Config::Lossless => "lossless",
             Config::Baseline => "baseline",
+            Config::Auto => "auto",
             Config::Swing => "swing",
             Config::SwingOnSurface => "swing-on-surface",
             Config::SwingAdaptive => "swing-adaptive",
@@ -108,6 +113,7 @@ impl Config {
         let coded = match self {
             Config::Lossless => lossless(case, budget, samples)?,
             Config::Baseline => crate::rd::baseline::run(case, budget, samples)?,
+            Config::Auto => crate::rd::baseline::run_auto(case, budget, samples)?,
             Config::Swing
             | Config::SwingOnSurface
             | Config::SwingAdaptive
@@ -201,7 +207,7 @@ pub fn finish<'a>(
 /// decoded mesh against the reference. `qp` is the row's quantization
 /// figure; `options` says how to decode (post-processing included in the
 /// decode time).
-fn measure(
+pub fn measure(
     case: &Case,
     qp: u8,
     samples: u64,

@@ -55,11 +55,12 @@ pub struct Args {
     /// Target rates in bits per vertex of the mesh as read.
     #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,4,8", value_parser = parse_rate, conflicts_with = "check")]
     rates: Vec<f64>,
-    /// Configurations to run (default: all but the ablation row swing-on-surface).
+    /// Configurations to run (default: all but the ablation rows
+    /// swing-on-surface and swing-adaptive).
     #[arg(long, value_enum, value_delimiter = ',', conflicts_with = "check")]
     configs: Vec<Config>,
     /// Area-uniform face samples per surface for each row's distance (the
-    /// baseline compares its candidates with a tenth of them).
+    /// encoder compares its own candidates with 30,000).
     #[arg(long, default_value_t = DEFAULT_SAMPLES, value_parser = clap::value_parser!(u64).range(1..), conflicts_with = "check")]
     samples: u64,
     /// Write NAME.csv, NAME.md and NAME-MESH.svg into this folder (with
@@ -89,16 +90,21 @@ Rates: the byte budget is floor(rate x V / 8), V = vertices of the mesh as read.
 Configurations:
   lossless  swm's lossless mode, the largest qp (6..24) that fits
   baseline  quadric simplification (meshoptimizer), then the lossless mode,
-            at the face count and qp (7..14) with the lowest L2 that fits
-  swing     SwingWrapper exactly as swm encode runs it by default (angle
-            bits chosen by rate control, approximating tips), asked for
-            the budget and capped at it
-  swing-on-surface  swing with every tip on the input surface (the
-            thesis's placement; not run by default, for ablation)
+            at the face count and qp (6..16) with the lowest L2 that fits
+            (swm encode --mode lossless --size B)
+  auto      swm encode's default: swing or baseline, whichever the encoder
+            measures closer to the input
+  swing     SwingWrapper as swm encode --mode swing runs it (angle bits
+            chosen by rate control, approximating tips), asked for the
+            budget and capped at it
+  swing+sharpen, swing+sharpen+bend  the swing file decoded with
+            EdgeSharpener (and one Bender step)
+  swing-on-surface, swing-adaptive  swing with every tip on the input
+            surface (the thesis's placement) or with --adaptive; not run
+            by default, for ablation
 A configuration that cannot fit a budget gives a row with status infeasible;
-one whose encoder gives up, failed; one that does not take the mesh (swing
-on a mesh with holes, handles or several components), n/a. The reasons are
-printed on stderr.
+one whose encoder gives up, failed; one that does not take the mesh, n/a.
+The reasons are printed on stderr.
 Distances: L2 (larger one-sided RMS) and Hausdorff, from area-uniform face
 samples on both surfaces, in units of 1e-4 of the input's bbox diagonal.
 

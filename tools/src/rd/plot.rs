@@ -24,6 +24,7 @@ fn color(config: Config) -> RGBColor {
     match config {
         Config::Lossless => RGBColor(230, 25, 75),
         Config::Baseline => RGBColor(60, 180, 75),
+        Config::Auto => RGBColor(0, 0, 0),
         Config::Swing => RGBColor(67, 99, 216),
         Config::SwingSharpen => RGBColor(245, 130, 49),
         Config::SwingSharpenBend => RGBColor(145, 30, 180),

@@ -1,0 +1,237 @@
+//! The encoder's automatic mode and its simplify-then-lossless method
+//! (issue 20, "method per piece", per file for now): sizes, the choice
+//! by measured error, the fallback when retiling stops, determinism.
+
+mod common;
+use common::*;
+use swm::{EncodeMode, EncodeOptions, Method, SwingTarget};
+
+fn encode(mesh: &swm::TriMesh, mode: EncodeMode) -> Result<swm::Encoded, swm::Error> {
+    swm::encode(
+        mesh,
+        &EncodeOptions {
+            mode,
+            ..Default::default()
+        },
+    )
+}
+
+#[test]
+fn simplified_fills_the_size_and_repeats() {
+    let mesh = swm_corpus::fandisk_like(24);
+    // A third of the whole mesh at 12 bits: simplification must do the rest.
+    let full = encode(&mesh, EncodeMode::Lossless { qp: 12 }).unwrap();
+    let budget = full.bytes.len() as u64 / 3;
+    let mode = EncodeMode::Simplified {
+        target: SwingTarget::Bytes(budget),
+        max_bytes: None,
+    };
+    let a = encode(&mesh, mode).unwrap();
+    let n = a.bytes.len() as u64;
+    assert!(
+        n <= budget && n * 100 >= budget * 97,
+        "{n} bytes for {budget}"
+    );
+    assert_eq!(a.bytes, encode(&mesh, mode).unwrap().bytes);
+    let s = a.stats.simplified.expect("simplified figures");
+    let decoded = swm::decode(&a.bytes, &Default::default()).unwrap();
+    assert_eq!(decoded.triangles.len() as u64, s.faces);
+    assert!(s.faces < s.input_faces && (6..=16).contains(&s.qp), "{s:?}");
+    assert_eq!(
+        swm::inspect(&a.bytes, &Default::default()).unwrap().qp,
+        s.qp
+    );
+}
+
+#[test]
+fn a_size_below_the_smallest_file_names_it() {
+    let mesh = swm_corpus::icosphere(1.0, 3);
+    let small = |b| {
+        encode(
+            &mesh,
+            EncodeMode::Simplified {
+                target: SwingTarget::Bytes(b),
+                max_bytes: None,
+            },
+        )
+    };
+    let smallest = match small(10) {
+        Err(swm::Error::Size(e)) => {
+            assert_eq!(e.requested, 10);
+            e.smallest
+        }
+        other => panic!(
+            "expected a size error, got {:?}",
+            other.map(|e| e.bytes.len())
+        ),
+    };
+    assert!(smallest > 10);
+    let e = small(smallest).expect("the smallest size named works");
+    assert!(e.bytes.len() as u64 <= smallest);
+    // An edge length means nothing to this method.
+    let refused = encode(
+        &mesh,
+        EncodeMode::Simplified {
+            target: SwingTarget::EdgeLength(0.1),
+            max_bytes: None,
+        },
+    );
+    assert!(matches!(refused, Err(swm::Error::Parameter(_))));
+}
+
+/// The file written is the candidate of lower measured error, and its
+/// size is the one reported.
+fn check_choice(e: &swm::Encoded) -> Method {
+    let c = e.stats.choice.as_ref().expect("auto reports its choice");
+    let chosen = match c.chosen {
+        Method::Swing => c.swing.expect("swing candidate"),
+        _ => c.simplified.expect("simplified candidate"),
+    };
+    assert_eq!(chosen.bytes, e.bytes.len() as u64);
+    for other in [c.swing, c.simplified].into_iter().flatten() {
+        assert!(chosen.l2_relative <= other.l2_relative, "{c:?}");
+    }
+    let mode = swm::inspect(&e.bytes, &Default::default()).unwrap().mode;
+    assert_eq!(mode == swm::Mode::Swing, c.chosen == Method::Swing);
+    c.chosen
+}
+
+#[test]
+fn auto_writes_the_better_candidate() {
+    let auto = |mesh: &swm::TriMesh, bpv| {
+        encode(
+            mesh,
+            EncodeMode::Auto {
+                target: SwingTarget::BitsPerVertex(bpv),
+                max_bytes: None,
+            },
+        )
+        .unwrap()
+    };
+    // Sharp edges: uniform retiling chamfers them, simplification keeps
+    // them, so the CAD part goes to the simplified method.
+    let cad = auto(&swm_corpus::fandisk_like(24), 2.0);
+    assert_eq!(check_choice(&cad), Method::Simplified);
+    let c = cad.stats.choice.as_ref().unwrap();
+    assert!(c.swing.is_some() && c.swing_failure.is_none(), "{c:?}");
+    // A smooth torus: whichever wins, the report holds.
+    check_choice(&auto(&swm_corpus::torus(1.0, 0.35, 48, 16), 2.0));
+}
+
+#[test]
+fn auto_below_the_smallest_file_names_it() {
+    let mesh = swm_corpus::torus(1.0, 0.35, 48, 16);
+    let auto = |b| {
+        encode(
+            &mesh,
+            EncodeMode::Auto {
+                target: SwingTarget::Bytes(b),
+                max_bytes: None,
+            },
+        )
+    };
+    // Rate control's nearest retiled file is far above 10 bytes and so is
+    // every simplification: a size error, not an oversized file.
+    let smallest = match auto(10) {
+        Err(swm::Error::Size(e)) => e.smallest,
+        other => panic!(
+            "expected a size error, got {:?}",
+            other.map(|e| e.bytes.len())
+        ),
+    };
+    let e = auto(smallest).expect("the smallest size named works");
+    assert!(e.bytes.len() as f64 <= smallest as f64 * 1.03);
+}
+
+#[test]
+fn auto_falls_back_when_retiling_is_stopped() {
+    let mesh = swm_corpus::torus(1.0, 0.35, 48, 16);
+    let options = EncodeOptions {
+        mode: EncodeMode::Auto {
+            target: SwingTarget::BitsPerVertex(2.0),
+            max_bytes: None,
+        },
+        limits: swm::EncodeLimits {
+            max_work: 1,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let e = swm::encode(&mesh, &options).unwrap();
+    assert_eq!(check_choice(&e), Method::Simplified);
+    let c = e.stats.choice.unwrap();
+    assert!(
+        matches!(c.swing_failure, Some(swm::SwingFailure::Limit(_))),
+        "{c:?}"
+    );
+    assert!(swm::decode(&e.bytes, &Default::default()).is_ok());
+}
+
+#[test]
+fn auto_bytes_do_not_depend_on_the_thread_count() {
+    let mesh = swm_corpus::fandisk_like(16);
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            encode(
+                &mesh,
+                EncodeMode::Auto {
+                    target: SwingTarget::BitsPerVertex(2.0),
+                    max_bytes: None,
+                },
+            )
+            .unwrap()
+            .bytes
+        })
+    };
+    assert_eq!(run(1), run(3));
+}
+
+#[test]
+fn auto_with_an_edge_length_gives_both_the_retiled_size() {
+    let mesh = swm_corpus::torus(1.0, 0.35, 48, 16);
+    let e = encode(
+        &mesh,
+        EncodeMode::Auto {
+            target: SwingTarget::EdgeLength(0.2),
+            max_bytes: None,
+        },
+    )
+    .unwrap();
+    check_choice(&e);
+    let c = e.stats.choice.unwrap();
+    let (swing, simplified) = (c.swing.unwrap(), c.simplified.unwrap());
+    assert!(simplified.bytes <= swing.bytes, "{c:?}");
+}
+
+#[test]
+fn cli_defaults_to_auto_and_reports_the_method() {
+    let dir = scratch("auto-cli");
+    let input = dir.join("part.obj");
+    swm::io::write_mesh(&input, &swm_corpus::fandisk_like(16)).unwrap();
+    let output = dir.join("part.swm");
+    let (i, o) = (input.to_str().unwrap(), output.to_str().unwrap());
+    let j = json(&swm(&["encode", i, "-o", o, "--bpv", "2", "--json"]));
+    assert_eq!(j["method"]["chosen"], "simplified", "{j}");
+    assert!(j["method"]["swing"]["l2_rel"].as_f64().is_some(), "{j}");
+    assert!(j["simplified"]["qp"].as_u64().is_some(), "{j}");
+    // Text: one line says which method and why.
+    let text = ok(&swm(&["encode", i, "-o", o, "--bpv", "2"]));
+    assert!(text.contains("method: simplified (swing L2"), "{text}");
+    // The lossless mode with a size simplifies; --qp then has no meaning.
+    let j = json(&swm(&[
+        "encode", i, "-o", o, "--mode", "lossless", "--size", "900", "--json",
+    ]));
+    assert!(j["bytes"].as_u64().unwrap() <= 900, "{j}");
+    for refused in [
+        &["--mode", "lossless", "--size", "900", "--qp", "9"][..],
+        &["--mode", "auto", "--qp", "9"][..],
+        &["--mode", "auto", "--angle-bits", "6"][..],
+    ] {
+        let out = swm(&[&["encode", i, "-o", o][..], refused].concat());
+        assert_eq!(out.status.code(), Some(2), "{refused:?}");
+    }
+}
