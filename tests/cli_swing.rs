@@ -436,7 +436,21 @@ fn a_mesh_too_small_to_retile_is_kept_in_rest() {
     )
     .unwrap();
     let file = dir.join("tet.swm");
-    let summary = ok(&swm(&["encode", s(&input), "-o", s(&file)]));
+    // The default mode will not write 91 bytes for a 1-byte request...
+    let refused = swm(&["encode", s(&input), "-o", s(&file)]);
+    assert_eq!(refused.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(err.contains("the smallest possible is"), "{err}");
+    assert!(!file.exists());
+    // ... the swing mode keeps the nearest file it made.
+    let summary = ok(&swm(&[
+        "encode",
+        s(&input),
+        "-o",
+        s(&file),
+        "--mode",
+        "swing",
+    ]));
     assert!(
         summary.contains("0 triangles, no bits/triangle"),
         "{summary}"
