@@ -159,7 +159,8 @@ def test_file_errors(tmp_path):
     with pytest.raises(swm.ParameterError, match="unknown mesh format"):
         swm.read(tmp_path / "mesh.xyz")
     with pytest.raises(swm.ParameterError, match="read but not written"):
-        swm.write(tmp_path / "mesh.gltf", [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+        swm.write(tmp_path / "mesh.gltf", np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32),
+                  np.array([[0, 1, 2]], np.uint32))
     bad = tmp_path / "bad.obj"
     bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
     with pytest.raises(swm.FormatError, match="line 4"):
