@@ -162,7 +162,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
     crate::pipe::data_on_stdout(&args.output);
     let format = crate::pipe::input_format(&args.input, args.format)?;
-    let mesh = crate::pipe::read_mesh(&args.input, format)?;
+    let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
+    warn_dropped(&args.input, &read.dropped);
     let target = match (args.size, args.bpv, args.edge_length) {
         (Some(b), _, _) => swm::SwingTarget::Bytes(b),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
@@ -323,6 +324,23 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// The one warning line for what the input carried that no `.swm` file
+/// holds: on stderr whatever carries the report, as warnings are not
+/// results (and `--json` on stdout stays the JSON alone).
+fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes) {
+    let names: Vec<&str> = dropped.names().collect();
+    let listed = match names.as_slice() {
+        [] => return,
+        [one] => one.to_string(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    };
+    // Every name is a plural: "are".
+    eprintln!(
+        "swm: warning: {}: the input's {listed} are not kept (swm codes positions and triangles only)",
+        input.display()
+    );
 }
 
 /// How many components met each fate, e.g. "3 retiled, 99997 kept by
