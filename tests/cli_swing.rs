@@ -467,8 +467,8 @@ fn a_mesh_too_small_to_retile_is_kept_in_rest() {
 }
 
 /// Issue 18: a mesh of many components does not print a line per
-/// component: the first few, then the rest counted by fate; `--verbose`
-/// lists them all, and JSON always has them all.
+/// component (on stderr): the first few, then the rest counted by fate;
+/// `--verbose` lists them all, and JSON always has them all.
 #[test]
 fn long_component_reports_are_summarized() {
     let dir = scratch("swing-many-pieces");
@@ -503,7 +503,11 @@ fn long_component_reports_are_summarized() {
             "0.2",
         ];
         args.extend_from_slice(extra);
-        ok(&swm(&args))
+        // The component lines are on stderr, the results on stdout.
+        let out = swm(&args);
+        let stdout = ok(&out);
+        assert!(!stdout.contains("component "), "{stdout}");
+        String::from_utf8_lossy(&out.stderr).into_owned()
     };
     let listed = |text: &str| text.lines().filter(|l| l.starts_with("component ")).count();
     let short = run(&[]);

@@ -91,6 +91,11 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             None => crate::report::lossless_json(&info.stats, info.qp),
         };
         v["decode_seconds"] = seconds.into();
+        // `vertices` and `triangles` are the file's (of a swing file, the
+        // retiled part); these count everything written, the lossless
+        // REST, Sharpen&Bend included, as the text line does.
+        v["decoded_vertices"] = mesh.vertex_count().into();
+        v["decoded_triangles"] = mesh.face_count().into();
         crate::report::print_json(&v);
     } else {
         crate::report::print_written(&args.input, &args.output, &mesh, seconds);

@@ -1,7 +1,10 @@
 //! `swm encode IN -o OUT.swm [--mode auto|swing|lossless] [--size B | --bpv X |
 //! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--format F]
-//! [--json] [--verbose]`. Options a mode does not use are refused, not
-//! ignored. IN and OUT may be `-` (standard input and output, see `pipe`).
+//! [--json] [--verbose] [--force]`. Options a mode does not use are
+//! refused, not ignored, and so is an output named like a mesh file
+//! (without `--force`). What the report says goes to stdout (stderr
+//! with `-o -`); warnings, what cleaning changed and each component's
+//! fate go to stderr. IN and OUT may be `-` (standard input and output, see `pipe`).
 
 use crate::CliError;
 use std::path::PathBuf;
@@ -88,6 +91,10 @@ pub struct Args {
     /// Print statistics as JSON.
     #[arg(long)]
     json: bool,
+    /// Write OUT even when its extension names a mesh format (.obj, .ply,
+    /// .off, .stl, .glb, .gltf): the file is a .swm file whatever its name.
+    #[arg(long)]
+    force: bool,
     /// List every component in the text report (by default a long list is
     /// cut after its first lines and summed up by fate).
     #[arg(long)]
@@ -159,10 +166,12 @@ fn positive_seconds(s: &str) -> Result<f64, String> {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
+    refuse_mesh_name(&args.output, args.force)?;
     crate::refuse_same_file(&args.input, &args.output)?;
     crate::pipe::data_on_stdout(&args.output);
     let format = crate::pipe::input_format(&args.input, args.format)?;
-    let mesh = crate::pipe::read_mesh(&args.input, format)?;
+    let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
+    warn_dropped(&args.input, &read.dropped);
     let target = match (args.size, args.bpv, args.edge_length) {
         (Some(b), _, _) => swm::SwingTarget::Bytes(b),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
@@ -204,6 +213,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     crate::pipe::write_bytes(&args.output, &encoded.bytes)
         .map_err(|e| CliError::new(&args.output, e))?;
     let stats = &encoded.stats;
+    if let Some(r) = stats.rate.as_ref().filter(|r| !r.within_tolerance) {
+        warn_missed_size(&args.input, r, encoded.bytes.len() as u64);
+    }
     let (mut json, vertices, triangles) = match (&stats.lossless, &stats.swing) {
         (Some(l), _) => (
             crate::report::lossless_json(l, stats.simplified.map_or(args.qp(), |s| s.qp)),
@@ -298,8 +310,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             }
         );
     }
+    // What cleaning changed and each component's fate are details of the
+    // work, not its result: stderr, so that stdout holds the results.
     if !stats.clean.is_clean() {
-        say!("cleaning: {}", clean_summary(&stats.clean));
+        eprintln!("cleaning: {}", clean_summary(&stats.clean));
     }
     let plain = |p: &swm::PieceReport| {
         p.holes == 0 && matches!(p.outcome, swm::PieceOutcome::Retiled { .. })
@@ -311,10 +325,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             LISTED_COMPONENTS
         };
         for (k, p) in stats.pieces.iter().enumerate().take(listed) {
-            say!("component {k}: {}", piece_line(p));
+            eprintln!("component {k}: {}", piece_line(p));
         }
         if stats.pieces.len() > listed {
-            say!(
+            eprintln!(
                 "... {} more components ({} in all: {}); --verbose lists them all",
                 stats.pieces.len() - listed,
                 stats.pieces.len(),
@@ -323,6 +337,60 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Refuses an output named like a mesh file (`-o x.obj`): `encode`
+/// writes `.swm` whatever the name, and such a file would fool the next
+/// program, or person, to open it. `--force` keeps the name; `-` and
+/// every other name are fine. Bad usage (exit 2), before any work.
+fn refuse_mesh_name(output: &std::path::Path, force: bool) -> Result<(), CliError> {
+    if force || crate::pipe::is_stdio(output) {
+        return Ok(());
+    }
+    let Ok(format) = swm::io::MeshFormat::from_path(output) else {
+        return Ok(());
+    };
+    let e = std::io::Error::new(
+        std::io::ErrorKind::InvalidInput,
+        format!(
+            "the name says {}, but encode writes a .swm file (`swm decode` writes meshes); name it .swm, or pass --force to keep this name",
+            format.name()
+        ),
+    );
+    Err(CliError::usage(output, e))
+}
+
+/// A size rate control could not bring within 3% of the request: a
+/// warning on stderr, as the file may not be what the caller budgeted
+/// for (the report on stdout says it too).
+fn warn_missed_size(input: &std::path::Path, r: &swm::RateReport, bytes: u64) {
+    let Some(requested) = r.requested_bytes else {
+        return;
+    };
+    let off = 100.0 * (bytes as f64 - requested as f64) / requested.max(1) as f64;
+    let side = if off >= 0.0 { "over" } else { "under" };
+    eprintln!(
+        "swm: warning: {}: the file is {bytes} bytes, {:.1}% {side} the {requested} requested; rate control could not land within 3%, and the nearest file it made was written",
+        input.display(),
+        off.abs()
+    );
+}
+
+/// The one warning line for what the input carried that no `.swm` file
+/// holds: on stderr whatever carries the report, as warnings are not
+/// results (and `--json` on stdout stays the JSON alone).
+fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes) {
+    let names: Vec<&str> = dropped.names().collect();
+    let listed = match names.as_slice() {
+        [] => return,
+        [one] => one.to_string(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    };
+    // Every name is a plural: "are".
+    eprintln!(
+        "swm: warning: {}: the input's {listed} are not kept (swm codes positions and triangles only)",
+        input.display()
+    );
 }
 
 /// How many components met each fate, e.g. "3 retiled, 99997 kept by

@@ -3,7 +3,8 @@
 //! Exit status: 0 on success, 1 when an input is bad or an operation
 //! fails, 2 on bad usage (clap's convention): clap's own messages, the
 //! value parsers of `args`, options of the other encoding mode, an
-//! output extension no writer has, and `-` (a pipe, see `pipe`) without
+//! output extension no writer has, an `encode` output named like a mesh
+//! file without `--force`, and `-` (a pipe, see `pipe`) without
 //! `--format`. Every other failure prints one line on
 //! stderr, `swm: error: FILE: what is wrong`. SIGINT and SIGTERM exit
 //! 130 and 143 after removing unfinished outputs (see `signals`).

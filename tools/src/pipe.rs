@@ -126,13 +126,16 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), swm::Error> {
 }
 
 /// Reads the mesh `path` names (standard input for `-`) in `format`,
-/// within the default limits.
-pub fn read_mesh(path: &Path, format: swm::io::MeshFormat) -> Result<swm::TriMesh, CliError> {
+/// within the default limits, with the report of what it dropped.
+pub fn read_mesh(
+    path: &Path,
+    format: swm::io::MeshFormat,
+) -> Result<(swm::TriMesh, swm::io::ReadReport), CliError> {
     let limits = swm::Limits::default();
     let err = |e| CliError::new(path, e);
     if is_stdio(path) {
         let bytes = read_stdin(limits.max_input_bytes).map_err(err)?;
-        return swm::io::read_mesh_bytes(&bytes, format, &limits).map_err(err);
+        return swm::io::read_mesh_bytes_with_report(&bytes, format, &limits).map_err(err);
     }
-    swm::io::read_mesh_as(path, format, &limits).map_err(err)
+    swm::io::read_mesh_with_report(path, Some(format), &limits).map_err(err)
 }

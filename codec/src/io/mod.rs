@@ -35,10 +35,16 @@
 //! that is renamed into place; [`discard_unfinished`] removes those of
 //! writes in progress, for programs that end on a signal.
 //!
+//! Readers keep positions and faces only. What else a file carried that
+//! is dropped (texture coordinates, normals, colours) is reported by
+//! [`read_mesh_with_report`] and [`read_mesh_bytes_with_report`], so that
+//! programs can say so ([`Attributes`]).
+//!
 //! One file per format; `source` maps or reads input files, `output`
 //! writes output files, `text` holds the ASCII scanning the text formats
-//! share.
+//! share, `attributes` the report of what was dropped.
 
+mod attributes;
 mod gltf;
 mod obj;
 mod off;
@@ -49,6 +55,7 @@ mod stl;
 mod text;
 
 use crate::{Error, FormatError, LimitError, Limited, Limits, Malformed, ParameterError, TriMesh};
+pub use attributes::{Attributes, ReadReport};
 pub use output::discard_unfinished;
 use output::write_atomic;
 use std::io::{self, BufWriter, Write};
@@ -56,8 +63,9 @@ use std::ops::Deref;
 use std::path::Path;
 
 /// What every reader is: the bytes of a whole file, and the folder it
-/// was read from (for files that name other files), to its raw mesh.
-type Reader = fn(&[u8], Option<&Path>, &Limits) -> Result<TriMesh, Error>;
+/// was read from (for files that name other files), to its raw mesh and
+/// the vertex attributes it dropped.
+type Reader = fn(&[u8], Option<&Path>, &Limits) -> Result<(TriMesh, Attributes), Error>;
 
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -179,6 +187,21 @@ pub fn read_mesh_with(path: &Path, limits: &Limits) -> Result<TriMesh, Error> {
 /// [`read_mesh_with`] for a file of the given format, whatever its name
 /// says (for names without an extension).
 pub fn read_mesh_as(path: &Path, format: MeshFormat, limits: &Limits) -> Result<TriMesh, Error> {
+    read_mesh_with_report(path, Some(format), limits).map(|(mesh, _)| mesh)
+}
+
+/// [`read_mesh_as`] (or [`read_mesh_with`] when `format` is `None`: the
+/// extension says), with a report of what the file carried that the mesh
+/// does not keep.
+pub fn read_mesh_with_report(
+    path: &Path,
+    format: Option<MeshFormat>,
+    limits: &Limits,
+) -> Result<(TriMesh, ReadReport), Error> {
+    let format = match format {
+        Some(f) => f,
+        None => MeshFormat::from_path(path)?,
+    };
     let bytes = source::Source::open(path, limits)?;
     // A `.gltf` file's external buffers are beside it.
     let folder = path.parent().unwrap_or(Path::new(""));
@@ -193,6 +216,16 @@ pub fn read_mesh_bytes(
     format: MeshFormat,
     limits: &Limits,
 ) -> Result<TriMesh, Error> {
+    read_mesh_bytes_with_report(bytes, format, limits).map(|(mesh, _)| mesh)
+}
+
+/// [`read_mesh_bytes`] with a report of what the file carried that the
+/// mesh does not keep.
+pub fn read_mesh_bytes_with_report(
+    bytes: &[u8],
+    format: MeshFormat,
+    limits: &Limits,
+) -> Result<(TriMesh, ReadReport), Error> {
     read_bytes_in(bytes, format, None, limits)
 }
 
@@ -202,17 +235,17 @@ fn read_bytes_in(
     format: MeshFormat,
     folder: Option<&Path>,
     limits: &Limits,
-) -> Result<TriMesh, Error> {
+) -> Result<(TriMesh, ReadReport), Error> {
     let read = format.reader();
     let empty = || Error::Format(FormatError::new(format.name(), Malformed::Empty));
     if text::is_blank(bytes) {
         return Err(empty());
     }
-    let mesh = read(bytes, folder, limits)?;
+    let (mesh, dropped) = read(bytes, folder, limits)?;
     if mesh.positions.is_empty() && mesh.triangles.is_empty() {
         return Err(empty());
     }
-    Ok(mesh)
+    Ok((mesh, ReadReport { dropped }))
 }
 
 /// Writes a mesh file, its format given by the extension; `.gltf` is
@@ -274,10 +307,12 @@ fn writable(format: MeshFormat) -> Result<(), Error> {
     Err(Error::Parameter(ParameterError::ReadOnly { format }))
 }
 
-/// The mesh a reader is building, and the [`Limits`] it must stay within.
+/// The mesh a reader is building, the [`Limits`] it must stay within,
+/// and the attributes the file carried that the mesh does not keep.
 struct Builder<'l> {
     mesh: TriMesh,
     limits: &'l Limits,
+    dropped: Attributes,
 }
 
 impl<'l> Builder<'l> {
@@ -285,6 +320,7 @@ impl<'l> Builder<'l> {
         Builder {
             mesh: TriMesh::default(),
             limits,
+            dropped: Attributes::default(),
         }
     }
 
@@ -344,8 +380,8 @@ impl<'l> Builder<'l> {
         Ok(self.limits.check_alloc(bytes)?)
     }
 
-    fn finish(self) -> TriMesh {
-        self.mesh
+    fn finish(self) -> (TriMesh, Attributes) {
+        (self.mesh, self.dropped)
     }
 }
 

@@ -5,7 +5,9 @@
 //! Only geometry statements matter here: `v x y z [w]` and
 //! `f v1[/vt[/vn]] v2 ...` with 1-based or negative (relative) indices;
 //! polygons are fan-triangulated. Texture coordinates, normals, groups,
-//! objects, materials, smoothing groups, points and lines are ignored.
+//! objects, materials, smoothing groups, points and lines are ignored;
+//! `vt` and `vn` statements and vertex colours (`v x y z r g b`, an
+//! extension many writers use) are reported as dropped attributes.
 //!
 //! tobj on its own would not return the raw mesh this module promises, so
 //! it only gets to see a filtered copy of the statements (see [`Feed`]):
@@ -26,7 +28,7 @@
 //!   gives errors their line numbers.
 
 use super::text::{self, Text};
-use super::{limit, Builder};
+use super::{limit, Attributes, Builder};
 use crate::{Error, FormatError, Limited, Limits, Location, Malformed, TriMesh};
 use std::io::{self, BufRead, Read, Write};
 
@@ -52,6 +54,8 @@ struct Counts {
     vertices: u64,
     faces: u64,
     triangles: u64,
+    /// `vt`, `vn` and coloured `v` statements seen.
+    dropped: Attributes,
 }
 
 /// The first pass: counts, and the checks tobj does not make.
@@ -62,12 +66,17 @@ fn scan(bytes: &[u8]) -> Result<Counts, Error> {
         let mut words = text::tokens(uncomment(line));
         match words.next() {
             Some(b"v") => {
-                if words.count() < 3 {
+                let values = words.count();
+                if values < 3 {
                     let why = "a vertex needs three coordinates";
                     return Err(error(Malformed::BadSyntax(why), n));
                 }
+                // x y z [w] is a position; x y z r g b [a] carries a colour.
+                counts.dropped.colors |= values >= 6;
                 counts.vertices += 1;
             }
+            Some(b"vt") => counts.dropped.uv = true,
+            Some(b"vn") => counts.dropped.normals = true,
             Some(b"f") => {
                 let corners = words.count() as u64;
                 if corners < 3 {
@@ -83,7 +92,7 @@ fn scan(bytes: &[u8]) -> Result<Counts, Error> {
 }
 
 /// Reads an OBJ file.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
+pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
     if let Some(why) = text::not_text(bytes) {
         return Err(FormatError::new(FORMAT, why).into());
     }
@@ -128,6 +137,7 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
         .map_err(|e| load_error(e, feed.line, bytes, counts.vertices))?;
 
     let mut out = Builder::new(limits);
+    out.dropped = counts.dropped;
     out.reserve_vertices(counts.vertices)?;
     out.reserve_triangles(counts.triangles)?;
     // One model, whose vertices are the file's in file order (see

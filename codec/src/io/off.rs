@@ -11,14 +11,16 @@
 //! `#` starts a comment anywhere. Extra values after a vertex's x, y, z or
 //! after a face's indices (the colours, normals and texture coordinates
 //! the keyword prefixes announce) are skipped, so the reader does not need
-//! to trust the prefixes. `4OFF`, `nOFF` and binary OFF are refused.
+//! to trust the prefixes; the prefixes alone say which attributes are
+//! reported as dropped (`ST` texture coordinates, `C` colours, `N`
+//! normals). `4OFF`, `nOFF` and binary OFF are refused.
 //!
 //! Invariants: the counts are checked against the bytes left and the
 //! [`Limits`] before any allocation; each vertex and face is one line, so
 //! errors carry the line number.
 
 use super::text::{self, Text};
-use super::Builder;
+use super::{Attributes, Builder};
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 
@@ -46,24 +48,34 @@ fn data_line<'a>(t: &mut Text<'a>) -> Option<(u64, &'a [u8])> {
 }
 
 /// Checks the header keyword: optional `ST`, `C`, `N` prefixes, in that
-/// order, then `OFF`.
-fn keyword(word: &[u8], line: u64) -> Result<bool, Error> {
+/// order, then `OFF`. The attributes the prefixes announce, or `None`
+/// when the word is not a keyword.
+fn keyword(word: &[u8], line: u64) -> Result<Option<Attributes>, Error> {
     let mut rest = word;
-    for prefix in [&b"ST"[..], b"C", b"N"] {
-        rest = rest.strip_prefix(prefix).unwrap_or(rest);
+    let mut announced = [false; 3];
+    for (prefix, seen) in [&b"ST"[..], b"C", b"N"].into_iter().zip(&mut announced) {
+        if let Some(r) = rest.strip_prefix(prefix) {
+            rest = r;
+            *seen = true;
+        }
     }
+    let [uv, colors, normals] = announced;
     match rest {
-        b"OFF" => Ok(true),
+        b"OFF" => Ok(Some(Attributes {
+            uv,
+            normals,
+            colors,
+        })),
         b"4OFF" | b"nOFF" | b"4nOFF" => Err(error(
             Malformed::Unsupported("OFF with other than 3 dimensions"),
             line,
         )),
-        _ => Ok(false),
+        _ => Ok(None),
     }
 }
 
 /// Reads an OFF file.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
+pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
     if let Some(why) = text::not_text(bytes) {
         return Err(FormatError::new(FORMAT, why).into());
     }
@@ -75,7 +87,8 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
     // Geomview lets the keyword be left out; the counts then come first.
     let first = words.peek().copied().unwrap_or_default();
     let mut counts_line = n;
-    if keyword(first, n)? {
+    let announced = keyword(first, n)?;
+    if announced.is_some() {
         words.next();
         if words.peek() == Some(&&b"BINARY"[..]) {
             return Err(error(Malformed::Unsupported("binary OFF"), n));
@@ -123,6 +136,7 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
         return Err(too_large("face", faces, left / 8));
     }
     let mut out = Builder::new(limits);
+    out.dropped = announced.unwrap_or_default();
     out.reserve_vertices(vertices)?;
     out.reserve_triangles(faces)?;
 

@@ -9,7 +9,9 @@
 //!
 //! What this reader keeps and how:
 //! - the `vertex` element's `x`, `y`, `z` properties, of any numeric type,
-//!   converted to `f32`; every other property is skipped;
+//!   converted to `f32`; every other property is skipped, and normals,
+//!   texture coordinates and colours among them are reported as dropped
+//!   (see [`dropped`]);
 //! - the `face` element's `vertex_indices` (or `vertex_index`) list, fan
 //!   triangulated as (v0, vi, vi+1);
 //! - the `tristrips` element's `vertex_indices` list: strips separated by
@@ -26,7 +28,7 @@
 //! declared vertex count as they are read, so faces may precede vertices.
 
 use super::text::{self, Text};
-use super::Builder;
+use super::{Attributes, Builder};
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 
@@ -309,8 +311,28 @@ fn assign_roles(elements: &mut [Element]) -> Result<(), Error> {
     Ok(())
 }
 
+/// The attributes the header declares that the reader skips: by the
+/// property names of `ply.c`, VCG/MeshLab and Blender. A face `texcoord`
+/// list (per-corner texture coordinates, as MeshLab writes) counts too.
+fn dropped(elements: &[Element]) -> Attributes {
+    let mut dropped = Attributes::default();
+    for e in elements.iter().filter(|e| e.count > 0) {
+        let has = |names: &[&[u8]]| e.props.iter().any(|p| names.contains(&p.name));
+        match e.role {
+            Role::Vertex(_) => {
+                dropped.normals |= has(&[b"nx", b"ny", b"nz"]);
+                dropped.uv |= has(&[b"u", b"v", b"s", b"t", b"texture_u", b"texture_v"]);
+                dropped.colors |= has(&[b"red", b"green", b"blue", b"alpha"]);
+            }
+            Role::Face(_) => dropped.uv |= has(&[b"texcoord"]),
+            _ => {}
+        }
+    }
+    dropped
+}
+
 /// Reads a PLY file.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
+pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
     let header = parse_header(bytes)?;
     let data = bytes.get(header.data..).unwrap_or_default();
     let ascii = header.encoding == Encoding::Ascii;
@@ -343,6 +365,7 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
     let vertices = role_count(|r| matches!(r, Role::Vertex(_)));
     let faces = role_count(|r| matches!(r, Role::Face(_)));
     let mut out = Builder::new(limits);
+    out.dropped = dropped(&header.elements);
     out.reserve_vertices(vertices)?;
     out.reserve_triangles(faces)?;
 

@@ -15,7 +15,9 @@
 //!
 //! STL has no shared vertices: each triangle gets its own three vertices
 //! here, in file order, and merging them is left to the cleaner. Normals
-//! are ignored (many writers leave them zero or wrong).
+//! are ignored (many writers leave them zero or wrong); being facet
+//! normals, which the triangles determine, they are not reported as a
+//! dropped vertex attribute.
 //!
 //! Binary files may also begin with "solid", so the choice is by size: a
 //! file whose length is exactly 84 + 50 × count is binary; otherwise one
@@ -26,7 +28,7 @@
 //! [`Limits`] before allocation; ASCII growth is checked facet by facet.
 
 use super::text::{self, Text};
-use super::Builder;
+use super::{Attributes, Builder};
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 
@@ -42,7 +44,12 @@ const HEADER: usize = 84;
 const RECORD: usize = 50;
 
 /// Reads an STL file, ASCII or binary.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
+pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
+    read_either(bytes, limits).map(|mesh| (mesh, Attributes::default()))
+}
+
+/// Binary or ASCII, as the size and first word say.
+fn read_either(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
     let count = bytes
         .get(80..HEADER)
         .and_then(|b| b.first_chunk::<4>())
@@ -101,7 +108,7 @@ fn read_binary(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
         }
         out.mesh.triangles.push([base, base + 1, base + 2]);
     }
-    Ok(out.finish())
+    Ok(out.finish().0)
 }
 
 fn read_ascii(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
@@ -189,7 +196,7 @@ fn read_ascii(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
             return Err(syntax("expected endfacet", &t));
         }
     }
-    Ok(out.finish())
+    Ok(out.finish().0)
 }
 
 /// Writes binary STL with computed unit normals. The 80-byte header

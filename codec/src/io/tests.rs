@@ -610,3 +610,88 @@ vertex 0 1 0\nendloop\nendfacet\nendsolid t\n"
     }
     assert!(started.elapsed().as_secs() < 60);
 }
+
+/// What each reader reports as dropped, by what the file declares or
+/// holds; STL's facet normals are not vertex attributes.
+#[test]
+fn readers_report_the_attributes_they_drop() {
+    let dropped = |bytes: &[u8], format| {
+        read_mesh_bytes_with_report(bytes, format, &Limits::default())
+            .unwrap()
+            .1
+            .dropped
+    };
+    let none = Attributes::default();
+    let with = |uv, normals, colors| Attributes {
+        uv,
+        normals,
+        colors,
+    };
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    let obj = |extra: &str| format!("{tri}{extra}f 1 2 3\n");
+    for (text, expected) in [
+        (obj(""), none),
+        (obj("v 0 0 1 1\n"), none),
+        (obj("vt 0 0\n"), with(true, false, false)),
+        (obj("vn 0 0 1\nvt 0 1\n"), with(true, true, false)),
+        (obj("v 0 0 1 0.5 0.5 0.5\n"), with(false, false, true)),
+    ] {
+        assert_eq!(
+            dropped(text.as_bytes(), MeshFormat::Obj),
+            expected,
+            "{text}"
+        );
+    }
+
+    let ply = |vertex: &str, face: &str, values: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+             property float z\n{vertex}element face 1\nproperty list uchar int vertex_indices\n\
+             {face}end_header\n0 0 0{values}\n1 0 0{values}\n0 1 0{values}\n3 0 1 2{}\n",
+            if face.is_empty() { "" } else { " 0" }
+        )
+    };
+    let normals = "property float nx\nproperty float ny\nproperty float nz\n";
+    let colours = "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    let texcoord = "property list uchar float texcoord\n";
+    for (text, expected) in [
+        (ply("", "", ""), none),
+        (ply(normals, "", " 0 0 1"), with(false, true, false)),
+        (
+            ply(&format!("{normals}{colours}"), "", " 0 0 1 9 9 9"),
+            with(false, true, true),
+        ),
+        (
+            ply("property float s\nproperty float t\n", "", " 0 0"),
+            with(true, false, false),
+        ),
+        (ply("", texcoord, ""), with(true, false, false)),
+    ] {
+        assert_eq!(
+            dropped(text.as_bytes(), MeshFormat::Ply),
+            expected,
+            "{text}"
+        );
+    }
+
+    let body = "3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    for (keyword, expected) in [
+        ("OFF", none),
+        ("NOFF", with(false, true, false)),
+        ("COFF", with(false, false, true)),
+        ("STCNOFF", with(true, true, true)),
+    ] {
+        let text = format!("{keyword}\n{body}");
+        assert_eq!(
+            dropped(text.as_bytes(), MeshFormat::Off),
+            expected,
+            "{keyword}"
+        );
+    }
+    // Counts first, keyword left out: nothing is announced.
+    assert_eq!(dropped(body.as_bytes(), MeshFormat::Off), none);
+
+    let stl = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n\
+               vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+    assert_eq!(dropped(stl.as_bytes(), MeshFormat::Stl), none);
+}

@@ -27,8 +27,9 @@
 //! keep their front faces (§3.7.2.1, "winding order"). Points and lines
 //! are refused ([`Malformed::UnsupportedPrimitive`]). Skins, morph
 //! targets and instancing extensions are not applied: the mesh is read in
-//! its bind pose with its base positions. Every other attribute
-//! (normals, texture coordinates, colours) is ignored.
+//! its bind pose with its base positions. Every other attribute is
+//! ignored; normals, texture coordinates and colours are reported as
+//! dropped (`read::dropped`).
 //!
 //! Memory: a file cannot make the reader allocate beyond the [`Limits`],
 //! which every primitive's counts are checked against before its

@@ -18,7 +18,7 @@ use super::accessor::{self, Context};
 use super::buffers::{Buffers, Origin};
 use super::container;
 use super::scene::{self, Draw};
-use crate::io::Builder;
+use crate::io::{Attributes, Builder};
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use ::gltf::json::validation::Error as Invalid;
 use ::gltf::mesh::Mode;
@@ -35,7 +35,7 @@ pub(in crate::io) fn read(
     bytes: &[u8],
     base: Option<&Path>,
     limits: &Limits,
-) -> Result<TriMesh, Error> {
+) -> Result<(TriMesh, Attributes), Error> {
     let (format, json, bin) = if container::is_glb(bytes) {
         let chunks = container::split(bytes)?;
         (container::FORMAT, chunks.json, chunks.bin)
@@ -70,14 +70,32 @@ pub(in crate::io) fn read(
     let mut out = Builder::new(limits);
     for d in &draws {
         add(&mut out, d, &cx)?;
+        out.dropped = out.dropped.union(dropped(&d.primitive));
     }
-    let mesh = out.finish();
+    let (mesh, dropped) = out.finish();
     // Vertices that no triangle uses are not a scene: a file that draws
     // no triangle is empty, as for the other formats (`read_mesh_bytes`).
     if mesh.triangles.is_empty() {
-        return Ok(TriMesh::default());
+        return Ok((TriMesh::default(), dropped));
     }
-    Ok(mesh)
+    Ok((mesh, dropped))
+}
+
+/// The attributes of a drawn primitive that are not read: normals,
+/// texture coordinates and colours (§3.7.2.1's NORMAL, TEXCOORD_n and
+/// COLOR_n). Tangents, joints, weights and custom `_NAME` attributes
+/// serve normals and skins, which are not read either, and go unsaid.
+fn dropped(primitive: &::gltf::Primitive) -> Attributes {
+    let mut dropped = Attributes::default();
+    for (semantic, _) in primitive.attributes() {
+        match semantic {
+            Semantic::Normals => dropped.normals = true,
+            Semantic::TexCoords(_) => dropped.uv = true,
+            Semantic::Colors(_) => dropped.colors = true,
+            _ => {}
+        }
+    }
+    dropped
 }
 
 /// Adds one drawn primitive to the mesh.

@@ -332,3 +332,28 @@ fn external_buffers() {
     assert!(super::super::read_mesh_with(&path, &enough).is_ok());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// NORMAL, TEXCOORD_n and COLOR_n of a drawn primitive are reported as
+/// dropped; a file with POSITION alone drops nothing.
+#[test]
+fn reports_dropped_attributes() {
+    let dropped = |attributes: Value| {
+        let mut d = doc(&[0, 1, 2], 4, json!({}));
+        d["meshes"][0]["primitives"][0]["attributes"] = attributes;
+        // Texture coordinates: two floats for each of the 5 vertices.
+        d["accessors"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"bufferView": 0, "componentType": 5126, "count": 5, "type": "VEC2"}));
+        let bytes = glb(&d, &bin(&[0, 1, 2]));
+        crate::io::read_mesh_bytes_with_report(&bytes, MeshFormat::Glb, &Limits::default())
+            .unwrap()
+            .1
+            .dropped
+    };
+    assert!(dropped(json!({"POSITION": 0})).is_empty());
+    let d = dropped(json!({"POSITION": 0, "TEXCOORD_0": 2}));
+    assert!(d.uv && !d.normals && !d.colors, "{d:?}");
+    let d = dropped(json!({"POSITION": 0, "NORMAL": 0, "COLOR_0": 0}));
+    assert!(!d.uv && d.normals && d.colors, "{d:?}");
+}

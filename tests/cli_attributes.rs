@@ -1,0 +1,252 @@
+//! `swm encode` on inputs that carry vertex attributes swm does not code
+//! (texture coordinates, normals, colours): one warning line on stderr
+//! naming exactly what was found, and stdout (text or `--json`) the same
+//! as for the bare mesh.
+
+mod common;
+use common::*;
+use serde_json::{json, Value};
+use std::path::Path;
+use std::process::Output;
+
+fn torus() -> swm::TriMesh {
+    swm_corpus::torus(1.0, 0.35, 48, 16)
+}
+
+/// The torus as OBJ, with `extra` statements before its faces.
+fn obj(extra: &str) -> String {
+    let m = torus();
+    let mut s = String::new();
+    for [x, y, z] in &m.positions {
+        s.push_str(&format!("v {x} {y} {z}\n"));
+    }
+    s.push_str(extra);
+    for [a, b, c] in &m.triangles {
+        s.push_str(&format!("f {} {} {}\n", a + 1, b + 1, c + 1));
+    }
+    s
+}
+
+/// The torus as ASCII PLY with vertex normals and colours.
+fn ply_with_normals_and_colours() -> String {
+    let m = torus();
+    let mut s = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\n\
+         property float z\nproperty float nx\nproperty float ny\nproperty float nz\n\
+         property uchar red\nproperty uchar green\nproperty uchar blue\nelement face {}\n\
+         property list uchar int vertex_indices\nend_header\n",
+        m.positions.len(),
+        m.triangles.len()
+    );
+    for [x, y, z] in &m.positions {
+        s.push_str(&format!("{x} {y} {z} 0 0 1 200 100 50\n"));
+    }
+    for [a, b, c] in &m.triangles {
+        s.push_str(&format!("3 {a} {b} {c}\n"));
+    }
+    s
+}
+
+/// The torus as GLB with a TEXCOORD_0 accessor.
+fn glb_with_texcoords() -> Vec<u8> {
+    let m = torus();
+    let n = m.positions.len();
+    let mut bin: Vec<u8> = m
+        .positions
+        .iter()
+        .flatten()
+        .flat_map(|c| c.to_le_bytes())
+        .collect();
+    let uv_at = bin.len();
+    bin.extend((0..2 * n).flat_map(|k| (k as f32 / n as f32).to_le_bytes()));
+    let index_at = bin.len();
+    bin.extend(m.triangles.iter().flatten().flat_map(|i| i.to_le_bytes()));
+    let doc = json!({
+        "asset": {"version": "2.0"},
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2}]}],
+        "buffers": [{"byteLength": bin.len()}],
+        "bufferViews": [
+            {"buffer": 0, "byteLength": uv_at},
+            {"buffer": 0, "byteOffset": uv_at, "byteLength": index_at - uv_at},
+            {"buffer": 0, "byteOffset": index_at, "byteLength": bin.len() - index_at}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3"},
+            {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC2"},
+            {"bufferView": 2, "componentType": 5125, "count": 3 * m.triangles.len(), "type": "SCALAR"}
+        ]
+    });
+    let mut json = serde_json::to_vec(&doc).unwrap();
+    json.resize(json.len().div_ceil(4) * 4, b' ');
+    bin.resize(bin.len().div_ceil(4) * 4, 0);
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend((28 + json.len() as u32 + bin.len() as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(bin);
+    out
+}
+
+fn encode(input: &Path, extra: &[&str]) -> Output {
+    let output = input.with_extension("swm");
+    let mut args = vec![
+        "encode",
+        input.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    swm(&args)
+}
+
+/// The report without its timings, which differ from run to run.
+fn untimed(v: &Value) -> Value {
+    match v {
+        Value::Object(map) => Value::Object(
+            map.iter()
+                .filter(|(k, _)| !k.ends_with("seconds"))
+                .map(|(k, v)| (k.clone(), untimed(v)))
+                .collect(),
+        ),
+        Value::Array(items) => Value::Array(items.iter().map(untimed).collect()),
+        other => other.clone(),
+    }
+}
+
+/// The text report's lines, the time at the end of the first cut off.
+fn untimed_text(out: &Output) -> Vec<String> {
+    ok(out)
+        .lines()
+        .map(|l| match l.rsplit_once(", ") {
+            Some((head, tail)) if tail.ends_with(" s") => head.to_string(),
+            _ => l.to_string(),
+        })
+        .collect()
+}
+
+/// The warning lines of a run's stderr.
+fn warnings(out: &Output) -> Vec<String> {
+    String::from_utf8_lossy(&out.stderr)
+        .lines()
+        .filter(|l| l.starts_with("swm: warning:"))
+        .map(str::to_string)
+        .collect()
+}
+
+/// Encodes `file` and the bare torus the same ways: one warning naming
+/// `names`, and stdout as for the bare mesh, in text and in JSON.
+fn check(dir: &Path, file: &Path, names: &str) {
+    let bare = dir.join("bare.obj");
+    std::fs::write(&bare, obj("")).unwrap();
+    for mode in [&["--mode", "auto"][..], &["--mode", "lossless"]] {
+        let plain = encode(&bare, mode);
+        assert!(warnings(&plain).is_empty(), "{:?}", warnings(&plain));
+        let out = encode(file, mode);
+        let expected = format!(
+            "swm: warning: {}: the input's {names} are not kept (swm codes positions and triangles only)",
+            file.display()
+        );
+        assert_eq!(warnings(&out), [expected], "{mode:?}");
+        let text = |o: &Output| -> Vec<String> {
+            // The input's name differs; the rest must not.
+            let name = |p: &Path| p.display().to_string();
+            untimed_text(o)
+                .into_iter()
+                .map(|l| l.replace(&name(file), "IN").replace(&name(&bare), "IN"))
+                .map(|l| l.replace(&name(&file.with_extension("swm")), "OUT"))
+                .map(|l| l.replace(&name(&bare.with_extension("swm")), "OUT"))
+                .collect()
+        };
+        assert_eq!(text(&out), text(&plain), "{mode:?}");
+        assert!(!ok(&out).contains("warning"));
+
+        let json_args: Vec<&str> = mode.iter().copied().chain(["--json"]).collect();
+        let out = encode(file, &json_args);
+        assert_eq!(warnings(&out).len(), 1);
+        assert_eq!(
+            untimed(&json(&out)),
+            untimed(&json(&encode(&bare, &json_args))),
+            "{mode:?}"
+        );
+    }
+}
+
+#[test]
+fn obj_texture_coordinates_and_normals() {
+    let dir = scratch("attributes-obj");
+    let file = dir.join("uv.obj");
+    std::fs::write(&file, obj("vt 0 0\nvt 1 0\nvn 0 0 1\n")).unwrap();
+    check(&dir, &file, "texture coordinates and normals");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn ply_normals_and_colours() {
+    let dir = scratch("attributes-ply");
+    let file = dir.join("painted.ply");
+    std::fs::write(&file, ply_with_normals_and_colours()).unwrap();
+    check(&dir, &file, "normals and colours");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn gltf_texcoord_0() {
+    let dir = scratch("attributes-glb");
+    let file = dir.join("textured.glb");
+    std::fs::write(&file, glb_with_texcoords()).unwrap();
+    check(&dir, &file, "texture coordinates");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A bare mesh, and STL whose facet normals are no vertex attribute,
+/// give no warning.
+#[test]
+fn bare_meshes_and_stl_warn_of_nothing() {
+    let dir = scratch("attributes-none");
+    for name in ["bare.obj", "bare.stl", "bare.ply", "bare.off"] {
+        let file = dir.join(name);
+        swm::io::write_mesh(&file, &torus()).unwrap();
+        let out = encode(&file, &["--mode", "lossless"]);
+        ok(&out);
+        assert!(
+            out.stderr.is_empty(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// On the pipe path too: the input named `-`, the warning on stderr, and
+/// with `-o -` the file alone on stdout.
+#[test]
+fn standard_input_warns_too() {
+    let dir = scratch("attributes-stdin");
+    let file = dir.join("uv.obj");
+    std::fs::write(&file, obj("vt 0 0\n")).unwrap();
+    let run = |output: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_swm"))
+            .args([
+                "encode", "-", "--format", "obj", "-o", output, "--mode", "lossless",
+            ])
+            .stdin(std::fs::File::open(&file).unwrap())
+            .output()
+            .unwrap()
+    };
+    let to_file = dir.join("uv.swm");
+    let out = run(to_file.to_str().unwrap());
+    ok(&out);
+    let expected = "swm: warning: -: the input's texture coordinates are not kept (swm codes positions and triangles only)";
+    assert_eq!(warnings(&out), [expected]);
+    let piped = run("-");
+    ok(&piped);
+    assert_eq!(warnings(&piped), [expected]);
+    assert_eq!(piped.stdout, std::fs::read(&to_file).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+}

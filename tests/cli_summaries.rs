@@ -1,0 +1,205 @@
+//! Honest summaries (issue 23): a missed size is a warning on stderr, an
+//! encode output named like a mesh file is refused without `--force`,
+//! `decode` counts everything it wrote, and what cleaning changed and
+//! each component's fate go to stderr while the results stay on stdout.
+
+mod common;
+use common::*;
+use std::path::Path;
+use std::process::Output;
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn warnings(out: &Output) -> Vec<String> {
+    stderr(out)
+        .lines()
+        .filter(|l| l.starts_with("swm: warning:"))
+        .map(str::to_string)
+        .collect()
+}
+
+fn torus_obj(dir: &Path) -> std::path::PathBuf {
+    let file = dir.join("torus.obj");
+    swm::io::write_mesh(&file, &swm_corpus::torus(1.0, 0.35, 48, 16)).unwrap();
+    file
+}
+
+/// The torus at 100 bytes: retilings jump from 147 bytes to nothing that
+/// works, so rate control keeps the nearest file, 47% over.
+#[test]
+fn a_missed_size_is_a_warning_on_stderr() {
+    let dir = scratch("summaries-missed");
+    let input = torus_obj(&dir);
+    let output = dir.join("t.swm");
+    let run = |size: &str, json: bool| {
+        let mut args = vec![
+            "encode",
+            s(&input),
+            "-o",
+            s(&output),
+            "--mode",
+            "swing",
+            "--size",
+            size,
+        ];
+        if json {
+            args.push("--json");
+        }
+        swm(&args)
+    };
+    let v = json(&run("100", true));
+    assert_eq!(v["rate_control"]["within_tolerance"], false, "{v}");
+    let bytes = v["bytes"].as_u64().unwrap();
+    let expected = format!("swm: warning: {}: the file is {bytes} bytes, ", s(&input));
+    for json in [false, true] {
+        let out = run("100", json);
+        let stdout = ok(&out);
+        let w = warnings(&out);
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].starts_with(&expected), "{w:?}");
+        assert!(w[0].contains("over the 100 requested"), "{w:?}");
+        assert!(w[0].contains("within 3%"), "{w:?}");
+        assert!(!stdout.contains("warning"), "{stdout}");
+        if !json {
+            // The report still says it, where it says the edge length.
+            assert!(
+                stdout.contains("could not be brought within 3%"),
+                "{stdout}"
+            );
+        }
+    }
+    // A size it meets: no warning.
+    let v = json(&run("300", true));
+    assert_eq!(v["rate_control"]["within_tolerance"], true, "{v}");
+    assert!(warnings(&run("300", false)).is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `-o x.obj` would write a `.swm` file under a mesh name: bad usage
+/// (exit 2) and nothing written, unless `--force`; `.swm`, other names
+/// and `-` are fine.
+#[test]
+fn an_output_named_like_a_mesh_needs_force() {
+    let dir = scratch("summaries-mesh-name");
+    let input = torus_obj(&dir);
+    let reference = dir.join("ref.swm");
+    let lossless = ["--mode", "lossless"];
+    let encode = |output: &Path, extra: &[&str]| {
+        let mut args = vec!["encode", s(&input), "-o", s(output)];
+        args.extend_from_slice(&lossless);
+        args.extend_from_slice(extra);
+        swm(&args)
+    };
+    ok(&encode(&reference, &[]));
+    let expected = std::fs::read(&reference).unwrap();
+    for ext in ["obj", "ply", "off", "stl", "glb", "gltf", "OBJ"] {
+        let output = dir.join(format!("out.{ext}"));
+        let out = encode(&output, &[]);
+        assert_eq!(out.status.code(), Some(2), "{ext}: {}", stderr(&out));
+        let e = stderr(&out);
+        assert!(
+            e.starts_with(&format!("swm: error: {}: ", s(&output))),
+            "{e}"
+        );
+        assert!(e.contains("--force") && e.contains(".swm"), "{e}");
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(!output.exists(), "{ext}: written anyway");
+        ok(&encode(&output, &["--force"]));
+        assert_eq!(std::fs::read(&output).unwrap(), expected, "{ext}");
+    }
+    for name in ["out.bin", "out", "out.swm"] {
+        let output = dir.join(name);
+        ok(&encode(&output, &[]));
+        assert_eq!(std::fs::read(&output).unwrap(), expected, "{name}");
+    }
+    let piped = encode(Path::new("-"), &[]);
+    ok(&piped);
+    assert_eq!(piped.stdout, expected);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A swing file with `REST`: `decode` reports the counts of the mesh it
+/// wrote, retiled part and lossless rest together, in text and JSON
+/// (`decoded_*`; `vertices` and `triangles` stay the file's figures).
+#[test]
+fn decode_counts_everything_it_wrote() {
+    let dir = scratch("summaries-decode");
+    let rest = samples()
+        .iter()
+        .find(|x| x.name == "swing+REST")
+        .expect("the swing+REST sample");
+    let file = dir.join("rest.swm");
+    std::fs::write(&file, &rest.bytes).unwrap();
+    let output = dir.join("back.obj");
+    let text = ok(&swm(&["decode", s(&file), "-o", s(&output)]));
+    let back = swm::io::read_mesh(&output).unwrap();
+    let (v, t) = (back.vertex_count(), back.face_count());
+    assert!(
+        text.contains(&format!(": {v} vertices, {t} triangles, ")),
+        "{text} (wrote {v} vertices, {t} triangles)"
+    );
+    let j = json(&swm(&["decode", s(&file), "-o", s(&output), "--json"]));
+    assert_eq!(j["decoded_vertices"], v, "{j}");
+    assert_eq!(j["decoded_triangles"], t, "{j}");
+    // The REST part is in the mesh, not in the retiled counts.
+    assert!(j["triangles"].as_u64().unwrap() < t as u64, "{j}");
+    assert!(j["rest"].as_object().is_some_and(|r| !r.is_empty()), "{j}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Two components, one kept in `REST`, from an STL (whose corners
+/// cleaning merges): the cleaning line and the component lines go to
+/// stderr, the result lines stay on stdout.
+#[test]
+fn cleaning_and_component_lines_go_to_stderr() {
+    let dir = scratch("summaries-stderr");
+    let input = dir.join("two.stl");
+    swm::io::write_mesh(&input, &sphere_and_speck()).unwrap();
+    let output = dir.join("two.swm");
+    let out = swm(&[
+        "encode",
+        s(&input),
+        "-o",
+        s(&output),
+        "--mode",
+        "swing",
+        "--edge-length",
+        "0.3",
+    ]);
+    let stdout = ok(&out);
+    let stderr = stderr(&out);
+    assert!(
+        stdout.starts_with(&format!("{} -> {}: ", s(&input), s(&output))),
+        "{stdout}"
+    );
+    assert!(stdout.contains("edge length"), "{stdout}");
+    for line in ["cleaning: ", "component 0: ", "component 1: "] {
+        assert!(!stdout.contains(line), "{line:?} on stdout: {stdout}");
+        assert!(
+            stderr.lines().any(|l| l.starts_with(line)),
+            "{line:?} not on stderr: {stderr}"
+        );
+    }
+    assert!(stderr.contains("coincident vertices merged"), "{stderr}");
+    assert!(stderr.contains("kept by lossless coding"), "{stderr}");
+    // With `-o -` everything but the file is on stderr, as before.
+    let piped = swm(&[
+        "encode",
+        s(&input),
+        "-o",
+        "-",
+        "--mode",
+        "swing",
+        "--edge-length",
+        "0.3",
+    ]);
+    ok(&piped);
+    assert_eq!(piped.stdout, std::fs::read(&output).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+}
