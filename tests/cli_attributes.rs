@@ -214,11 +214,10 @@ fn bare_meshes_and_stl_warn_of_nothing() {
         swm::io::write_mesh(&file, &torus()).unwrap();
         let out = encode(&file, &["--mode", "lossless"]);
         ok(&out);
-        assert!(
-            out.stderr.is_empty(),
-            "{name}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        // stderr may say what cleaning did (STL's welded corners), but
+        // warns of nothing.
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("warning"), "{name}: {err}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
