@@ -44,27 +44,51 @@ pub(crate) fn encode(
 ) -> Result<Encoded, Error> {
     let cleaned = crate::clean(mesh, &options.clean)?;
     let vertices = mesh.vertex_count();
-    let swing = match encode_swing(&cleaned, vertices, options, target, None, max_bytes) {
+    let reference = Surface::new(&cleaned.mesh)?;
+    let s = Simplifier::new(&cleaned.mesh);
+    let retile = || encode_swing(&cleaned, vertices, options, target, None, max_bytes);
+    let simplify = |budget| encode_simplified(cleaned.report.clone(), &s, budget, &reference);
+    // With a size or a rate the two candidates are independent and run
+    // side by side (each is deterministic, so the bytes do not depend on
+    // the threads); with an edge length the simplified one waits for the
+    // retiled file's size.
+    let (swing, budget, simplified) = match target {
+        SwingTarget::EdgeLength(_) => {
+            let swing = retile();
+            let budget = match &swing {
+                Ok(e) => e.bytes.len() as u64,
+                Err(_) => 0,
+            };
+            let simplified = swing.is_ok().then(|| simplify(budget));
+            (swing, budget, simplified)
+        }
+        t => {
+            let budget = simplified_budget(t, vertices, max_bytes)?;
+            let (swing, simplified) = rayon::join(retile, || simplify(budget));
+            (swing, budget, Some(simplified))
+        }
+    };
+    let swing = match swing {
         Ok(e) => Ok(e),
         Err(Error::Retile(e)) => Err(SwingFailure::Retile(e)),
         Err(Error::LimitExceeded(e)) => Err(SwingFailure::Limit(e)),
         Err(e) => return Err(e),
     };
-    let budget = match (target, &swing) {
-        // The retiling fixed the size: the simplified file gets as much.
-        (SwingTarget::EdgeLength(_), Ok(e)) => e.bytes.len() as u64,
-        (SwingTarget::EdgeLength(_), Err(f)) => return Err(failure_error(f.clone())),
-        (t, _) => simplified_budget(t, vertices, max_bytes)?,
+    // An edge length that no retiling takes: there is no size to give
+    // the simplified file.
+    let Some(simplified) = simplified else {
+        return Err(match swing {
+            Err(f) => failure_error(f),
+            Ok(_) => unreachable_size(),
+        });
     };
-    let reference = Surface::new(&cleaned.mesh)?;
-    let s = Simplifier::new(&cleaned.mesh);
     // A retiled file more than the tolerance over the request is no
     // answer to it (rate control keeps the nearest file it made).
     let over = |e: &Encoded| {
         let fixed = matches!(target, SwingTarget::EdgeLength(_));
         !fixed && e.bytes.len() as f64 > budget as f64 * (1.0 + crate::retile::rate::TOLERANCE)
     };
-    let simplified = match encode_simplified(cleaned.report.clone(), &s, budget, &reference) {
+    let simplified = match simplified {
         Ok(e) => Some(e),
         Err(Error::Size(e)) => match &swing {
             // Nothing that small: SwingWrapper's file stands alone...
@@ -127,6 +151,16 @@ pub(crate) fn encode(
     };
     encoded.stats.choice = Some(choice);
     Ok(encoded)
+}
+
+/// Never built: the simplified candidate is only skipped when the
+/// retiling failed. Kept total rather than panicking.
+fn unreachable_size() -> Error {
+    crate::SizeError {
+        requested: 0,
+        smallest: 0,
+    }
+    .into()
 }
 
 /// The error a failed SwingWrapper candidate would have given alone.
