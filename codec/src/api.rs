@@ -136,6 +136,10 @@ pub struct SimplifiedStats {
     pub faces: u64,
     /// Its bits per coordinate.
     pub qp: u8,
+    /// The decoded file's L2 distance to the cleaned input, relative to
+    /// its bounding-box diagonal, as the encoder measured it to choose
+    /// `qp` ([`AUTO_SAMPLES`] samples each way).
+    pub l2_relative: f64,
 }
 
 #[cfg(feature = "encoder")]
@@ -360,7 +364,8 @@ pub(crate) fn encode_simplified(
     budget: u64,
     reference: &crate::metrics::Surface,
 ) -> Result<Encoded, Error> {
-    let Some(fit) = crate::simplify::best_fit(s, budget, reference, AUTO_SAMPLES)? else {
+    let Some((fit, l2_relative)) = crate::simplify::best_fit(s, budget, reference, AUTO_SAMPLES)?
+    else {
         return Err(crate::SizeError {
             requested: budget,
             smallest: crate::simplify::smallest_bytes(s)?,
@@ -383,6 +388,7 @@ pub(crate) fn encode_simplified(
                 input_faces: s.faces() as u64,
                 faces: cleaned.mesh.triangles.len() as u64,
                 qp: fit.qp,
+                l2_relative,
             }),
             choice: None,
         },

@@ -54,18 +54,16 @@ pub(crate) fn encode(
     // retiled file's size.
     let (swing, budget, simplified) = match target {
         SwingTarget::EdgeLength(_) => {
-            let swing = retile();
-            let budget = match &swing {
-                Ok(e) => e.bytes.len() as u64,
-                Err(_) => 0,
-            };
-            let simplified = swing.is_ok().then(|| simplify(budget));
-            (swing, budget, simplified)
+            // No retiling at this L: no size to give the simplified file,
+            // so the retiling's error stands.
+            let swing = retile()?;
+            let budget = swing.bytes.len() as u64;
+            (Ok(swing), budget, simplify(budget))
         }
         t => {
             let budget = simplified_budget(t, vertices, max_bytes)?;
             let (swing, simplified) = rayon::join(retile, || simplify(budget));
-            (swing, budget, Some(simplified))
+            (swing, budget, simplified)
         }
     };
     let swing = match swing {
@@ -74,20 +72,11 @@ pub(crate) fn encode(
         Err(Error::LimitExceeded(e)) => Err(SwingFailure::Limit(e)),
         Err(e) => return Err(e),
     };
-    // An edge length that no retiling takes: there is no size to give
-    // the simplified file.
-    let Some(simplified) = simplified else {
-        return Err(match swing {
-            Err(f) => failure_error(f),
-            Ok(_) => unreachable_size(),
-        });
-    };
     // A retiled file more than the tolerance over the request is no
-    // answer to it (rate control keeps the nearest file it made).
-    let over = |e: &Encoded| {
-        let fixed = matches!(target, SwingTarget::EdgeLength(_));
-        !fixed && e.bytes.len() as f64 > budget as f64 * (1.0 + crate::retile::rate::TOLERANCE)
-    };
+    // answer to it (rate control keeps the nearest file it made). With an
+    // edge length the budget is its size, so it never is.
+    let over =
+        |e: &Encoded| e.bytes.len() as f64 > budget as f64 * (1.0 + crate::retile::rate::TOLERANCE);
     let simplified = match simplified {
         Ok(e) => Some(e),
         Err(Error::Size(e)) => match &swing {
@@ -129,7 +118,14 @@ pub(crate) fn encode(
         Ok(e) => Some(measure(e)?),
         Err(_) => None,
     };
-    let simplified_candidate = simplified.as_ref().map(&measure).transpose()?;
+    // The simplified file was measured while its qp was chosen, against
+    // the same reference with the same samples.
+    let simplified_candidate = simplified.as_ref().and_then(|e| {
+        e.stats.simplified.map(|s| Candidate {
+            bytes: e.bytes.len() as u64,
+            l2_relative: s.l2_relative,
+        })
+    });
     let chosen = match (swing_candidate, simplified_candidate) {
         (Some(a), Some(b)) if b.l2_relative < a.l2_relative => Method::Simplified,
         (Some(_), _) => Method::Swing,
@@ -151,16 +147,6 @@ pub(crate) fn encode(
     };
     encoded.stats.choice = Some(choice);
     Ok(encoded)
-}
-
-/// Never built: the simplified candidate is only skipped when the
-/// retiling failed. Kept total rather than panicking.
-fn unreachable_size() -> Error {
-    crate::SizeError {
-        requested: 0,
-        smallest: 0,
-    }
-    .into()
 }
 
 /// The error a failed SwingWrapper candidate would have given alone.

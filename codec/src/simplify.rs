@@ -33,7 +33,7 @@
 //! topology forbids collapses. The input must be welded (`clean`):
 //! meshoptimizer treats vertices split along seams as borders.
 
-use crate::metrics::{DistanceOptions, Surface};
+use crate::metrics::{DistanceOptions, Surface, SurfaceDistance};
 use crate::{CleanOptions, Error, TriMesh};
 use core::ops::RangeInclusive;
 
@@ -140,8 +140,9 @@ pub struct Fit {
 }
 
 /// The fit of lowest measured L2 against `reference` over [`QPS`], with
-/// `samples` area-uniform face samples per direction; `None` when no qp
-/// fits even [`MIN_FACES`] faces in `budget` bytes.
+/// `samples` area-uniform face samples per direction, and that L2
+/// relative to the reference's diagonal; `None` when no qp fits even
+/// [`MIN_FACES`] faces in `budget` bytes.
 ///
 /// The error is unimodal in qp (coarser positions against fewer faces),
 /// so the search climbs from a predicted qp instead of trying all of
@@ -155,48 +156,52 @@ pub fn best_fit(
     budget: u64,
     reference: &Surface,
     samples: u64,
-) -> Result<Option<Fit>, Error> {
-    let mut tried: Vec<(u8, Option<(f64, Fit)>)> = Vec::new();
-    let mut last: Option<Fit> = None;
-    // Fits `qp` (from the last fit's answer) and measures it; `None` when
-    // nothing fits at that qp.
-    let eval = |qp: u8, last: &mut Option<Fit>| -> Result<Option<f64>, Error> {
-        let fit = fit_faces(s, qp, budget, last.as_ref())?;
-        let Some(fit) = fit else {
-            return Ok(None);
-        };
-        let decoded = crate::decode(&fit.bytes, &Default::default())?;
-        let other = Surface::new(&decoded)?;
-        let d = crate::metrics::distance_between(
-            reference,
-            &other,
-            &DistanceOptions::area_uniform(samples),
-        )?;
-        *last = Some(fit.clone());
-        Ok(Some(d.l2()))
-    };
-    let score = |qp: u8, tried: &mut Vec<(u8, Option<(f64, Fit)>)>, last: &mut Option<Fit>| {
+) -> Result<Option<(Fit, f64)>, Error> {
+    // Each qp tried, with its fit and that fit's distance to the
+    // reference (`None`: nothing fits at that qp), in the order tried.
+    type Tried = Vec<(u8, Option<(Fit, SurfaceDistance)>)>;
+    let score = |qp: u8, tried: &mut Tried| -> Result<Option<f64>, Error> {
         if let Some((_, r)) = tried.iter().find(|(q, _)| *q == qp) {
-            return Ok::<_, Error>(r.as_ref().map(|r| r.0));
+            return Ok(r.as_ref().map(|r| r.1.l2()));
         }
-        let l2 = eval(qp, last)?;
-        let entry = l2.zip(last.clone());
-        tried.push((qp, entry));
+        // The last fit made is the next search's first probe.
+        let prev = tried
+            .iter()
+            .rev()
+            .find_map(|(_, r)| r.as_ref().map(|r| &r.0));
+        let scored = match fit_faces(s, qp, budget, prev)? {
+            Some(fit) => {
+                let decoded = crate::decode(&fit.bytes, &Default::default())?;
+                let d = crate::metrics::distance_between(
+                    reference,
+                    &Surface::new(&decoded)?,
+                    &DistanceOptions::area_uniform(samples),
+                )?;
+                Some((fit, d))
+            }
+            None => None,
+        };
+        let l2 = scored.as_ref().map(|r| r.1.l2());
+        tried.push((qp, scored));
         Ok(l2)
     };
+    let mut tried = Tried::new();
     // The first fit; coarser qps until something fits.
     let mut start = START_QP;
-    while score(start, &mut tried, &mut last)?.is_none() {
+    while score(start, &mut tried)?.is_none() {
         if start == *QPS.start() {
             return Ok(None);
         }
         start -= 1;
     }
-    let faces = last.as_ref().map_or(MIN_FACES, |f| f.faces);
+    let faces = tried
+        .iter()
+        .find_map(|(_, r)| r.as_ref().map(|r| r.0.faces))
+        .unwrap_or(MIN_FACES);
     let predicted = ((faces.max(1) as f64).log2() - 2.5).round() as i64;
     let mut qp = predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8;
     let inf = f64::INFINITY;
-    let mut best = score(qp, &mut tried, &mut last)?.unwrap_or(inf);
+    let mut best = score(qp, &mut tried)?.unwrap_or(inf);
     // Climb: the direction whose neighbour is better, while it improves.
     for step in [-1i8, 1] {
         loop {
@@ -204,7 +209,7 @@ pub fn best_fit(
             if !(*QPS.start() as i16..=*QPS.end() as i16).contains(&next) {
                 break;
             }
-            let e = score(next as u8, &mut tried, &mut last)?.unwrap_or(inf);
+            let e = score(next as u8, &mut tried)?.unwrap_or(inf);
             if e < best {
                 best = e;
                 qp = next as u8;
@@ -215,11 +220,11 @@ pub fn best_fit(
     }
     // The first minimum in qp order: the smaller qp wins a tie.
     tried.sort_by_key(|(q, _)| *q);
-    let winner = tried
+    Ok(tried
         .into_iter()
         .filter_map(|(_, r)| r)
-        .reduce(|a, b| if b.0 < a.0 { b } else { a });
-    Ok(winner.map(|(_, fit)| fit))
+        .reduce(|a, b| if b.1.l2() < a.1.l2() { b } else { a })
+        .map(|(fit, d)| (fit, d.l2_relative())))
 }
 
 /// The smallest file this method writes for the input: [`MIN_FACES`]
