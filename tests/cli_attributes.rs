@@ -78,19 +78,7 @@ fn glb_with_texcoords() -> Vec<u8> {
             {"bufferView": 2, "componentType": 5125, "count": 3 * m.triangles.len(), "type": "SCALAR"}
         ]
     });
-    let mut json = serde_json::to_vec(&doc).unwrap();
-    json.resize(json.len().div_ceil(4) * 4, b' ');
-    bin.resize(bin.len().div_ceil(4) * 4, 0);
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend((28 + json.len() as u32 + bin.len() as u32).to_le_bytes());
-    out.extend((json.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(json);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(b"BIN\0");
-    out.extend(bin);
-    out
+    glb(&doc, &bin)
 }
 
 fn encode(input: &Path, extra: &[&str]) -> Output {

@@ -217,3 +217,23 @@ pub fn samples() -> &'static [Sample] {
         ]
     })
 }
+
+/// A GLB file (glTF 2.0 binary): the JSON chunk of `doc`, padded with
+/// spaces, and a BIN chunk of `bin`, padded with zeros.
+pub fn glb(doc: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
+    let mut json = serde_json::to_vec(doc).unwrap();
+    json.resize(json.len().div_ceil(4) * 4, b' ');
+    let mut bin = bin.to_vec();
+    bin.resize(bin.len().div_ceil(4) * 4, 0);
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(bin);
+    out
+}
