@@ -76,6 +76,29 @@ fn a_polygon_face_of_thousands_of_vertices_costs_work_linear_in_it() {
 }
 
 #[test]
+fn a_polygon_whose_spokes_are_many_edge_lengths_long_retiles_at_the_length_asked() {
+    // A fanned 64-gon: 62 triangles 40 L long and 4° wide at L = 0.025.
+    // Without the refinement of M (`retile/refine.rs`) every path search
+    // between a gate and its tip stopped at its length bound and all 16
+    // runs failed, down to L = 0.0235.
+    let dir = scratch("bounds-spokes");
+    let j = json(&swm(&[
+        "encode",
+        &polygon(&dir, 64),
+        "-o",
+        dir.join("s.swm").to_str().unwrap(),
+        "--mode",
+        "swing",
+        "--edge-length",
+        "0.025",
+        "--json",
+    ]));
+    let rc = &j["rate_control"];
+    assert_eq!(rc["attempts"].as_array().unwrap().len(), 1, "{rc}");
+    assert_eq!(rc["edge_length"].as_f64(), Some(0.025), "{rc}");
+}
+
+#[test]
 fn a_double_fan_of_high_valence_costs_the_same_at_four_times_the_valence() {
     let dir = scratch("bounds-fan");
     let out = dir.join("f.swm");

@@ -42,6 +42,7 @@ mod mask;
 mod offset;
 mod path;
 pub mod rate;
+mod refine;
 mod region;
 mod snap;
 mod surface;
@@ -131,6 +132,22 @@ fn retile_piece(
     let area = mesh.area();
     let tri_area = l * l * 3f64.sqrt() / 4.0;
     let cap = (8.0 * area / tri_area) as usize + 64;
+    let run_bytes =
+        budget::RUN_BYTES_PER_ELEMENT.saturating_mul(3 * (mesh.face_count() + cap) as u64);
+    // Faces many L across, above all long thin ones, defeat the paths'
+    // length bounds (`refine`); at most `cap` splits, as many as the
+    // retiled triangles the run may make, and under the run's and the
+    // encoder's memory and work limits whatever L is asked.
+    refine::refine(&mut s, refine::MAX_EDGE * l, cap, |s| {
+        let memory = s.memory();
+        if memory > run_bytes {
+            Err(Failure::Runaway)
+        } else if budget.charge(s.work.replace(0), memory) {
+            Ok(())
+        } else {
+            Err(Failure::Limit)
+        }
+    })?;
     let density = opt.adaptive_density.then(|| density::Field::new(&s, l));
     let mut r = Retiler {
         s,
@@ -162,8 +179,7 @@ fn retile_piece(
         offsets: offset::Scratch::default(),
         run_steps: budget::RUN_STEPS_PER_ELEMENT
             .saturating_mul(3 * (mesh.face_count() + cap) as u64),
-        run_bytes: budget::RUN_BYTES_PER_ELEMENT
-            .saturating_mul(3 * (mesh.face_count() + cap) as u64),
+        run_bytes,
         budget,
         cap,
     };
