@@ -308,7 +308,7 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
             let cleaned = crate::clean(mesh, &options.clean)?;
             let budget = simplified_budget(target, mesh.vertex_count(), max_bytes)?;
             let s = crate::simplify::Simplifier::new(&cleaned.mesh);
-            let reference = crate::metrics::Surface::new(&cleaned.mesh)?;
+            let reference = crate::metrics::Surface::new(s.reference())?;
             encode_simplified(cleaned.report, &s, budget, &reference)
         }
         EncodeMode::Auto { target, max_bytes } => {

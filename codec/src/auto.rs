@@ -44,8 +44,11 @@ pub(crate) fn encode(
 ) -> Result<Encoded, Error> {
     let cleaned = crate::clean(mesh, &options.clean)?;
     let vertices = mesh.vertex_count();
-    let reference = Surface::new(&cleaned.mesh)?;
+    // Both candidates are measured against the simplifier's reference:
+    // the cleaned input, or the same surface with its high-valence fans
+    // rebuilt (`Simplifier::new`).
     let s = Simplifier::new(&cleaned.mesh);
+    let reference = Surface::new(s.reference())?;
     let retile = || encode_swing(&cleaned, vertices, options, target, None, max_bytes);
     let simplify = |budget| encode_simplified(cleaned.report.clone(), &s, budget, &reference);
     // With a size or a rate the two candidates are independent and run

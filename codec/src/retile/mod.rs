@@ -46,7 +46,7 @@ mod refine;
 mod region;
 mod snap;
 mod surface;
-mod valence;
+pub(crate) mod valence;
 mod walk;
 
 #[cfg(test)]

@@ -33,10 +33,17 @@
 //!    v                           innermost level: a fan around v
 //! ```
 //!
+//! An open fan (a vertex on a boundary, one chain of faces between two
+//! boundary edges) gets its smooth runs rebuilt but no rings; the
+//! retiler only sees closed pieces, but the simplifier of the automatic
+//! mode (`simplify::Simplifier`) meets a fanned polygon's first vertex
+//! open.
+//!
 //! Invariants:
 //! * a mesh without a vertex above the cap passes through unchanged (so
 //!   files of ordinary meshes do not change);
-//! * the result is a closed oriented manifold when the input was; every
+//! * the result is a closed oriented manifold when the input was (and
+//!   keeps its boundary loops when it was open); every
 //!   new face is oriented as the fan it replaces, the input's faces keep
 //!   their numbers (a flat run is rewritten in place, face for face, and
 //!   each ring-rebuilt fan face becomes its outer strip triangle) and
@@ -94,10 +101,18 @@ pub fn cap(mesh: &mut TriMesh, label: &mut Vec<u32>) -> usize {
     let mut done = 0;
     for v in high {
         let Some(fan) = ordered_fan(mesh, v, &faces_at[v as usize]) else {
-            continue; // not one closed fan: leave it to the retiler
+            // One open fan (v on a boundary, as a fanned polygon's first
+            // vertex before its hole is closed): its smooth runs only,
+            // no rings (they need a closed fan).
+            if let Some(chain) = open_fan(mesh, v, &faces_at[v as usize]) {
+                if flatten_runs(mesh, label, &mut faces_at, v, &chain, false) {
+                    done += 1;
+                }
+            }
+            continue; // otherwise not one fan: leave it to the retiler
         };
         let mut fan = fan;
-        if flatten_runs(mesh, label, &mut faces_at, v, &fan) {
+        if flatten_runs(mesh, label, &mut faces_at, v, &fan, true) {
             match ordered_fan(mesh, v, &faces_at[v as usize]) {
                 Some(f) => fan = f,
                 None => continue,
@@ -146,6 +161,37 @@ fn ordered_fan(mesh: &TriMesh, v: u32, faces: &[u32]) -> Option<Vec<(u32, u32, u
     (fan.len() == count).then_some(fan)
 }
 
+/// The faces around boundary vertex `v` in counterclockwise order, as in
+/// [`ordered_fan`]; `None` unless they form exactly one open fan (a
+/// chain from the face whose first spoke no other face ends on).
+fn open_fan(mesh: &TriMesh, v: u32, faces: &[u32]) -> Option<Vec<(u32, u32, u32)>> {
+    let mut by_first = std::collections::HashMap::with_capacity(faces.len());
+    let mut seconds = std::collections::HashSet::with_capacity(faces.len());
+    for &f in faces {
+        let t = mesh.triangles[f as usize];
+        let Some(k) = t.iter().position(|&x| x == v) else {
+            continue;
+        };
+        let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
+        if by_first.insert(a, (f, a, b)).is_some() || !seconds.insert(b) {
+            return None;
+        }
+    }
+    let mut starts = by_first.keys().filter(|a| !seconds.contains(a));
+    let first = by_first[starts.next()?];
+    if starts.next().is_some() {
+        return None;
+    }
+    let mut fan = vec![first];
+    while let Some(&at) = by_first.get(&fan[fan.len() - 1].2) {
+        fan.push(at);
+        if fan.len() > by_first.len() {
+            return None;
+        }
+    }
+    (fan.len() == by_first.len()).then_some(fan)
+}
+
 /// Neighbouring faces of a smooth run turn by less than this sine (about
 /// 1.1 degrees): a fanned polygon's faces do not turn at all, a cone of
 /// 20,000 faces by 0.02 degrees, a coarse shape's edge by much more.
@@ -159,14 +205,17 @@ const TURN_SINE: f64 = 0.25;
 /// Fewest faces in a smooth run worth rebuilding.
 const MIN_RUN: usize = 64;
 
-/// Rebuilds the long smooth runs of the fan of `v` as graded meshes;
-/// returns whether any run changed.
+/// Rebuilds the long smooth runs of the fan of `v` as graded meshes
+/// (`closed`: the fan goes all around `v`; otherwise it is one chain
+/// between two boundary edges, and runs do not wrap); returns whether any
+/// run changed.
 fn flatten_runs(
     mesh: &mut TriMesh,
     label: &mut Vec<u32>,
     faces_at: &mut [Vec<u32>],
     v: u32,
     fan: &[(u32, u32, u32)],
+    closed: bool,
 ) -> bool {
     let d = fan.len();
     let cross: Vec<DVec3> = fan
@@ -180,14 +229,18 @@ fn flatten_runs(
     };
     // Start after a break, so that no run is cut by the fan's seam; a fan
     // flat all around keeps its last face out.
-    let start = (0..d).find(|&i| breaks((i + d - 1) % d, i)).unwrap_or(0);
+    let start = if closed {
+        (0..d).find(|&i| breaks((i + d - 1) % d, i)).unwrap_or(0)
+    } else {
+        0
+    };
     let mut runs = Vec::new();
     let mut i = 0;
     while i < d {
         let first = (start + i) % d;
         let mut sum = cross[first].normalize_or_zero();
         let mut k = 1;
-        while i + k < d && k + 1 < d {
+        while i + k < d && (k + 1 < d || !closed) {
             let j = (first + k) % d;
             let n = sum.normalize_or_zero();
             let c = cross[j].normalize_or_zero();
@@ -504,6 +557,29 @@ pub(super) mod tests {
             }
             // Chords across a smooth cone barely change its area.
             assert!((m.area() - area).abs() < 1e-3 * area, "n = {n}");
+        }
+    }
+
+    #[test]
+    fn an_open_fan_is_rebuilt_in_place_with_its_boundary_kept() {
+        // A fanned polygon as the reader gives it, before any hole patch:
+        // vertex 0 is on the boundary, its fan one open chain.
+        let mut m = fanned_polygon(5000, 0.0);
+        let area = m.area();
+        let mut label = vec![0u32; m.face_count()];
+        assert_eq!(cap(&mut m, &mut label), 1);
+        assert!(max_valence(&m) <= 64, "{}", max_valence(&m));
+        assert!((m.area() - area).abs() < 1e-9 * area);
+        let table = CornerTable::new(&m.triangles, m.vertex_count()).unwrap();
+        let loops = table.boundary_loops();
+        assert_eq!(loops.len(), 1);
+        assert_eq!(loops[0].len(), 5000, "the boundary is the polygon's");
+        // Flat and facing +z, as the fan did (up to the f32 rounding of
+        // needles along the boundary spokes, which were needles before).
+        for t in &m.triangles {
+            let [a, b, c] = t.map(|x| DVec3::from(m.positions[x as usize].map(f64::from)));
+            assert!(a.z == 0.0 && b.z == 0.0 && c.z == 0.0);
+            assert!((b - a).cross(c - a).z > -1e-9, "{t:?} {a} {b} {c}");
         }
     }
 
