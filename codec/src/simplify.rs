@@ -34,6 +34,7 @@
 //! meshoptimizer treats vertices split along seams as borders.
 
 use crate::metrics::{DistanceOptions, Surface, SurfaceDistance};
+use crate::retile::valence::{max_valence, MAX_VALENCE};
 use crate::{CleanOptions, Error, TriMesh};
 use alloc::borrow::Cow;
 use core::ops::RangeInclusive;
@@ -79,7 +80,7 @@ impl<'a> Simplifier<'a> {
     /// slivers visits all of them for each sample. Other meshes are used
     /// as they are.
     pub fn new(mesh: &'a TriMesh) -> Simplifier<'a> {
-        let work = if max_valence(mesh) > crate::retile::valence::MAX_VALENCE {
+        let work = if max_valence(mesh) > MAX_VALENCE {
             let mut copy = mesh.clone();
             let mut labels = vec![0u32; copy.face_count()];
             crate::retile::valence::cap(&mut copy, &mut labels);
@@ -128,17 +129,6 @@ impl<'a> Simplifier<'a> {
         );
         compact(&positions, &indices[..n])
     }
-}
-
-/// The largest number of faces around one vertex.
-fn max_valence(mesh: &TriMesh) -> usize {
-    let mut valence = vec![0u32; mesh.vertex_count()];
-    for t in &mesh.triangles {
-        for &x in t {
-            valence[x as usize] += 1;
-        }
-    }
-    valence.into_iter().max().unwrap_or(0) as usize
 }
 
 /// The mode-0 file of `mesh` at `qp`, as [`encode`](crate::encode) writes
@@ -436,7 +426,7 @@ mod tests {
         let m = fanned_polygon(3000);
         let s = Simplifier::new(&m);
         assert_eq!(s.faces(), 2998);
-        assert!(max_valence(s.reference()) <= crate::retile::valence::MAX_VALENCE);
+        assert!(max_valence(s.reference()) <= MAX_VALENCE);
         assert!((s.reference().area() - m.area()).abs() < 1e-6 * m.area());
         let small = s.simplify(200);
         assert!(small.face_count() <= 200 && small.face_count() > 0);

@@ -132,8 +132,10 @@ fn retile_piece(
     let area = mesh.area();
     let tri_area = l * l * 3f64.sqrt() / 4.0;
     let cap = (8.0 * area / tri_area) as usize + 64;
-    let run_bytes =
-        budget::RUN_BYTES_PER_ELEMENT.saturating_mul(3 * (mesh.face_count() + cap) as u64);
+    // Elements the run's bounds scale with: M's corners and those of the
+    // most triangles the run may make.
+    let elements = 3 * (mesh.face_count() + cap) as u64;
+    let run_bytes = budget::RUN_BYTES_PER_ELEMENT.saturating_mul(elements);
     // Faces many L across, above all long thin ones, defeat the paths'
     // length bounds (`refine`); at most `cap` splits, as many as the
     // retiled triangles the run may make, and under the run's and the
@@ -177,8 +179,7 @@ fn retile_piece(
         last_resort: opt.last_resort,
         approximate: opt.approximate_tips,
         offsets: offset::Scratch::default(),
-        run_steps: budget::RUN_STEPS_PER_ELEMENT
-            .saturating_mul(3 * (mesh.face_count() + cap) as u64),
+        run_steps: budget::RUN_STEPS_PER_ELEMENT.saturating_mul(elements),
         run_bytes,
         budget,
         cap,

@@ -3,7 +3,8 @@
 use super::compose::{retile_pieces, PieceOutcome};
 use super::fill::pieces;
 use super::tests::{retiled, sphere};
-use super::valence::tests::{fanned_polygon, max_valence};
+use super::valence::max_valence;
+use super::valence::tests::fanned_polygon;
 use super::RetileOptions;
 use crate::{CornerTable, TriMesh};
 use glam::DVec3;

@@ -161,7 +161,7 @@ mod tests {
 
     fn min_angle(s: &Surface) -> f64 {
         (0..s.face_count() as u32)
-            .flat_map(|f| Surface::corners(f))
+            .flat_map(Surface::corners)
             .map(|c| {
                 let (x, y, z) = (s.p(c), s.p(next(c)), s.p(prev(c)));
                 (y - x).angle_between(z - x)

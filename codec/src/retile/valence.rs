@@ -77,12 +77,7 @@ const OUTER: f64 = 0.25;
 /// per face (the patch numbers) and is extended for new faces. Returns the
 /// number of vertices whose fans were rebuilt.
 pub fn cap(mesh: &mut TriMesh, label: &mut Vec<u32>) -> usize {
-    let mut valence = vec![0u32; mesh.vertex_count()];
-    for t in &mesh.triangles {
-        for &x in t {
-            valence[x as usize] += 1;
-        }
-    }
+    let valence = valences(mesh);
     let high: Vec<u32> = (0..valence.len() as u32)
         .filter(|&x| valence[x as usize] as usize > MAX_VALENCE)
         .collect();
@@ -100,22 +95,22 @@ pub fn cap(mesh: &mut TriMesh, label: &mut Vec<u32>) -> usize {
     }
     let mut done = 0;
     for v in high {
-        let Some(fan) = ordered_fan(mesh, v, &faces_at[v as usize]) else {
+        let Some((mut fan, closed)) = ordered_fan(mesh, v, &faces_at[v as usize]) else {
+            continue; // not one fan: leave it to the retiler
+        };
+        if !closed {
             // One open fan (v on a boundary, as a fanned polygon's first
             // vertex before its hole is closed): its smooth runs only,
             // no rings (they need a closed fan).
-            if let Some(chain) = open_fan(mesh, v, &faces_at[v as usize]) {
-                if flatten_runs(mesh, label, &mut faces_at, v, &chain, false) {
-                    done += 1;
-                }
+            if flatten_runs(mesh, label, &mut faces_at, v, &fan, false) {
+                done += 1;
             }
-            continue; // otherwise not one fan: leave it to the retiler
-        };
-        let mut fan = fan;
+            continue;
+        }
         if flatten_runs(mesh, label, &mut faces_at, v, &fan, true) {
             match ordered_fan(mesh, v, &faces_at[v as usize]) {
-                Some(f) => fan = f,
-                None => continue,
+                Some((f, true)) => fan = f,
+                _ => continue,
             }
         }
         // Once rebuilt, a vertex ends with few spokes: what the smooth runs
@@ -129,11 +124,15 @@ pub fn cap(mesh: &mut TriMesh, label: &mut Vec<u32>) -> usize {
 }
 
 /// The faces around `v` in counterclockwise order, as (face, u_i, u_{i+1})
-/// with face = (v, u_i, u_{i+1}) up to rotation; `None` unless they form
-/// exactly one closed fan. `faces` may list faces that no longer hold `v`.
-fn ordered_fan(mesh: &TriMesh, v: u32, faces: &[u32]) -> Option<Vec<(u32, u32, u32)>> {
+/// with face = (v, u_i, u_{i+1}) up to rotation, and whether they close
+/// around `v`; `None` unless they form exactly one fan: a cycle (started
+/// at its lowest face), or one chain between two boundary edges (started
+/// at the face whose first spoke no other face ends on). `faces` may list
+/// faces that no longer hold `v`.
+#[allow(clippy::type_complexity)]
+fn ordered_fan(mesh: &TriMesh, v: u32, faces: &[u32]) -> Option<(Vec<(u32, u32, u32)>, bool)> {
     let mut by_first = std::collections::HashMap::with_capacity(faces.len());
-    let mut count = 0;
+    let mut seconds = std::collections::HashSet::with_capacity(faces.len());
     for &f in faces {
         let t = mesh.triangles[f as usize];
         let Some(k) = t.iter().position(|&x| x == v) else {
@@ -143,53 +142,48 @@ fn ordered_fan(mesh: &TriMesh, v: u32, faces: &[u32]) -> Option<Vec<(u32, u32, u
         if by_first.insert(a, (f, a, b)).is_some() {
             return None;
         }
-        count += 1;
+        seconds.insert(b);
     }
-    let (_, &first) = by_first.iter().min_by_key(|(_, e)| e.0)?;
+    let count = by_first.len();
+    let mut starts = by_first.keys().filter(|a| !seconds.contains(a));
+    let (first, closed) = match starts.next() {
+        // Some spoke starts a face and ends none: an open chain, which
+        // has exactly one such spoke and no spoke ending two faces.
+        Some(a) if starts.next().is_none() && seconds.len() == count => (by_first[a], false),
+        Some(_) => return None,
+        None => (*by_first.values().min_by_key(|e| e.0)?, true),
+    };
     let mut fan = Vec::with_capacity(count);
     let mut at = first;
     loop {
         fan.push(at);
-        at = *by_first.get(&at.2)?;
-        if at == first {
-            break;
+        match by_first.get(&at.2) {
+            Some(&next) if closed && next == first => break,
+            Some(&next) => at = next,
+            None if !closed => break,
+            None => return None,
         }
         if fan.len() > count {
             return None;
         }
     }
-    (fan.len() == count).then_some(fan)
+    (fan.len() == count).then_some((fan, closed))
 }
 
-/// The faces around boundary vertex `v` in counterclockwise order, as in
-/// [`ordered_fan`]; `None` unless they form exactly one open fan (a
-/// chain from the face whose first spoke no other face ends on).
-fn open_fan(mesh: &TriMesh, v: u32, faces: &[u32]) -> Option<Vec<(u32, u32, u32)>> {
-    let mut by_first = std::collections::HashMap::with_capacity(faces.len());
-    let mut seconds = std::collections::HashSet::with_capacity(faces.len());
-    for &f in faces {
-        let t = mesh.triangles[f as usize];
-        let Some(k) = t.iter().position(|&x| x == v) else {
-            continue;
-        };
-        let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
-        if by_first.insert(a, (f, a, b)).is_some() || !seconds.insert(b) {
-            return None;
+/// Faces around each vertex.
+fn valences(mesh: &TriMesh) -> Vec<u32> {
+    let mut valence = vec![0u32; mesh.vertex_count()];
+    for t in &mesh.triangles {
+        for &x in t {
+            valence[x as usize] += 1;
         }
     }
-    let mut starts = by_first.keys().filter(|a| !seconds.contains(a));
-    let first = by_first[starts.next()?];
-    if starts.next().is_some() {
-        return None;
-    }
-    let mut fan = vec![first];
-    while let Some(&at) = by_first.get(&fan[fan.len() - 1].2) {
-        fan.push(at);
-        if fan.len() > by_first.len() {
-            return None;
-        }
-    }
-    (fan.len() == by_first.len()).then_some(fan)
+    valence
+}
+
+/// The largest number of faces around one vertex of `mesh`.
+pub fn max_valence(mesh: &TriMesh) -> usize {
+    valences(mesh).into_iter().max().unwrap_or(0) as usize
 }
 
 /// Neighbouring faces of a smooth run turn by less than this sine (about
@@ -509,15 +503,6 @@ pub(super) mod tests {
             triangles.push([1, q, p]);
         }
         TriMesh::new(positions, triangles)
-    }
-
-    pub(in crate::retile) fn max_valence(m: &TriMesh) -> usize {
-        let mut valence = vec![0usize; m.vertex_count()];
-        m.triangles
-            .iter()
-            .flatten()
-            .for_each(|&x| valence[x as usize] += 1);
-        valence.into_iter().max().unwrap_or(0)
     }
 
     #[test]
