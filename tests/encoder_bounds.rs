@@ -173,3 +173,49 @@ fn encode_limits_end_a_run_with_a_clear_error_and_no_file() {
         assert_eq!(r.status.code(), Some(2), "{bad:?}");
     }
 }
+
+/// A closed cylinder of `n` sides whose two caps are fanned from one rim
+/// vertex each, as CAD exporters triangulate planar faces.
+fn fanned_cylinder(dir: &Path, n: u32) -> String {
+    let mut s = String::new();
+    for z in [0, 1] {
+        for i in 0..n {
+            let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+            writeln!(s, "v {} {} {z}", a.cos(), a.sin()).unwrap();
+        }
+    }
+    for i in 1..=n {
+        let j = i % n + 1;
+        writeln!(s, "f {i} {j} {}\nf {i} {} {}", n + j, n + j, n + i).unwrap();
+    }
+    for i in 2..n {
+        writeln!(s, "f 1 {} {i}\nf {} {} {}", i + 1, n + 1, n + i, n + i + 1).unwrap();
+    }
+    let path = dir.join(format!("cylinder-{n}.obj"));
+    std::fs::write(&path, s).unwrap();
+    path.to_str().unwrap().to_owned()
+}
+
+#[test]
+fn a_closed_part_with_fanned_caps_retiles_at_the_length_asked() {
+    // Both caps are planar: every inner vertex of theirs is equally flat,
+    // and the start used to be the lowest-id one, a midpoint among the
+    // fan's 0.9° needles after refinement, where no first triangle could
+    // be laid: all 16 runs failed, down to L = 0.0188. Ties now go to the
+    // vertex whose ring has the widest narrowest corner.
+    let dir = scratch("bounds-caps");
+    let j = json(&swm(&[
+        "encode",
+        &fanned_cylinder(&dir, 200),
+        "-o",
+        dir.join("c.swm").to_str().unwrap(),
+        "--mode",
+        "swing",
+        "--edge-length",
+        "0.03",
+        "--json",
+    ]));
+    let rc = &j["rate_control"];
+    assert!(rc["attempts"].as_array().unwrap().len() <= 4, "{rc}");
+    assert_eq!(rc["edge_length"].as_f64(), Some(0.03), "{rc}");
+}

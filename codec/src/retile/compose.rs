@@ -171,6 +171,29 @@ fn retile_tries(
             break;
         }
     }
+    // The last start failed to lay the first triangle: the flattest
+    // vertices are likely in a region no first triangle fits (a planar
+    // face fanned into needles). One more start, chosen by ring shape.
+    if matches!(
+        result,
+        Err(Failure::NoSecondVertex | Failure::NoThirdVertex)
+    ) && opt.start_vertex.is_none()
+    {
+        let o = RetileOptions {
+            start_by_shape: true,
+            last_resort: true,
+            ..opt.clone()
+        };
+        result = retile_piece(
+            &p.mesh,
+            &p.table,
+            Some(&p.patch),
+            &o,
+            fixed,
+            p.genus > 0,
+            budget,
+        );
+    }
     result
 }
 

@@ -79,6 +79,11 @@ pub struct RetileOptions {
     /// (0 = the flattest). A run that failed is an independent new trial
     /// from another start. Default 0.
     pub start_rank: u32,
+    /// With no `start_vertex`: among vertices equally flat but for
+    /// rounding, rank by the ring's narrowest corner, widest first,
+    /// instead of by id. Default `false`; `compose` sets it for one more
+    /// start when every start of a piece failed to lay its first triangle.
+    pub start_by_shape: bool,
     /// Aim each C tip off M by the offset that cancels the mean chord
     /// error of its triangles (`offset`), instead of at M itself as the
     /// thesis does. Default `true`.
@@ -186,7 +191,7 @@ fn retile_piece(
     };
     let start = opt
         .start_vertex
-        .unwrap_or_else(|| start_vertex(&r.s, opt.start_rank, l));
+        .unwrap_or_else(|| start_vertex(&r.s, opt.start_rank, opt.start_by_shape, l));
     let (first_gate, first) = r.first_triangle(start)?;
     r.grow(first_gate)?;
     let uncovered = r.s.owner.iter().filter(|&&o| o == NONE).count();
@@ -621,7 +626,7 @@ const NONE_PLACEHOLDER: u32 = NONE;
 /// by construction but not the input, and a plane through a start near
 /// the rim can close in a loop shorter than L. On a closed piece: the
 /// vertex whose own ring is flattest.
-fn start_vertex(s: &Surface, rank: u32, l: f64) -> u32 {
+fn start_vertex(s: &Surface, rank: u32, by_shape: bool, l: f64) -> u32 {
     // A closed input has no rim to keep away from; there the ring's own
     // flatness was measured better (rd generated table: the wider score
     // made 21 of 29 swing rows worse, by 2-37%).
@@ -636,15 +641,34 @@ fn start_vertex(s: &Surface, rank: u32, l: f64) -> u32 {
         }
         (n >= 5).then(|| sum.length() / n as f64)
     };
-    let mut scored: Vec<(f64, u32)> = (0..s.vertex_count() as u32)
+    let scored: Vec<(f64, u32)> = (0..s.vertex_count() as u32)
         .filter(|&x| s.corner_of[x as usize] != NONE && (!patched || hops[x as usize] >= far))
         .filter_map(|x| ring_flatness(x).map(|f| (f, x)))
         .collect();
     if scored.is_empty() {
         return 0;
     }
-    // Flattest first, lowest id on ties.
-    let order = |a: &(f64, u32), b: &(f64, u32)| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
+    // Flattest first, lowest id on ties. By shape, flatness values equal
+    // but for rounding (a CAD part's planes) are ties, and among them the
+    // vertex whose ring has the widest narrowest corner comes first: on a
+    // planar face triangulated as a fan, the lowest-id inner vertex is,
+    // after refinement, a midpoint among the fan's apex needles, where no
+    // first triangle could be laid (a 200-gon fanned from one corner, and
+    // a cylinder with fanned caps, failed every run at L = 1.5% of their
+    // diameter). As the first choice this order made 10 of 35 generated
+    // swing rows worse (2-25%) and none better, so it is only the
+    // fallback (`RetileOptions::start_by_shape`).
+    let mut scored: Vec<(f64, u32, f64)> = scored
+        .into_iter()
+        .map(|(f, x)| (f, x, if by_shape { ring_width(s, x) } else { 0.0 }))
+        .collect();
+    let level = |f: f64| if by_shape { (f * FLAT_TIE).round() } else { f };
+    let order = |a: &(f64, u32, f64), b: &(f64, u32, f64)| {
+        level(b.0)
+            .total_cmp(&level(a.0))
+            .then(b.2.total_cmp(&a.2))
+            .then(a.1.cmp(&b.1))
+    };
     if !patched {
         let k = (rank as usize).min(scored.len() - 1);
         scored.select_nth_unstable_by(k, order);
@@ -661,6 +685,24 @@ fn start_vertex(s: &Surface, rank: u32, l: f64) -> u32 {
     }
     scored.sort_unstable_by(order);
     scored[(rank as usize).min(scored.len() - 1)].1
+}
+
+/// Flatness values equal once multiplied by this and rounded are ties
+/// (by shape).
+const FLAT_TIE: f64 = 1e9;
+
+/// How wide the narrowest corner of the faces around vertex `x` is: minus
+/// its cosine (larger is wider; -1 with a zero-length edge).
+fn ring_width(s: &Surface, x: u32) -> f64 {
+    let cos = |u: DVec3, v: DVec3| u.dot(v) / (u.length() * v.length());
+    let mut narrowest = -1.0f64;
+    for k in s.fan(x) {
+        let [a, b, c] = Surface::corners(surface::face(k)).map(|q| s.p(q));
+        for t in [cos(b - a, c - a), cos(c - b, a - b), cos(a - c, b - c)] {
+            narrowest = if t.is_nan() { 1.0 } else { narrowest.max(t) };
+        }
+    }
+    -narrowest
 }
 
 /// Ring-flattest vertices whose wider surroundings are measured.

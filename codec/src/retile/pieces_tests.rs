@@ -15,6 +15,7 @@ fn options(l: f64) -> RetileOptions {
         angle_bits: 8,
         start_vertex: None,
         start_rank: 0,
+        start_by_shape: false,
         approximate_tips: true,
         adaptive_density: false,
         last_resort: false,
@@ -320,6 +321,7 @@ fn probe() {
                 .count();
             let opt = RetileOptions {
                 start_rank: rank,
+                start_by_shape: false,
                 ..options(l)
             };
             let r = super::retile_piece(

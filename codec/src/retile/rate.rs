@@ -95,6 +95,7 @@ fn run(
         angle_bits: knobs.angle_bits,
         start_vertex: None,
         start_rank,
+        start_by_shape: false,
         approximate_tips: knobs.approximate_tips,
         adaptive_density: knobs.adaptive_density,
         last_resort: false,

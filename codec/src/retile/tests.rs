@@ -81,6 +81,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             angle_bits: 8,
             start_vertex: None,
             start_rank: 0,
+            start_by_shape: false,
             approximate_tips: true,
             adaptive_density: false,
             last_resort: false,
@@ -198,6 +199,7 @@ fn probe() {
                     .ok()
                     .map(|s| s.parse().unwrap()),
                 start_rank: std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap()),
+                start_by_shape: false,
                 approximate_tips: std::env::var_os("SWM_RETILE_ON_SURFACE").is_none(),
                 adaptive_density: std::env::var_os("SWM_RETILE_ADAPTIVE").is_some(),
                 last_resort: std::env::var_os("SWM_RETILE_LAST_RESORT").is_some(),
