@@ -229,6 +229,7 @@ fn golden_swing_options() -> EncodeOptions {
         // them.
         swing: swm::SwingTuning {
             approximate_tips: false,
+            fit_tips: false,
             adaptive_density: false,
         },
         ..EncodeOptions::default()
@@ -320,6 +321,7 @@ fn golden_adaptive_options() -> EncodeOptions {
         },
         swing: swm::SwingTuning {
             approximate_tips: false,
+            fit_tips: false,
             adaptive_density: true,
         },
         ..EncodeOptions::default()

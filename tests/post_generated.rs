@@ -22,6 +22,7 @@ fn retiled(mesh: &TriMesh, target: swm::SwingTarget) -> TriMesh {
         },
         swing: swm::SwingTuning {
             approximate_tips: false,
+            fit_tips: false,
             adaptive_density: false,
         },
         ..Default::default()

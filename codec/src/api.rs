@@ -198,6 +198,11 @@ pub struct SwingTuning {
     /// the normal, H the mean curvature at the scale of L), rather than
     /// on the surface as the thesis does. Default `true`.
     pub approximate_tips: bool,
+    /// Choose each tip's angle code, among those near the aimed one, by
+    /// the two-sided distance between its triangle and the surface the
+    /// triangle covers, instead of the code nearest the aim (`retile::fit`;
+    /// issue 19, "error-aware geometry"). Default `true`.
+    pub fit_tips: bool,
     /// Let the edge length follow the shape: shorter where the surface
     /// bends, is thin or creased, longer where it is flat (L ∝ κ^(−1/3)
     /// for the curvature κ at the scale of L; the file then carries one
@@ -212,6 +217,7 @@ impl Default for SwingTuning {
     fn default() -> Self {
         SwingTuning {
             approximate_tips: true,
+            fit_tips: true,
             adaptive_density: false,
         }
     }
@@ -421,6 +427,7 @@ pub(crate) fn encode_swing(
     let knobs = rate::Knobs {
         angle_bits: angle_bits.unwrap_or(DEFAULT_ANGLE_BITS),
         approximate_tips: options.swing.approximate_tips,
+        fit_tips: options.swing.fit_tips,
         adaptive_density: options.swing.adaptive_density,
     };
     let at_size = |b: u64| match angle_bits {

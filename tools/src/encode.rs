@@ -58,9 +58,11 @@ pub struct Args {
     #[arg(long, value_parser = clap::value_parser!(u8).range(4..=12))]
     angle_bits: Option<u8>,
     /// Swing: aim every new vertex at the input surface, as the thesis
-    /// does, instead of off it by the offset that cancels the chord error
-    /// (for files to be decoded with --sharpen: EdgeSharpener fits the
-    /// planes of flat regions through their vertices).
+    /// does, instead of off it by the offset that cancels the chord error,
+    /// and send the angle nearest that aim instead of the one whose
+    /// triangle fits the surface it covers best (for files to be decoded
+    /// with --sharpen: EdgeSharpener fits the planes of flat regions
+    /// through their vertices).
     #[arg(long)]
     on_surface: bool,
     /// Swing: shorter edges where the surface bends, is thin or creased,
@@ -203,6 +205,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         limits,
         swing: swm::SwingTuning {
             approximate_tips: !args.on_surface,
+            fit_tips: !args.on_surface,
             adaptive_density: args.adaptive,
         },
         ..Default::default()

@@ -38,6 +38,8 @@ use crate::{Error, FormatError, Malformed, ParameterError, TopologyError, TriMes
 use bvh::{Bvh, Scratch};
 use sample::{area, carried_counts, edge_points, face_points, SplitMix};
 use triangle::Tri;
+#[cfg(feature = "encoder")]
+pub(crate) use triangle::{closest_point_f64, distance2};
 
 /// What to sample. Defaults are Metro's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -54,8 +54,16 @@ fn on_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 /// The point of triangle `t` nearest to `p`.
+#[inline]
 pub fn closest_point(p: [f64; 3], t: &Tri) -> [f64; 3] {
-    let (a, b, c) = (wide(t[0]), wide(t[1]), wide(t[2]));
+    closest_point_f64(p, &[wide(t[0]), wide(t[1]), wide(t[2])])
+}
+
+/// [`closest_point`] for a triangle of `f64` corners (the retiler's tip
+/// fitting).
+#[inline(always)]
+pub fn closest_point_f64(p: [f64; 3], t: &[[f64; 3]; 3]) -> [f64; 3] {
+    let (a, b, c) = (t[0], t[1], t[2]);
     let ab = sub(b, a);
     let ac = sub(c, a);
     let ap = sub(p, a);

@@ -357,6 +357,15 @@ impl Retiler<'_> {
             self.pop_vertex();
             return None;
         }
+        // The region is claimed: the code can now be chosen by how well
+        // the triangle covers it (`fit`).
+        let q = if self.fit {
+            let fitted = self.fit_code(&frame, q, vl, vr);
+            self.xhat[x as usize] = DVec3::from_array(frame.point(&self.table, fitted));
+            fitted
+        } else {
+            q
+        };
         self.push_triangle([x, vl, vr]);
         self.symbols.push(Symbol::C);
         self.codes.push(q);

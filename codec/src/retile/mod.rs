@@ -10,8 +10,9 @@
 //! triangloid), which makes the triangle an L, R, E or S; otherwise it is
 //! a C and V's dihedral angle is quantized, aimed off M by the offset
 //! that cancels the mean chord error there (`offset`, beyond the thesis:
-//! M′ then approximates M instead of interpolating it; issue 19). Each
-//! M′ triangle claims the
+//! M′ then approximates M instead of interpolating it; issue 19), then
+//! moved to the nearby code whose triangle lies nearest the region it
+//! covers (`fit`). Each M′ triangle claims the
 //! region of M bounded by three approximate geodesics (its triangloid).
 //!
 //! Invariants:
@@ -35,6 +36,7 @@ mod budget;
 pub mod compose;
 mod density;
 pub mod fill;
+mod fit;
 mod front;
 mod gate;
 mod marks;
@@ -88,6 +90,10 @@ pub struct RetileOptions {
     /// error of its triangles (`offset`), instead of at M itself as the
     /// thesis does. Default `true`.
     pub approximate_tips: bool,
+    /// Choose each C's angle code by how near its triangle lies to the
+    /// region it claims (`fit`), instead of the code nearest the aim.
+    /// Default `true`.
+    pub fit_tips: bool,
     /// Let the edge length follow M's curvature (`density`; the file
     /// then carries `DENS`, format 1.1) instead of one L everywhere.
     pub adaptive_density: bool,
@@ -183,7 +189,9 @@ fn retile_piece(
         slack: 1.0,
         last_resort: opt.last_resort,
         approximate: opt.approximate_tips,
+        fit: opt.fit_tips,
         offsets: offset::Scratch::default(),
+        fit_region: Vec::new(),
         run_steps: budget::RUN_STEPS_PER_ELEMENT.saturating_mul(elements),
         run_bytes,
         budget,
@@ -269,7 +277,11 @@ struct Retiler<'b> {
     last_resort: bool,
     /// Aim C tips off M by the curvature offset (`offset`).
     approximate: bool,
+    /// Choose C codes by `fit`.
+    fit: bool,
     offsets: offset::Scratch,
+    /// Scratch of `fit`: the corners of the region just claimed.
+    fit_region: Vec<[[f64; 3]; 3]>,
     cap: usize,
     /// Steps this run may still take before it counts as running away.
     run_steps: u64,

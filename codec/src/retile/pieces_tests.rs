@@ -17,6 +17,7 @@ fn options(l: f64) -> RetileOptions {
         start_rank: 0,
         start_by_shape: false,
         approximate_tips: true,
+        fit_tips: true,
         adaptive_density: false,
         last_resort: false,
     }

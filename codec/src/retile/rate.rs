@@ -66,6 +66,8 @@ pub struct Knobs {
     pub angle_bits: u8,
     /// [`RetileOptions::approximate_tips`].
     pub approximate_tips: bool,
+    /// [`RetileOptions::fit_tips`].
+    pub fit_tips: bool,
     /// [`RetileOptions::adaptive_density`].
     pub adaptive_density: bool,
 }
@@ -97,6 +99,7 @@ fn run(
         start_rank,
         start_by_shape: false,
         approximate_tips: knobs.approximate_tips,
+        fit_tips: knobs.fit_tips,
         adaptive_density: knobs.adaptive_density,
         last_resort: false,
     };

@@ -42,6 +42,13 @@ pub struct Flood {
     vertices: Marks,
 }
 
+impl Flood {
+    /// The faces of the region last claimed.
+    pub fn faces(&self) -> &[u32] {
+        &self.faces
+    }
+}
+
 /// Claims for triangle `id` the region left of the closed chain `boundary`
 /// (M vertices, first not repeated at the end). On failure the claim is
 /// left half done: the caller abandons the whole retiling.

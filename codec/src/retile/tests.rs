@@ -83,6 +83,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             start_rank: 0,
             start_by_shape: false,
             approximate_tips: true,
+            fit_tips: true,
             adaptive_density: false,
             last_resort: false,
         },
@@ -201,6 +202,7 @@ fn probe() {
                 start_rank: std::env::var("SWM_RETILE_RANK").map_or(0, |s| s.parse().unwrap()),
                 start_by_shape: false,
                 approximate_tips: std::env::var_os("SWM_RETILE_ON_SURFACE").is_none(),
+                fit_tips: std::env::var_os("SWM_RETILE_ON_SURFACE").is_none(),
                 adaptive_density: std::env::var_os("SWM_RETILE_ADAPTIVE").is_some(),
                 last_resort: std::env::var_os("SWM_RETILE_LAST_RESORT").is_some(),
             },
@@ -277,6 +279,7 @@ fn decoding_reproduces_the_retiled_mesh_exactly() {
 const KNOBS: rate::Knobs = rate::Knobs {
     angle_bits: 8,
     approximate_tips: true,
+    fit_tips: true,
     adaptive_density: false,
 };
 

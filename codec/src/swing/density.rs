@@ -199,6 +199,7 @@ mod tests {
             },
             swing: SwingTuning {
                 approximate_tips: true,
+                fit_tips: true,
                 adaptive_density: true,
             },
             ..EncodeOptions::default()

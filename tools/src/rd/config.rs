@@ -98,6 +98,7 @@ impl Config {
     fn tuning(self) -> swm::SwingTuning {
         swm::SwingTuning {
             approximate_tips: self != Config::SwingOnSurface,
+            fit_tips: self != Config::SwingOnSurface,
             adaptive_density: self == Config::SwingAdaptive,
         }
     }
