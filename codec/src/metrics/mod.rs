@@ -37,9 +37,9 @@ use rayon::prelude::*;
 use crate::{Error, FormatError, Malformed, ParameterError, TopologyError, TriMesh};
 use bvh::{Bvh, Scratch};
 use sample::{area, carried_counts, edge_points, face_points, SplitMix};
-use triangle::Tri;
 #[cfg(feature = "encoder")]
-pub(crate) use triangle::{closest_point_f64, distance2};
+pub(crate) use triangle::triangle_distance2_f64;
+use triangle::Tri;
 
 /// What to sample. Defaults are Metro's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -42,7 +42,7 @@
 
 use super::surface::Surface;
 use super::Retiler;
-use crate::metrics::{closest_point_f64, distance2};
+use crate::metrics::triangle_distance2_f64;
 use crate::swing::Frame;
 use glam::DVec3;
 
@@ -125,7 +125,7 @@ fn two_sided(region: &[[[f64; 3]; 3]], t: [DVec3; 3]) -> f64 {
     let mut forward = 0.0;
     for face in region {
         for &p in face {
-            forward += distance2(p, closest_point_f64(p, &tri));
+            forward += triangle_distance2_f64(p, &tri);
         }
     }
     let mut backward = 0.0;
@@ -133,7 +133,7 @@ fn two_sided(region: &[[[f64; 3]; 3]], t: [DVec3; 3]) -> f64 {
         let x = (t[0] * w[0] + t[1] * w[1] + t[2] * w[2]).to_array();
         let nearest = region
             .iter()
-            .map(|face| distance2(x, closest_point_f64(x, face)))
+            .map(|face| triangle_distance2_f64(x, face))
             .fold(f64::INFINITY, f64::min);
         backward += nearest;
     }
