@@ -136,7 +136,18 @@ fn the_three_targets_decode_and_inspect() {
 
         let info = json(&swm(&["info", s(&file), "--json"]));
         assert_eq!(info["mode"], "swing");
-        assert_eq!(info["version"], "1.0");
+        // A retiling's symbols go in CLRF (format 1.1): smaller than CLRS.
+        let tags: Vec<&str> = info["sections"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| t["tag"].as_str().unwrap())
+            .collect();
+        assert!(
+            tags.contains(&"CLRF") && !tags.contains(&"CLRS"),
+            "{tags:?}"
+        );
+        assert_eq!(info["version"], "1.1");
         for key in [
             "bytes",
             "triangles",

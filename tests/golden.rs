@@ -231,6 +231,7 @@ fn golden_swing_options() -> EncodeOptions {
             approximate_tips: false,
             fit_tips: false,
             adaptive_density: false,
+            front_contexts: false,
         },
         ..EncodeOptions::default()
     }
@@ -323,6 +324,7 @@ fn golden_adaptive_options() -> EncodeOptions {
             approximate_tips: false,
             fit_tips: false,
             adaptive_density: true,
+            front_contexts: false,
         },
         ..EncodeOptions::default()
     }
@@ -372,5 +374,71 @@ fn swing_v1_1_reencodes_to_the_same_bytes() {
     assert_eq!(
         encoded.bytes, SWING_V1_1,
         "re-encoding the golden ellipsoid no longer gives golden/swing-v1.1.swm"
+    );
+}
+
+// --- Format 1.1: SwingWrapper with front contexts (CLRF) and DENS ---
+
+const SWING_FRONT_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-front-v1.1.swm");
+
+/// The test vector of format-spec/05-swing.md ("Golden file", CLRF).
+const SWING_FRONT_V1_1_FNV1A64: u64 = 0x1EA9_3F4C_ED51_35DF;
+
+/// The golden ellipsoid retiled as the 1.1 golden file is, with its
+/// symbols in `CLRF`.
+fn golden_front_options() -> EncodeOptions {
+    let mut options = golden_adaptive_options();
+    options.mode = EncodeMode::Swing {
+        target: swm::SwingTarget::EdgeLength(0.1),
+        angle_bits: Some(8),
+        max_bytes: None,
+    };
+    options.swing.front_contexts = true;
+    options
+}
+
+/// Writes the CLRF golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_swing_front_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_swing_front_v1_1_golden() {
+    write_golden(
+        "swing-front-v1.1.swm",
+        &golden_ellipsoid(),
+        &golden_front_options(),
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads the
+/// CLRF section of format 1.1 as specified.
+#[test]
+fn swing_front_v1_1_decodes_to_its_test_vector() {
+    let info = swm::inspect(SWING_FRONT_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    let swing = info.swing.expect("a SwingWrapper file");
+    let tags: Vec<&[u8; 4]> = swing.sections.iter().map(|(t, _)| t).collect();
+    assert!(
+        tags.contains(&b"CLRF") && tags.contains(&b"DENS"),
+        "{tags:?}"
+    );
+    assert!(!tags.contains(&b"CLRS"));
+    assert!(info.stats.clers[4] > 0, "the golden file has an S");
+    let mesh = swm::decode(SWING_FRONT_V1_1, &DecodeOptions::default())
+        .expect("golden file swing-front-v1.1.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        SWING_FRONT_V1_1_FNV1A64,
+        "decoded mesh differs from format-spec/05-swing.md's test vector"
+    );
+}
+
+/// The encoder still writes the CLRF golden bytes (pins the encoder's
+/// choice of CLRF and of each S's node on this platform).
+#[test]
+fn swing_front_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_ellipsoid(), &golden_front_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_FRONT_V1_1,
+        "re-encoding the golden ellipsoid no longer gives golden/swing-front-v1.1.swm"
     );
 }

@@ -24,6 +24,7 @@ fn retiled(mesh: &TriMesh, target: swm::SwingTarget) -> TriMesh {
             approximate_tips: false,
             fit_tips: false,
             adaptive_density: false,
+            front_contexts: true,
         },
         ..Default::default()
     };
@@ -118,7 +119,7 @@ fn a_retiled_fandisk_like_part_comes_closer() {
 }
 
 /// Smooth shapes, retiled: sharpening finds (almost) no chamfer and
-/// moves no decoded vertex.
+/// moves no decoded vertex but those of the chamfers it finds.
 #[test]
 fn smooth_retiled_shapes_stay_nearly_untouched() {
     for name in ["icosphere", "torus", "uv-sphere"] {
@@ -133,9 +134,20 @@ fn smooth_retiled_shapes_stay_nearly_untouched() {
                 r.chamfer_edges * 200 <= decoded.face_count() as u64 + 400,
                 "{name} at {bits} b/v: {r:?}"
             );
-            assert_eq!(
-                s.mesh.positions[..decoded.positions.len()],
-                decoded.positions[..]
+            // Only the vertices of the few chamfers found may move (a
+            // sliver collapse renumbers the rest, so compare as sets).
+            let key = |p: &[f32; 3]| p.map(f32::to_bits);
+            let before: std::collections::HashSet<[u32; 3]> =
+                decoded.positions.iter().map(key).collect();
+            let moved = s
+                .mesh
+                .positions
+                .iter()
+                .filter(|p| !before.contains(&key(p)))
+                .count() as u64;
+            assert!(
+                moved <= 2 * r.chamfer_edges,
+                "{name} at {bits} b/v: {moved} moved, {r:?}"
             );
         }
     }

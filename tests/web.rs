@@ -118,7 +118,12 @@ fn cases() -> &'static Path {
             .iter()
             .map(|s| (s.name.replace([' ', '+'], "-"), s.bytes.clone()))
             .collect();
-        for name in ["lossless-v1.0", "swing-v1.0"] {
+        for name in [
+            "lossless-v1.0",
+            "swing-v1.0",
+            "swing-v1.1",
+            "swing-front-v1.1",
+        ] {
             let path = Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join(format!("../format-spec/golden/{name}.swm"));
             files.push((format!("golden-{name}"), std::fs::read(path).unwrap()));
@@ -147,6 +152,7 @@ fn cases() -> &'static Path {
             entries.push(serde_json::json!({
                 "name": name,
                 "mode": mode,
+                "version": format!("{}.{}", header.major, header.minor),
                 "swm": format!("{name}.swm"),
                 "ply": format!("{name}.ply"),
                 "sharpened_ply": format!("{name}.sb.ply"),

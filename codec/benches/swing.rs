@@ -172,10 +172,25 @@ fn run(c: &mut Criterion, name: &str, mesh: &TriMesh) {
     });
     g.finish();
 
+    // The same retiling with its symbols in CLRS (format 1.0's coding),
+    // to price CLRF's forward pass in the same run.
+    let mut plain_options = at_length(l);
+    plain_options.swing.front_contexts = false;
+    let plain = swm::encode(mesh, &plain_options).expect("encode with CLRS");
+    let mut front_options = at_length(l);
+    front_options.swing.front_contexts = true;
+    let front = swm::encode(mesh, &front_options).expect("encode with CLRF");
+
     let mut g = c.benchmark_group("swing-decode");
     g.throughput(Throughput::Elements(out));
     g.bench_function(format!("{name} 1 b/v"), |b| {
         b.iter(|| swm::decode(black_box(&encoded.bytes), &decode_options).unwrap())
+    });
+    g.bench_function(format!("{name} 1 b/v, 8 bits, CLRS"), |b| {
+        b.iter(|| swm::decode(black_box(&plain.bytes), &decode_options).unwrap())
+    });
+    g.bench_function(format!("{name} 1 b/v, 8 bits, CLRF"), |b| {
+        b.iter(|| swm::decode(black_box(&front.bytes), &decode_options).unwrap())
     });
     g.finish();
 }

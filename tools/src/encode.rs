@@ -70,6 +70,12 @@ pub struct Args {
     /// (experimental; the file is then format 1.1).
     #[arg(long)]
     adaptive: bool,
+    /// Swing: code the connectivity as format 1.0 does (`CLRS`, each
+    /// symbol in the context of the previous one), for decoders older
+    /// than 1.1, instead of with the shape of the front at each gate
+    /// (`CLRF`), which takes about a fifth of the bits.
+    #[arg(long)]
+    plain_clers: bool,
     /// Never write more than this many bytes (lossless: with --size or --bpv).
     #[arg(long, value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     max_size: Option<u64>,
@@ -138,6 +144,7 @@ impl Args {
                     (self.angle_bits.is_some(), "--angle-bits"),
                     (self.on_surface, "--on-surface"),
                     (self.adaptive, "--adaptive"),
+                    (self.plain_clers, "--plain-clers"),
                     (self.max_work.is_some(), "--max-work"),
                     (self.max_memory.is_some(), "--max-memory"),
                     (self.time_limit.is_some(), "--time-limit"),
@@ -207,6 +214,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             approximate_tips: !args.on_surface,
             fit_tips: !args.on_surface,
             adaptive_density: args.adaptive,
+            front_contexts: !args.plain_clers,
         },
         ..Default::default()
     };

@@ -34,6 +34,10 @@ impl Tag {
     /// Critical (format 1.1). SwingWrapper density: one level step per C
     /// tip, scaling its circle's radius (format-spec/05-swing.md).
     pub const DENS: Tag = Tag(*b"DENS");
+    /// Critical (format 1.1). SwingWrapper CLERS symbols coded in the
+    /// forward pass with the front's angles as context, in place of
+    /// `CLRS` (format-spec/05-swing.md).
+    pub const CLRF: Tag = Tag(*b"CLRF");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
 
@@ -73,7 +77,7 @@ impl Tag {
 /// any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
 /// (At most 8: the parser keeps them in a `u8`.)
-pub(crate) const KNOWN_CRITICAL: [Tag; 7] = [
+pub(crate) const KNOWN_CRITICAL: [Tag; 8] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -81,6 +85,7 @@ pub(crate) const KNOWN_CRITICAL: [Tag; 7] = [
     Tag::HOLE,
     Tag::REST,
     Tag::DENS,
+    Tag::CLRF,
 ];
 
 /// Ancillary tags of format 1.0. Other ancillary tags are skipped.

@@ -301,11 +301,13 @@ pub(crate) fn read_connectivity(
     limits: &Limits,
 ) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
     // Critical sections of the SwingWrapper mode mean nothing here.
-    for tag in [Tag::HOLE, Tag::REST, Tag::DENS] {
+    for tag in [Tag::HOLE, Tag::REST, Tag::DENS, Tag::CLRF] {
         if file.find(tag).is_some() {
             return Err(crate::FormatError::new(
                 "SWM",
-                crate::Malformed::BadSyntax("a lossless file has a HOLE, REST or DENS section"),
+                crate::Malformed::BadSyntax(
+                    "a lossless file has a HOLE, REST, DENS or CLRF section",
+                ),
             )
             .into());
         }
@@ -322,8 +324,22 @@ pub(crate) fn read_topology(
     file: &Container<'_>,
     limits: &Limits,
 ) -> Result<(Connectivity, Vec<u32>), Error> {
-    let h = &file.header;
     let clrs = file.require(Tag::CLRS)?.bytes;
+    let (mut conn, dummies, count) = read_topo(file, limits, clrs.len())?;
+    conn.symbols = read_clers(clrs, count)?;
+    Ok((conn, dummies))
+}
+
+/// Reads `TOPO`, checking its symbol count against the limits and
+/// against `clers_len`, the length of the section that codes the
+/// symbols. Returns the connectivity without its symbols, the dummy
+/// vertices and the symbol count.
+pub(crate) fn read_topo(
+    file: &Container<'_>,
+    limits: &Limits,
+    clers_len: usize,
+) -> Result<(Connectivity, Vec<u32>, usize), Error> {
+    let h = &file.header;
     let mut r = Reader::new(file.require(Tag::TOPO)?.bytes);
     // Counts first, checked before anything sized by them is allocated.
     let symbols = r.varu()?;
@@ -340,7 +356,7 @@ pub(crate) fn read_topology(
     check_count_fits(
         "CLERS symbol",
         symbols,
-        clrs.len(),
+        clers_len,
         4,
         1 << crate::entropy::PRECISION,
     )?;
@@ -397,14 +413,13 @@ pub(crate) fn read_topology(
     if total_vertices > u32::MAX as u64 || dummies.iter().any(|&d| d as u64 >= total_vertices) {
         return Err(bad("dummy vertex out of range"));
     }
-    let symbols = read_clers(clrs, symbols as usize)?;
     let conn = Connectivity {
-        symbols,
+        symbols: Vec::new(),
         splits,
         components: h.component_count,
         vertices: total_vertices as u32,
     };
-    Ok((conn, dummies))
+    Ok((conn, dummies, symbols as usize))
 }
 
 // --- HEAD: written and read side by side; must match exactly. ---

@@ -70,6 +70,8 @@ pub struct Knobs {
     pub fit_tips: bool,
     /// [`RetileOptions::adaptive_density`].
     pub adaptive_density: bool,
+    /// [`SwingTuning::front_contexts`](crate::SwingTuning).
+    pub front_contexts: bool,
 }
 
 /// A finished encoding.
@@ -105,7 +107,14 @@ fn run(
     };
     match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {
-            let (bytes, stats) = crate::swing::write(&c.retiled)?;
+            let (bytes, stats) = crate::swing::write(
+                &c.retiled,
+                if knobs.front_contexts {
+                    crate::swing::Clers::Smaller
+                } else {
+                    crate::swing::Clers::Plain
+                },
+            )?;
             Ok(Ok((bytes, stats, c.report)))
         }
         Err(Failure::Limit) => Err(budget.error().map_or(

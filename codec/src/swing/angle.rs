@@ -414,7 +414,7 @@ pub fn rebuild_positions(
 }
 
 /// Appends a point whose coordinates are finite and stay finite as f32.
-fn push_point(x: &mut Vec<[f64; 3]>, p: [f64; 3]) -> Result<(), Error> {
+pub(super) fn push_point(x: &mut Vec<[f64; 3]>, p: [f64; 3]) -> Result<(), Error> {
     if p.iter().all(|&c| (c as f32).is_finite()) {
         x.push(p);
         Ok(())

@@ -94,63 +94,133 @@ fn symbol(d: i8) -> u32 {
     }
 }
 
+/// The DENS coder, one C tip at a time, in coding order: the state
+/// [`encode`] and the forward pass of `CLRF` (`swing::forward`) share.
+#[cfg(feature = "encoder")]
+pub(super) struct Writer {
+    enc: Encoder,
+    models: ContextModel,
+    level: Vec<i8>,
+    stepped: Vec<bool>,
+}
+
+#[cfg(feature = "encoder")]
+impl Writer {
+    pub(super) fn new(vertices: usize) -> Writer {
+        Writer {
+            enc: Encoder::new(),
+            models: ContextModel::new(3, 3),
+            level: vec![0; vertices],
+            stepped: vec![false; vertices],
+        }
+    }
+
+    /// Codes step `d` of C tip `tip` on the gate `gl`, `gr`; returns the
+    /// tip's level.
+    pub(super) fn put(&mut self, d: i8, tip: usize, gl: usize, gr: usize) -> Result<i8, Error> {
+        if tip >= self.level.len() || gl >= tip || gr >= tip {
+            return Err(bad("a C tip out of range"));
+        }
+        if !(-1..=1).contains(&d) {
+            return Err(bad("a level step out of range"));
+        }
+        let l = gate_level(self.level[gl], self.level[gr]) + d;
+        if l.abs() > LEVEL_MAX {
+            return Err(bad("a level step out of range"));
+        }
+        self.enc
+            .encode(self.models.get(context(&self.stepped, gl, gr)), symbol(d));
+        self.level[tip] = l;
+        self.stepped[tip] = d != 0;
+        Ok(l)
+    }
+
+    pub(super) fn finish(self) -> Vec<u8> {
+        self.enc.finish()
+    }
+}
+
+/// The DENS decoder, the mirror of [`Writer`].
+pub(super) struct Reader<'a> {
+    dec: Decoder<'a>,
+    models: ContextModel,
+    level: Vec<i8>,
+    stepped: Vec<bool>,
+}
+
+impl<'a> Reader<'a> {
+    /// The stream `bytes` of a mesh of `vertices` vertices (the caller
+    /// has checked that count against the limits).
+    pub(super) fn new(bytes: &'a [u8], vertices: usize) -> Result<Reader<'a>, Error> {
+        Ok(Reader {
+            dec: Decoder::new(bytes)?,
+            models: ContextModel::new(3, 3),
+            level: vec![0; vertices],
+            stepped: vec![false; vertices],
+        })
+    }
+
+    /// The level of C tip `tip` on the gate `gl`, `gr`.
+    pub(super) fn get(&mut self, tip: usize, gl: usize, gr: usize) -> Result<i8, Error> {
+        if tip >= self.level.len() || gl >= tip || gr >= tip {
+            return Err(bad("a C tip is built on vertices not yet placed"));
+        }
+        let d = match self
+            .dec
+            .decode(self.models.get(context(&self.stepped, gl, gr)))?
+        {
+            0 => 0,
+            1 => -1,
+            _ => 1,
+        };
+        let l = gate_level(self.level[gl], self.level[gr]) + d;
+        if l.abs() > LEVEL_MAX {
+            return Err(bad("a level beyond the largest"));
+        }
+        self.level[tip] = l;
+        self.stepped[tip] = d != 0;
+        Ok(l)
+    }
+
+    /// Checks that the stream ends where its encoder finished it.
+    pub(super) fn finish(self) -> Result<(), Error> {
+        self.dec.finish()
+    }
+}
+
 /// Codes one step per C tip of the decoded `table` (each −1, 0 or 1,
 /// levels within ±[`LEVEL_MAX`]); returns the stream.
 #[cfg(feature = "encoder")]
 pub(crate) fn encode(table: &CornerTable, steps: &[i8]) -> Result<Vec<u8>, Error> {
-    let mut models = ContextModel::new(3, 3);
-    let mut level = vec![0i8; table.vertex_count()];
-    let mut stepped = vec![false; table.vertex_count()];
-    let mut enc = Encoder::new();
+    let mut w = Writer::new(table.vertex_count());
     let mut used = 0;
     super::residual::for_each_c(table, |k, tip, gl, gr| {
         used += 1;
         let d = *steps.get(k).ok_or(bad("fewer level steps than C tips"))?;
-        let l = gate_level(level[gl], level[gr]) + d;
-        if !(-1..=1).contains(&d) || l.abs() > LEVEL_MAX {
-            return Err(bad("a level step out of range"));
-        }
-        enc.encode(models.get(context(&stepped, gl, gr)), symbol(d));
-        level[tip] = l;
-        stepped[tip] = d != 0;
-        Ok(())
+        w.put(d, tip, gl, gr).map(|_| ())
     })?;
     if used != steps.len() {
         return Err(bad("more level steps than C tips"));
     }
-    Ok(enc.finish())
+    Ok(w.finish())
 }
 
 /// Decodes `count` steps for the C tips of the decoded `table`; returns
 /// each C tip's level, in the order of the codes.
 pub(crate) fn decode(table: &CornerTable, bytes: &[u8], count: usize) -> Result<Vec<i8>, Error> {
-    let mut models = ContextModel::new(3, 3);
-    let mut level = vec![0i8; table.vertex_count()];
-    let mut stepped = vec![false; table.vertex_count()];
+    let mut r = Reader::new(bytes, table.vertex_count())?;
     let mut levels = Vec::with_capacity(count);
-    let mut dec = Decoder::new(bytes)?;
     super::residual::for_each_c(table, |_, tip, gl, gr| {
         if levels.len() == count {
             return Err(bad("more C tips than level steps"));
         }
-        let d = match dec.decode(models.get(context(&stepped, gl, gr)))? {
-            0 => 0,
-            1 => -1,
-            _ => 1,
-        };
-        let l = gate_level(level[gl], level[gr]) + d;
-        if l.abs() > LEVEL_MAX {
-            return Err(bad("a level beyond the largest"));
-        }
-        level[tip] = l;
-        stepped[tip] = d != 0;
-        levels.push(l);
+        levels.push(r.get(tip, gl, gr)?);
         Ok(())
     })?;
     if levels.len() != count {
         return Err(bad("fewer C tips than level steps"));
     }
-    dec.finish()?;
+    r.finish()?;
     Ok(levels)
 }
 
@@ -201,6 +271,7 @@ mod tests {
                 approximate_tips: true,
                 fit_tips: true,
                 adaptive_density: true,
+                front_contexts: false,
             },
             ..EncodeOptions::default()
         };

@@ -126,7 +126,7 @@ fn measured_files() -> Vec<(String, Vec<u8>)> {
 /// table and number of C tips.
 fn open(bytes: &[u8]) -> (Container<'_>, read::Head, Connectivity, CornerTable, usize) {
     let file = parse_container(bytes, &Limits::default()).unwrap();
-    let (head, conn, table) = read::read_connectivity(&file, &Limits::default()).unwrap();
+    let (head, conn, table, _) = read::read_connectivity(&file, &Limits::default()).unwrap();
     let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
     (file, head, conn, table, count)
 }

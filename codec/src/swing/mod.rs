@@ -6,7 +6,9 @@
 //! Sections (format-spec/05-swing.md):
 //! * `HEAD`: `u8 K`, `u16 q_pred`, then per component the three vertices
 //!   of its first triangle as `f32 ×9`;
-//! * `TOPO`, `CLRS`: as in the lossless mode (no dummy vertices);
+//! * `TOPO`, `CLRS`: as in the lossless mode (no dummy vertices); or,
+//!   format 1.1, `TOPO` and `CLRF`: the symbols coded in a forward pass
+//!   with the front's shape at each gate as context ([`forward`]);
 //! * `GEOM`: the angle residuals `(q − q_pred) mod 2^K`, range coded
 //!   ([`residual`]);
 //! * `HOLE` (only when some triangle is masked): one bit per triangle,
@@ -21,6 +23,7 @@
 //! vertices only they used are dropped, and `REST`'s mesh appended.
 //!
 //! One concern per file: `angle` (the exact arithmetic of a tip),
+//! `front` and `forward` (the `CLRF` pass and its loops),
 //! `residual` (the GEOM stream), `hole` (the HOLE stream and the
 //! dropping rule), `write` (the encoder side), `read` (the decoder side
 //! and `inspect`).
@@ -29,6 +32,8 @@ use crate::prelude::*;
 
 mod angle;
 mod density;
+mod forward;
+mod front;
 mod hole;
 mod read;
 mod residual;
@@ -48,7 +53,7 @@ pub(crate) use density::{gate_level, ratio as level_ratio, LEVEL_MAX};
 pub use angle::{quantize, tip_radius, AngleTable, Frame};
 pub(crate) use read::{decode, inspect, rest_counts};
 #[cfg(feature = "encoder")]
-pub(crate) use write::write;
+pub(crate) use write::{write, Clers};
 
 use crate::edgebreaker::Symbol;
 #[cfg(feature = "encoder")]
@@ -121,7 +126,7 @@ pub struct SwingStats {
     pub cr_share: f64,
     /// Share of the vertices of valence 6 (0 to 1).
     pub valence6_share: f64,
-    /// Bits per triangle of the connectivity (`TOPO` and `CLRS`).
+    /// Bits per triangle of the connectivity (`TOPO` and `CLRS` or `CLRF`).
     pub connectivity_bits_per_triangle: f64,
     /// Bits per triangle of the angles (`GEOM`).
     pub geometry_bits_per_triangle: f64,
@@ -201,7 +206,7 @@ impl SwingStats {
             clers,
             cr_share: (clers[Symbol::C as usize] + clers[Symbol::R as usize]) as f64 / labels,
             valence6_share: six as f64 / valence.len().max(1) as f64,
-            connectivity_bits_per_triangle: per_triangle(bytes_of(&[b"TOPO", b"CLRS"])),
+            connectivity_bits_per_triangle: per_triangle(bytes_of(&[b"TOPO", b"CLRS", b"CLRF"])),
             geometry_bits_per_triangle: per_triangle(geom),
             bits_per_angle: 8.0 * geom as f64 / (clers[Symbol::C as usize].max(1)) as f64,
             sections,

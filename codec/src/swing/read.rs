@@ -99,14 +99,69 @@ pub(crate) fn read_head(bytes: &[u8], components: u32) -> Result<Head, Error> {
     })
 }
 
-/// Reads `HEAD`, `TOPO` and `CLRS` and decodes the connectivity.
+/// The angle codes and levels the forward pass of `CLRF` read on its
+/// way (a `CLRS` file decodes them from the corner table instead).
+pub(super) struct Tips {
+    pub codes: Vec<u32>,
+    pub levels: Option<Vec<i8>>,
+}
+
+/// Reads `HEAD`, `TOPO` and `CLRS` or `CLRF` and decodes the
+/// connectivity; with `CLRF`, also the tips' codes and levels.
 pub(super) fn read_connectivity(
     file: &Container<'_>,
     limits: &Limits,
-) -> Result<(Head, Connectivity, CornerTable), Error> {
+) -> Result<(Head, Connectivity, CornerTable, Option<Tips>), Error> {
     let h = &file.header;
     let head = read_head(file.require(Tag::HEAD)?.bytes, h.component_count)?;
-    let (conn, dummies) = crate::lossless::read_topology(file, limits)?;
+    let (conn, dummies, tips) = match (file.find(Tag::CLRS), file.find(Tag::CLRF)) {
+        (Some(_), Some(_)) => return Err(bad("a file with both CLRS and CLRF")),
+        (_, None) => {
+            let (conn, dummies) = crate::lossless::read_topology(file, limits)?;
+            (conn, dummies, None)
+        }
+        (None, Some(clrf)) => {
+            let (mut conn, dummies, count) =
+                crate::lossless::read_topo(file, limits, clrf.bytes.len())?;
+            // The counts the header declares, checked against TOPO's before
+            // anything is sized by them: T = S + C, and every vertex is a
+            // first vertex or a C tip, so V ≤ 3C + S.
+            let components = u64::from(h.component_count);
+            let triangles = count as u64 + components;
+            if triangles != u64::from(h.triangle_count) {
+                let declared = h.triangle_count.into();
+                return Err(crate::lossless::mismatch("triangles", declared, triangles));
+            }
+            if u64::from(h.vertex_count) > 3 * components + count as u64 {
+                return Err(bad("more vertices than the symbols can place"));
+            }
+            let vertices = h.vertex_count as usize;
+            // Per vertex: a position, a residual length, a level and a
+            // step flag; per symbol: up to two nodes of 17 bytes, the
+            // symbol, a code and a level.
+            let (v, s) = (vertices as u64, count as u64);
+            limits.check_alloc(v.saturating_mul(28).saturating_add(s.saturating_mul(40)))?;
+            let geom = file.require(Tag::GEOM)?;
+            let dens = file.find(Tag::DENS).map(|s| s.bytes);
+            let d = super::forward::decode(
+                clrf.bytes,
+                geom.bytes,
+                dens,
+                &head.first,
+                head.bits,
+                head.predicted,
+                vertices,
+                count,
+            )
+            .map_err(in_section(clrf.offset))?;
+            conn.symbols = d.symbols;
+            let tips = Tips {
+                codes: d.codes,
+                levels: d.levels,
+            };
+            (conn, dummies, Some(tips))
+        }
+    };
     if !dummies.is_empty() {
         return Err(bad("a SwingWrapper file has no dummy vertices"));
     }
@@ -119,7 +174,7 @@ pub(super) fn read_connectivity(
         ));
     }
     let table = edgebreaker::decode(&conn)?;
-    Ok((head, conn, table))
+    Ok((head, conn, table, tips))
 }
 
 /// Locates an error found inside a section whose payload starts at file
@@ -192,7 +247,7 @@ fn rest_frame<'a>(
 
 /// Decodes a SwingWrapper file whose container was parsed.
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
-    let (head, conn, table) = read_connectivity(file, limits)?;
+    let (head, conn, table, tips) = read_connectivity(file, limits)?;
     // REST's frame first: the whole output must fit the limits before
     // anything is decoded.
     let rest = rest_frame(file, limits)?;
@@ -210,8 +265,13 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     // mask bit per triangle and a new number per vertex.
     let (v, t) = (table.vertex_count() as u64, table.face_count() as u64);
     limits.check_alloc(v.saturating_mul(45).saturating_add(t.saturating_mul(13)))?;
-    let codes = residual::decode(&table, geom, count, head.bits, head.predicted)?;
-    let levels = read_levels(file, &table, count)?;
+    let (codes, levels) = match tips {
+        Some(t) => (t.codes, t.levels),
+        None => (
+            residual::decode(&table, geom, count, head.bits, head.predicted)?,
+            read_levels(file, &table, count)?,
+        ),
+    };
     let x =
         super::angle::rebuild_positions(&table, &head.first, head.bits, &codes, levels.as_deref())?;
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
@@ -276,7 +336,7 @@ pub(crate) fn inspect(
     limits: &Limits,
     file_bytes: usize,
 ) -> Result<(Connectivity, SwingStats), Error> {
-    let (head, conn, table) = read_connectivity(file, limits)?;
+    let (head, conn, table, tips) = read_connectivity(file, limits)?;
     let masked = match file.find(Tag::HOLE) {
         Some(s) => hole::decode(&table, s.bytes)
             .map_err(in_section(s.offset))?
@@ -301,7 +361,10 @@ pub(crate) fn inspect(
     let sections = file.sections().map(|s| (s.tag.0, s.bytes.len())).collect();
     // The density needs only the corner table, like the mask.
     let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
-    let levels = read_levels(file, &table, count)?;
+    let levels = match tips {
+        Some(t) => t.levels,
+        None => read_levels(file, &table, count)?,
+    };
     let mut stats = SwingStats::new(
         &head,
         &table,

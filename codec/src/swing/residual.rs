@@ -118,6 +118,122 @@ pub(crate) fn predict(codes: &[u32], angles: &super::AngleTable) -> u32 {
     best.0
 }
 
+/// The GEOM coder, one C tip at a time, in coding order: the state
+/// [`encode`] and the forward pass of `CLRF` (`swing::forward`) share.
+#[cfg(feature = "encoder")]
+pub(super) struct Writer {
+    enc: Encoder,
+    models: Models,
+    lengths: Vec<u8>,
+    n: i64,
+    predicted: u32,
+}
+
+#[cfg(feature = "encoder")]
+impl Writer {
+    /// A fresh stream for a mesh of `vertices` vertices.
+    pub(super) fn new(vertices: usize, bits: u8, predicted: u32) -> Writer {
+        Writer {
+            enc: Encoder::new(),
+            models: Models::new(bits),
+            lengths: vec![0; vertices],
+            n: 1i64 << bits,
+            predicted,
+        }
+    }
+
+    /// Codes `q`, the code of C tip `tip` on the gate `gl`, `gr` (vertex
+    /// numbers below the mesh's count, `tip` the next one).
+    pub(super) fn put(&mut self, q: u32, tip: usize, gl: usize, gr: usize) -> Result<(), Error> {
+        if tip >= self.lengths.len() || gl >= tip || gr >= tip || i64::from(q) >= self.n {
+            return Err(bad("an angle code or a C tip out of range"));
+        }
+        let mut s = (i64::from(q) - i64::from(self.predicted)).rem_euclid(self.n);
+        if s >= self.n / 2 {
+            s -= self.n;
+        }
+        let z = if s >= 0 { 2 * s } else { -2 * s - 1 } as u32;
+        let l = bit_length(z);
+        let ctx = self.lengths[gl].max(self.lengths[gr]) as usize;
+        self.enc.encode(self.models.len.get(ctx), l);
+        if l >= 2 {
+            let top = (l - 1).min(2);
+            let below = l - 1 - top;
+            self.enc.encode(
+                &mut self.models.man[l as usize],
+                (z >> below) & ((1 << top) - 1),
+            );
+            if below > 0 {
+                self.enc.encode_bits(z & ((1 << below) - 1), below);
+            }
+        }
+        self.lengths[tip] = l as u8;
+        Ok(())
+    }
+
+    pub(super) fn finish(self) -> Vec<u8> {
+        self.enc.finish()
+    }
+}
+
+/// The GEOM decoder, the mirror of [`Writer`].
+pub(super) struct Reader<'a> {
+    dec: Decoder<'a>,
+    models: Models,
+    lengths: Vec<u8>,
+    n: i64,
+    predicted: u32,
+}
+
+impl<'a> Reader<'a> {
+    /// The stream `bytes` of a mesh of `vertices` vertices (the caller
+    /// has checked that count against the limits).
+    pub(super) fn new(
+        bytes: &'a [u8],
+        vertices: usize,
+        bits: u8,
+        predicted: u32,
+    ) -> Result<Reader<'a>, Error> {
+        Ok(Reader {
+            dec: Decoder::new(bytes)?,
+            models: Models::new(bits),
+            lengths: vec![0; vertices],
+            n: 1i64 << bits,
+            predicted,
+        })
+    }
+
+    /// The code of C tip `tip` on the gate `gl`, `gr`.
+    pub(super) fn get(&mut self, tip: usize, gl: usize, gr: usize) -> Result<u32, Error> {
+        if tip >= self.lengths.len() || gl >= tip || gr >= tip {
+            return Err(bad("a C tip is built on vertices not yet placed"));
+        }
+        let ctx = self.lengths[gl].max(self.lengths[gr]) as usize;
+        let l = self.dec.decode(self.models.len.get(ctx))?;
+        let z = match l {
+            0 | 1 => l,
+            _ => {
+                let top = (l - 1).min(2);
+                let below = l - 1 - top;
+                let hi = self.dec.decode(&mut self.models.man[l as usize])?;
+                let low = if below > 0 {
+                    self.dec.decode_bits(below)?
+                } else {
+                    0
+                };
+                (((1 << top) | hi) << below) | low
+            }
+        };
+        self.lengths[tip] = l as u8;
+        Ok((i64::from(self.predicted) + unzigzag(z)).rem_euclid(self.n) as u32)
+    }
+
+    /// Checks that the stream ends where its encoder finished it.
+    pub(super) fn finish(self) -> Result<(), Error> {
+        self.dec.finish()
+    }
+}
+
 /// Codes the C tips' codes (all below 2^K) of the decoded `table`.
 #[cfg(feature = "encoder")]
 pub(crate) fn encode(
@@ -126,37 +242,17 @@ pub(crate) fn encode(
     bits: u8,
     predicted: u32,
 ) -> Result<Vec<u8>, Error> {
-    let n = 1i64 << bits;
-    let mut models = Models::new(bits);
-    let mut lengths = vec![0u8; table.vertex_count()];
-    let mut enc = Encoder::new();
+    let mut w = Writer::new(table.vertex_count(), bits, predicted);
     let mut used = 0;
     for_each_c(table, |k, tip, gl, gr| {
         used += 1;
         let q = *codes.get(k).ok_or(bad("fewer angle codes than C tips"))?;
-        let mut s = (i64::from(q) - i64::from(predicted)).rem_euclid(n);
-        if s >= n / 2 {
-            s -= n;
-        }
-        let z = if s >= 0 { 2 * s } else { -2 * s - 1 } as u32;
-        let l = bit_length(z);
-        let ctx = lengths[gl].max(lengths[gr]) as usize;
-        enc.encode(models.len.get(ctx), l);
-        if l >= 2 {
-            let top = (l - 1).min(2);
-            let below = l - 1 - top;
-            enc.encode(&mut models.man[l as usize], (z >> below) & ((1 << top) - 1));
-            if below > 0 {
-                enc.encode_bits(z & ((1 << below) - 1), below);
-            }
-        }
-        lengths[tip] = l as u8;
-        Ok(())
+        w.put(q, tip, gl, gr)
     })?;
     if used != codes.len() {
         return Err(bad("more angle codes than C tips"));
     }
-    Ok(enc.finish())
+    Ok(w.finish())
 }
 
 /// Decodes `count` codes for the C tips of the decoded `table`.
@@ -167,39 +263,18 @@ pub(crate) fn decode(
     bits: u8,
     predicted: u32,
 ) -> Result<Vec<u32>, Error> {
-    let n = 1i64 << bits;
-    let mut models = Models::new(bits);
-    let mut lengths = vec![0u8; table.vertex_count()];
+    let mut r = Reader::new(bytes, table.vertex_count(), bits, predicted)?;
     let mut codes = Vec::with_capacity(count);
-    let mut dec = Decoder::new(bytes)?;
     for_each_c(table, |_, tip, gl, gr| {
-        let ctx = lengths[gl].max(lengths[gr]) as usize;
-        let l = dec.decode(models.len.get(ctx))?;
-        let z = match l {
-            0 | 1 => l,
-            _ => {
-                let top = (l - 1).min(2);
-                let below = l - 1 - top;
-                let hi = dec.decode(&mut models.man[l as usize])?;
-                let low = if below > 0 {
-                    dec.decode_bits(below)?
-                } else {
-                    0
-                };
-                (((1 << top) | hi) << below) | low
-            }
-        };
-        let q = (i64::from(predicted) + unzigzag(z)).rem_euclid(n) as u32;
         if codes.len() == count {
             return Err(bad("more C tips than angle codes"));
         }
-        codes.push(q);
-        lengths[tip] = l as u8;
+        codes.push(r.get(tip, gl, gr)?);
         Ok(())
     })?;
     if codes.len() != count {
         return Err(bad("fewer C tips than angle codes"));
     }
-    dec.finish()?;
+    r.finish()?;
     Ok(codes)
 }

@@ -315,13 +315,82 @@ fn test_meshes() -> Vec<(&'static str, TriMesh)> {
     ]
 }
 
+/// `CLRF` follows Edgebreaker on every emulated mesh, handles (the
+/// torus: S* and skipped gates) and several components included, and
+/// decodes to the mesh `CLRS` decodes to.
+#[test]
+fn front_coded_symbols_decode_to_the_clrs_mesh() {
+    use crate::edgebreaker::tests_support::{tetra, torus};
+    let mut meshes = test_meshes();
+    meshes.push(("torus-8x5", torus(8, 5)));
+    meshes.push(("torus-3x3", torus(3, 3)));
+    let mut two = torus(6, 4);
+    let t = tetra();
+    let base = two.positions.len() as u32;
+    two.positions
+        .extend(t.positions.iter().map(|p| [p[0] + 5.0, p[1], p[2]]));
+    two.triangles
+        .extend(t.triangles.iter().map(|f| f.map(|v| v + base)));
+    meshes.push(("torus-and-tetrahedron", two));
+    for (name, mesh) in meshes {
+        let r = emulate(&mesh, 8);
+        let front = write(&r, Clers::Front).unwrap().0;
+        let plain = write(&r, Clers::Plain).unwrap().0;
+        let best = write(&r, Clers::Smaller).unwrap().0;
+        assert_eq!(best.len(), front.len().min(plain.len()), "{name}");
+        let file = crate::container::parse_container(&front, &crate::Limits::default()).unwrap();
+        assert!(
+            file.find(Tag::CLRF).is_some(),
+            "{name}: the pass did not follow"
+        );
+        assert!(file.find(Tag::CLRS).is_none(), "{name}: both sections");
+        assert_eq!((file.header.major, file.header.minor), (1, 1), "{name}");
+        let plain_file =
+            crate::container::parse_container(&plain, &crate::Limits::default()).unwrap();
+        assert_eq!(plain_file.header.minor, 0, "{name}: CLRS files stay 1.0");
+        let (a, b) = (decode_bytes(&front).unwrap(), decode_bytes(&plain).unwrap());
+        assert_eq!(a, b, "{name}: the two files decode differently");
+        assert_eq!(a.triangles, r.triangles, "{name}");
+        println!(
+            "{name}: {} bytes with CLRF, {} with CLRS",
+            front.len(),
+            plain.len()
+        );
+    }
+}
+
+/// A file may carry its symbols in one section only.
+#[test]
+fn a_file_with_both_clrs_and_clrf_is_an_error() {
+    let front = small_file_with(true);
+    let plain = small_file_with(false);
+    let limits = crate::Limits::default();
+    let clrs = crate::container::parse_container(&plain, &limits)
+        .unwrap()
+        .section(Tag::CLRS)
+        .unwrap()
+        .to_vec();
+    let file = crate::container::parse_container(&front, &limits).unwrap();
+    let mut owned: Vec<(Tag, Vec<u8>)> =
+        file.sections().map(|s| (s.tag, s.bytes.to_vec())).collect();
+    owned.push((Tag::CLRS, clrs));
+    let refs: Vec<(Tag, &[u8])> = owned.iter().map(|(t, b)| (*t, b.as_slice())).collect();
+    let both = crate::container::write_container(&file.header, &refs).unwrap();
+    assert!(decode_bytes(&both).is_err());
+}
+
 #[test]
 fn emulated_retilings_roundtrip_bit_for_bit() {
     for (name, mesh) in test_meshes() {
         for bits in [4, 8, 12] {
             let r = emulate(&mesh, bits);
-            let (bytes, stats) = write(&r).unwrap_or_else(|e| panic!("{name}: {e}"));
-            assert_eq!(write(&r).unwrap().0, bytes, "{name}: not deterministic");
+            let (bytes, stats) =
+                write(&r, Clers::Smaller).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(
+                write(&r, Clers::Smaller).unwrap().0,
+                bytes,
+                "{name}: not deterministic"
+            );
             let out = decode_bytes(&bytes).unwrap_or_else(|e| panic!("{name} K={bits}: {e}"));
             assert_eq!(out.triangles, r.triangles, "{name}: triangles differ");
             assert_eq!(out.positions.len(), r.positions.len());
@@ -363,7 +432,7 @@ fn file_size_obeys_the_thesis_bound() {
     // bits <= 288 + 5.83·T + allowance (format-spec/05-swing.md).
     for (name, mesh) in test_meshes() {
         let r = emulate(&mesh, 8);
-        let (bytes, stats) = write(&r).unwrap();
+        let (bytes, stats) = write(&r, Clers::Smaller).unwrap();
         let bound = 288.0 + 5.83 * stats.triangles as f64 + 8.0 * 85.0;
         assert!(
             (8 * bytes.len()) as f64 <= bound,
@@ -376,23 +445,29 @@ fn file_size_obeys_the_thesis_bound() {
 #[test]
 fn the_writer_refuses_an_inconsistent_retiling() {
     let good = emulate(&flat_icosahedron(2), 8);
-    assert!(write(&good).is_ok());
+    assert!(write(&good, Clers::Smaller).is_ok());
     let mut bad = good.clone();
     bad.codes[5] ^= 1;
-    assert!(write(&bad).is_err(), "positions no longer match the codes");
+    assert!(
+        write(&bad, Clers::Smaller).is_err(),
+        "positions no longer match the codes"
+    );
     let mut bad = good.clone();
     bad.codes.push(0);
-    assert!(write(&bad).is_err(), "one code too many");
+    assert!(write(&bad, Clers::Smaller).is_err(), "one code too many");
     let mut bad = good.clone();
     bad.positions[7][1] += 1e-9;
-    assert!(write(&bad).is_err(), "moved vertex");
+    assert!(write(&bad, Clers::Smaller).is_err(), "moved vertex");
     let mut bad = good.clone();
     bad.first[0][0][0] += 1e-12;
     bad.positions[0] = bad.first[0][0];
-    assert!(write(&bad).is_err(), "first vertex is not binary32");
+    assert!(
+        write(&bad, Clers::Smaller).is_err(),
+        "first vertex is not binary32"
+    );
     let mut bad = good.clone();
     bad.edge_length *= 1.0 + f64::EPSILON;
-    assert!(write(&bad).is_err(), "edge length");
+    assert!(write(&bad, Clers::Smaller).is_err(), "edge length");
     let mut bad = good.clone();
     let other = bad
         .symbols
@@ -400,29 +475,47 @@ fn the_writer_refuses_an_inconsistent_retiling() {
         .position(|&x| x != bad.symbols[0])
         .unwrap();
     bad.symbols.swap(0, other);
-    assert!(write(&bad).is_err(), "symbols");
+    assert!(write(&bad, Clers::Smaller).is_err(), "symbols");
     let mut bad = good.clone();
     bad.triangles.swap(3, 4);
-    assert!(write(&bad).is_err(), "triangle order");
+    assert!(write(&bad, Clers::Smaller).is_err(), "triangle order");
     let mut bad = good.clone();
     bad.triangles[2] = [
         bad.triangles[2][1],
         bad.triangles[2][2],
         bad.triangles[2][0],
     ];
-    assert!(write(&bad).is_err(), "tip corner");
+    assert!(write(&bad, Clers::Smaller).is_err(), "tip corner");
     let mut bad = good.clone();
     bad.angle_bits = 13;
-    assert!(matches!(write(&bad), Err(Error::Parameter(_))));
+    assert!(matches!(
+        write(&bad, Clers::Smaller),
+        Err(Error::Parameter(_))
+    ));
 }
 
 fn small_file() -> Vec<u8> {
-    write(&emulate(&flat_icosahedron(1), 8)).unwrap().0
+    small_file_with(true)
+}
+
+/// The small file with its symbols in `CLRF` (`front`) or in `CLRS`.
+fn small_file_with(front: bool) -> Vec<u8> {
+    write(
+        &emulate(&flat_icosahedron(1), 8),
+        if front { Clers::Front } else { Clers::Plain },
+    )
+    .unwrap()
+    .0
 }
 
 #[test]
 fn truncated_and_flipped_files_are_errors() {
-    let bytes = small_file();
+    for front in [false, true] {
+        truncated_and_flipped(small_file_with(front));
+    }
+}
+
+fn truncated_and_flipped(bytes: Vec<u8>) {
     for cut in 0..bytes.len() {
         assert!(decode_bytes(&bytes[..cut]).is_err(), "prefix {cut} decoded");
     }
@@ -457,7 +550,13 @@ use crate::container::Tag;
 
 #[test]
 fn hostile_sections_with_valid_frames_are_errors() {
-    let bytes = small_file();
+    for front in [false, true] {
+        hostile_sections(front);
+    }
+}
+
+fn hostile_sections(front: bool) {
+    let bytes = small_file_with(front);
     let limits = crate::Limits::default();
     let file = crate::container::parse_container(&bytes, &limits).unwrap();
     let head = file.section(Tag::HEAD).unwrap().to_vec();
@@ -520,7 +619,8 @@ fn hostile_sections_with_valid_frames_are_errors() {
     t.truncate(4);
     assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::TOPO, &t)).is_err());
     // Sections missing.
-    for tag in [Tag::HEAD, Tag::TOPO, Tag::CLRS, Tag::GEOM] {
+    let clers = if front { Tag::CLRF } else { Tag::CLRS };
+    for tag in [Tag::HEAD, Tag::TOPO, clers, Tag::GEOM] {
         let owned: Vec<(Tag, Vec<u8>)> = file
             .sections()
             .filter(|s| s.tag != tag)
@@ -794,8 +894,12 @@ fn assert_same_bits(got: &TriMesh, want: &TriMesh, what: &str) {
 /// Encodes `r`, checks that decoding and `inspect` agree with the writer,
 /// returns the bytes, the stats and the decoded mesh.
 fn roundtrip(r: &Retiled) -> (Vec<u8>, SwingStats, TriMesh) {
-    let (bytes, stats) = write(r).unwrap();
-    assert_eq!(write(r).unwrap().0, bytes, "not deterministic");
+    let (bytes, stats) = write(r, Clers::Smaller).unwrap();
+    assert_eq!(
+        write(r, Clers::Smaller).unwrap().0,
+        bytes,
+        "not deterministic"
+    );
     let out = decode_bytes(&bytes).unwrap();
     out.validate().unwrap();
     let info = crate::inspect(&bytes, &crate::Limits::default()).unwrap();
@@ -823,13 +927,22 @@ fn two_components_roundtrip_bit_for_bit() {
     let good = emulate(&mesh, 8);
     let mut bad = good.clone();
     bad.first[1][2][1] = f64::from(bad.first[1][2][1] as f32 + 0.5);
-    assert!(write(&bad).is_err(), "second first triangle moved");
+    assert!(
+        write(&bad, Clers::Smaller).is_err(),
+        "second first triangle moved"
+    );
     let mut bad = good.clone();
     bad.first.pop();
-    assert!(write(&bad).is_err(), "one first triangle missing");
+    assert!(
+        write(&bad, Clers::Smaller).is_err(),
+        "one first triangle missing"
+    );
     let mut bad = good.clone();
     bad.first.push(bad.first[1]);
-    assert!(write(&bad).is_err(), "one first triangle too many");
+    assert!(
+        write(&bad, Clers::Smaller).is_err(),
+        "one first triangle too many"
+    );
 }
 
 #[test]
@@ -859,11 +972,13 @@ fn a_masked_disk_is_dropped_by_the_decoder() {
     // An all-false mask writes no HOLE: the same bytes as no mask at all.
     let mut none = r.clone();
     none.hole_mask = vec![false; r.triangles.len()];
-    let plain = write(&emulate(&sphere(4, |_| 1.0), 8)).unwrap().0;
-    assert_eq!(write(&none).unwrap().0, plain);
+    let plain = write(&emulate(&sphere(4, |_| 1.0), 8), Clers::Smaller)
+        .unwrap()
+        .0;
+    assert_eq!(write(&none, Clers::Smaller).unwrap().0, plain);
     // A mask of the wrong length is the retiler's bug.
     none.hole_mask.pop();
-    assert!(write(&none).is_err());
+    assert!(write(&none, Clers::Smaller).is_err());
 }
 
 fn stats_boundary_edges(mesh: &TriMesh) -> usize {
@@ -983,7 +1098,10 @@ fn the_lossless_rest_follows_the_retiled_mesh() {
     let mut r0 = r.clone();
     r0.rest = Some((TriMesh::default(), 12));
     r.rest = None;
-    assert_eq!(write(&r0).unwrap().0, write(&r).unwrap().0);
+    assert_eq!(
+        write(&r0, Clers::Smaller).unwrap().0,
+        write(&r, Clers::Smaller).unwrap().0
+    );
 }
 
 #[test]
@@ -1012,7 +1130,7 @@ fn file_with_hole_and_rest() -> Vec<u8> {
     r.hole_mask = disk_mask(&r, [0.0, 0.0, 1.0], 40.0);
     assert!(r.hole_mask.contains(&true));
     r.rest = Some((crate::edgebreaker::tests_support::tetra(), 8));
-    write(&r).unwrap().0
+    write(&r, Clers::Smaller).unwrap().0
 }
 
 #[test]

@@ -100,6 +100,7 @@ impl Config {
             approximate_tips: self != Config::SwingOnSurface,
             fit_tips: self != Config::SwingOnSurface,
             adaptive_density: self == Config::SwingAdaptive,
+            front_contexts: true,
         }
     }
 
