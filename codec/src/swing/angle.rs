@@ -413,6 +413,59 @@ pub fn rebuild_positions(
     Ok(x)
 }
 
+/// Whether [`rebuild_positions`] on `table` would build every C tip on
+/// the gate and previous tip listed in `gates` (GL, GR, P per C tip, in
+/// order), after checking the table's numbering as it does (same walk,
+/// same errors, `first` first triangles). When it would, and the codes,
+/// levels and first triangles are the same, it places every vertex
+/// exactly where the `CLRF` pass did (the same arithmetic on the same
+/// inputs), so the decoder keeps the pass's positions instead of
+/// computing them twice.
+pub(super) fn gates_match(
+    table: &CornerTable,
+    first: usize,
+    gates: &[[u32; 3]],
+) -> Result<bool, Error> {
+    let v = table.vertices();
+    let (mut next, mut firsts, mut k) = (0u64, 0usize, 0usize);
+    let mut same = true;
+    for t in 0..table.face_count() {
+        let [a, b, c] = [v[3 * t].0, v[3 * t + 1].0, v[3 * t + 2].0].map(u64::from);
+        if b >= next {
+            if (a, b, c) != (next, next + 1, next + 2) {
+                return Err(bad("vertices are not numbered in coding order"));
+            }
+            firsts += 1;
+            if firsts > first {
+                return Err(bad("more components than first triangles"));
+            }
+            next += 3;
+        } else if a == next {
+            let tip = table.opposite(CornerId(3 * t as u32));
+            let prev = if tip.is_some() && tip.idx() < v.len() {
+                u64::from(v[tip.idx()].0)
+            } else {
+                u64::MAX
+            };
+            if c >= next || prev >= next {
+                return Err(bad("a C tip is built on vertices not yet placed"));
+            }
+            same &= gates.get(k).map(|g| g.map(u64::from)) == Some([b, c, prev]);
+            k += 1;
+            next += 1;
+        } else if a > next || c >= next {
+            return Err(bad("vertices are not numbered in coding order"));
+        }
+    }
+    if firsts != first {
+        return Err(bad("more first triangles than components"));
+    }
+    if next != table.vertex_count() as u64 {
+        return Err(bad("a vertex is neither a first vertex nor a C tip"));
+    }
+    Ok(same && k == gates.len())
+}
+
 /// Appends a point whose coordinates are finite and stay finite as f32.
 pub(super) fn push_point(x: &mut Vec<[f64; 3]>, p: [f64; 3]) -> Result<(), Error> {
     if p.iter().all(|&c| (c as f32).is_finite()) {

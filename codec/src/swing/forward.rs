@@ -58,18 +58,21 @@ pub(super) trait Source {
     fn code(&mut self, tip: usize, gl: usize, gr: usize) -> Result<u32, Error>;
     /// Its level (`None` in a file without `DENS`).
     fn level(&mut self, tip: usize, gl: usize, gr: usize) -> Result<Option<i8>, Error>;
+    /// The tip was placed on GL, GR with previous tip P (vertex numbers).
+    fn placed(&mut self, _gate: [u32; 3]) {}
 }
 
 /// The forward pass over `symbols` symbols of a mesh of `vertices`
-/// vertices whose components start with the triangles `first`. The
-/// caller has checked both counts against the limits.
+/// vertices whose components start with the triangles `first`; returns
+/// the positions it placed. The caller has checked both counts against
+/// the limits.
 pub(super) fn run(
     src: &mut impl Source,
     first: &[[[f64; 3]; 3]],
     bits: u8,
     vertices: usize,
     symbols: usize,
-) -> Result<(), Error> {
+) -> Result<Vec<[f64; 3]>, Error> {
     let angles = AngleTable::new(bits);
     let r = first
         .first()
@@ -116,6 +119,7 @@ pub(super) fn run(
                     let behind = loops.behind(gr) as usize;
                     let frame = Frame::new(x[vl], x[vr], x[behind], rk);
                     push_point(&mut x, frame.point(&angles, q))?;
+                    src.placed([vl as u32, vr as u32, behind as u32]);
                     Some(loops.c(gr, tip as u32))
                 }
                 Symbol::L => Some(loops.l(gr)?),
@@ -147,7 +151,7 @@ pub(super) fn run(
     if x.len() != vertices {
         return Err(mismatch("vertices", vertices as u64, x.len() as u64));
     }
-    Ok(())
+    Ok(x)
 }
 
 /// The models of the stream, fresh at its start.
@@ -171,6 +175,10 @@ pub(super) struct Decoded {
     pub codes: Vec<u32>,
     /// `None` without `DENS`.
     pub levels: Option<Vec<i8>>,
+    /// The positions the pass placed.
+    pub positions: Vec<[f64; 3]>,
+    /// Per C tip: the GL, GR and previous tip it was placed on.
+    pub gates: Vec<[u32; 3]>,
 }
 
 struct Reading<'a> {
@@ -217,6 +225,10 @@ impl Source for Reading<'_> {
         Ok(q)
     }
 
+    fn placed(&mut self, gate: [u32; 3]) {
+        self.out.gates.push(gate);
+    }
+
     fn level(&mut self, tip: usize, gl: usize, gr: usize) -> Result<Option<i8>, Error> {
         let Some(d) = &mut self.dens else {
             return Ok(None);
@@ -256,9 +268,11 @@ pub(super) fn decode(
             symbols: Vec::with_capacity(symbols),
             codes: Vec::new(),
             levels: dens.map(|_| Vec::new()),
+            positions: Vec::new(),
+            gates: Vec::new(),
         },
     };
-    run(&mut src, first, bits, vertices, symbols)?;
+    src.out.positions = run(&mut src, first, bits, vertices, symbols)?;
     src.dec.finish()?;
     src.geom.finish()?;
     if let Some(d) = src.dens {

@@ -104,6 +104,9 @@ pub(crate) fn read_head(bytes: &[u8], components: u32) -> Result<Head, Error> {
 pub(super) struct Tips {
     pub codes: Vec<u32>,
     pub levels: Option<Vec<i8>>,
+    /// The positions the pass placed, and each C tip's GL, GR and P.
+    pub positions: Vec<[f64; 3]>,
+    pub gates: Vec<[u32; 3]>,
 }
 
 /// Reads `HEAD`, `TOPO` and `CLRS` or `CLRF` and decodes the
@@ -158,6 +161,8 @@ pub(super) fn read_connectivity(
             let tips = Tips {
                 codes: d.codes,
                 levels: d.levels,
+                positions: d.positions,
+                gates: d.gates,
             };
             (conn, dummies, Some(tips))
         }
@@ -265,15 +270,29 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     // mask bit per triangle and a new number per vertex.
     let (v, t) = (table.vertex_count() as u64, table.face_count() as u64);
     limits.check_alloc(v.saturating_mul(45).saturating_add(t.saturating_mul(13)))?;
-    let (codes, levels) = match tips {
-        Some(t) => (t.codes, t.levels),
+    let (codes, levels, placed) = match tips {
+        Some(t) => {
+            // The pass's positions are the table's when every C tip was
+            // placed on the table's own gate and previous tip.
+            let same = super::angle::gates_match(&table, head.first.len(), &t.gates)?;
+            (t.codes, t.levels, same.then_some(t.positions))
+        }
         None => (
             residual::decode(&table, geom, count, head.bits, head.predicted)?,
             read_levels(file, &table, count)?,
+            None,
         ),
     };
-    let x =
-        super::angle::rebuild_positions(&table, &head.first, head.bits, &codes, levels.as_deref())?;
+    let x = match placed {
+        Some(x) => x,
+        None => super::angle::rebuild_positions(
+            &table,
+            &head.first,
+            head.bits,
+            &codes,
+            levels.as_deref(),
+        )?,
+    };
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
     let triangles = table.triangles();
     if triangles.len() != file.header.triangle_count as usize {

@@ -359,6 +359,39 @@ fn front_coded_symbols_decode_to_the_clrs_mesh() {
     }
 }
 
+/// The pass's positions are kept only because they are the rebuilding
+/// pass's: on every emulated mesh each C tip's gate matches the table's
+/// and the positions agree bit for bit.
+#[test]
+fn the_pass_places_the_tips_where_the_rebuilding_pass_does() {
+    let limits = crate::Limits::default();
+    for (name, mesh) in test_meshes() {
+        let r = emulate(&mesh, 8);
+        let bytes = write(&r, Clers::Front).unwrap().0;
+        let file = crate::container::parse_container(&bytes, &limits).unwrap();
+        let (head, _, table, tips) = read::read_connectivity(&file, &limits).unwrap();
+        let tips = tips.expect("a CLRF file");
+        assert!(
+            super::angle::gates_match(&table, head.first.len(), &tips.gates).unwrap(),
+            "{name}"
+        );
+        let rebuilt = super::angle::rebuild_positions(
+            &table,
+            &head.first,
+            head.bits,
+            &tips.codes,
+            tips.levels.as_deref(),
+        )
+        .unwrap();
+        let bits = |x: &[[f64; 3]]| x.iter().flatten().map(|c| c.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&rebuilt), bits(&tips.positions), "{name}");
+        // A gate that differs is noticed.
+        let mut wrong = tips.gates.clone();
+        wrong[0][2] = wrong[0][0];
+        assert!(!super::angle::gates_match(&table, head.first.len(), &wrong).unwrap());
+    }
+}
+
 /// A file may carry its symbols in one section only.
 #[test]
 fn a_file_with_both_clrs_and_clrf_is_an_error() {
