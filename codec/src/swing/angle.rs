@@ -208,12 +208,12 @@ pub fn tip_radius(edge_length: f64) -> f64 {
 
 /// ((a·a') + (b·b')) + (c·c').
 #[inline]
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline]
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(super) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
@@ -360,32 +360,16 @@ pub fn rebuild_positions(
         .map_or(0.0, |f| tip_radius(first_edge_length(f)));
     let mut x: Vec<[f64; 3]> = Vec::with_capacity(table.vertex_count());
     let (mut firsts, mut codes) = (first.iter(), codes.iter());
-    let v = table.vertices();
-    for t in 0..table.face_count() {
-        let next = x.len() as u64;
-        let [a, b, c] = [v[3 * t].0, v[3 * t + 1].0, v[3 * t + 2].0].map(u64::from);
-        if b >= next {
-            // A component's first triangle: three new vertices in order.
-            if (a, b, c) != (next, next + 1, next + 2) {
-                return Err(bad("vertices are not numbered in coding order"));
-            }
+    walk(table, |triangle| match triangle {
+        // A component's first triangle: three new vertices in order.
+        Coded::First => {
             let f = firsts
                 .next()
                 .ok_or(bad("more components than first triangles"))?;
-            for p in f {
-                push_point(&mut x, *p)?;
-            }
-        } else if a == next {
-            // A C triangle: its tip is new, the gate and previous tip are not.
-            let tip = table.opposite(CornerId(3 * t as u32));
-            let prev = if tip.is_some() && tip.idx() < v.len() {
-                u64::from(v[tip.idx()].0)
-            } else {
-                u64::MAX
-            };
-            if c >= next || prev >= next {
-                return Err(bad("a C tip is built on vertices not yet placed"));
-            }
+            f.iter().try_for_each(|p| push_point(&mut x, *p))
+        }
+        // A C triangle: its tip is new, the gate and previous tip are not.
+        Coded::C([b, c, prev]) => {
             let &q = codes.next().ok_or(bad("fewer angle codes than C tips"))?;
             if q >= angles.codes() {
                 return Err(bad("angle code out of range"));
@@ -395,12 +379,11 @@ pub fn rebuild_positions(
                 None => r,
             };
             k += 1;
-            let frame = Frame::new(x[b as usize], x[c as usize], x[prev as usize], rk);
-            push_point(&mut x, frame.point(&angles, q))?;
-        } else if a > next || c >= next {
-            return Err(bad("vertices are not numbered in coding order"));
+            let [b, c, prev] = [b, c, prev].map(|v| v as usize);
+            let frame = Frame::new(x[b], x[c], x[prev], rk);
+            push_point(&mut x, frame.point(&angles, q))
         }
-    }
+    })?;
     if firsts.next().is_some() {
         return Err(bad("more first triangles than components"));
     }
@@ -426,19 +409,53 @@ pub(super) fn gates_match(
     first: usize,
     gates: &[[u32; 3]],
 ) -> Result<bool, Error> {
+    let (mut firsts, mut k, mut same) = (0usize, 0usize, true);
+    let placed = walk(table, |triangle| {
+        match triangle {
+            Coded::First => {
+                firsts += 1;
+                if firsts > first {
+                    return Err(bad("more components than first triangles"));
+                }
+            }
+            Coded::C(gate) => {
+                same &= gates.get(k) == Some(&gate);
+                k += 1;
+            }
+        }
+        Ok(())
+    })?;
+    if firsts != first {
+        return Err(bad("more first triangles than components"));
+    }
+    if placed != table.vertex_count() as u64 {
+        return Err(bad("a vertex is neither a first vertex nor a C tip"));
+    }
+    Ok(same && k == gates.len())
+}
+
+/// A triangle of the rebuilding pass that places vertices.
+enum Coded {
+    /// A component's first triangle (three new vertices).
+    First,
+    /// A C triangle: its gate GL = V[3t+1], GR = V[3t+2] and previous
+    /// tip P = V[O[3t]], all placed before its tip.
+    C([u32; 3]),
+}
+
+/// The walk of [`rebuild_positions`]: the triangles in order, the
+/// numbering checked as the coding order makes it, `f` called for each
+/// that places vertices. Returns how many vertices the walk placed.
+fn walk(table: &CornerTable, mut f: impl FnMut(Coded) -> Result<(), Error>) -> Result<u64, Error> {
     let v = table.vertices();
-    let (mut next, mut firsts, mut k) = (0u64, 0usize, 0usize);
-    let mut same = true;
+    let mut next = 0u64;
     for t in 0..table.face_count() {
         let [a, b, c] = [v[3 * t].0, v[3 * t + 1].0, v[3 * t + 2].0].map(u64::from);
         if b >= next {
             if (a, b, c) != (next, next + 1, next + 2) {
                 return Err(bad("vertices are not numbered in coding order"));
             }
-            firsts += 1;
-            if firsts > first {
-                return Err(bad("more components than first triangles"));
-            }
+            f(Coded::First)?;
             next += 3;
         } else if a == next {
             let tip = table.opposite(CornerId(3 * t as u32));
@@ -450,20 +467,14 @@ pub(super) fn gates_match(
             if c >= next || prev >= next {
                 return Err(bad("a C tip is built on vertices not yet placed"));
             }
-            same &= gates.get(k).map(|g| g.map(u64::from)) == Some([b, c, prev]);
-            k += 1;
+            // All below `next`, a vertex count: they fit in u32.
+            f(Coded::C([b, c, prev].map(|x| x as u32)))?;
             next += 1;
         } else if a > next || c >= next {
             return Err(bad("vertices are not numbered in coding order"));
         }
     }
-    if firsts != first {
-        return Err(bad("more first triangles than components"));
-    }
-    if next != table.vertex_count() as u64 {
-        return Err(bad("a vertex is neither a first vertex nor a C tip"));
-    }
-    Ok(same && k == gates.len())
+    Ok(next)
 }
 
 /// Appends a point whose coordinates are finite and stay finite as f32.

@@ -35,6 +35,7 @@
 
 use crate::prelude::*;
 
+use super::angle::{dot, sub};
 use crate::{Error, FormatError, Malformed};
 
 fn bad(why: &'static str) -> Error {
@@ -219,14 +220,6 @@ impl Loops {
 
 /// Contexts of the symbol model: [`Loops::context`]'s range.
 pub(super) const CONTEXTS: usize = 16;
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
