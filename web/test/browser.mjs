@@ -221,7 +221,14 @@ function drawnPixels(page) {
 }
 
 async function openInViewer(page, file) {
-  const shown = await page.evaluate(() => Number(document.body.dataset.shown ?? 0));
+  // Clear a previous file's 'error' first: the page marks the new file
+  // only once its bytes are read, and until then a stale 'error' would
+  // end the wait below (a race that made the check after the damaged
+  // file fail now and then).
+  const shown = await page.evaluate(() => {
+    document.body.dataset.state = 'uploading';
+    return Number(document.body.dataset.shown ?? 0);
+  });
   const input = await page.$('#file');
   await input.uploadFile(file);
   await page.waitForFunction(
