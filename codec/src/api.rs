@@ -547,7 +547,9 @@ pub struct FileInfo {
 }
 
 /// Reads a file's header and connectivity (CLERS histogram included),
-/// without decoding geometry.
+/// without decoding geometry (except in a SwingWrapper file whose
+/// symbols are in `CLRF`: they are read in a pass that places the
+/// vertices).
 pub fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> {
     let file = parse_container(bytes, limits)?;
     let h = &file.header;

@@ -94,8 +94,9 @@ fn symbol(d: i8) -> u32 {
     }
 }
 
-/// The DENS coder, one C tip at a time, in coding order: the state
-/// [`encode`] and the forward pass of `CLRF` (`swing::forward`) share.
+/// The DENS coder, one C tip at a time, in coding order: [`encode`]'s
+/// state, the mirror of [`Reader`] (which the `CLRF` pass of
+/// `swing::forward` also drives).
 #[cfg(feature = "encoder")]
 pub(super) struct Writer {
     enc: Encoder,

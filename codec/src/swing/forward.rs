@@ -289,7 +289,8 @@ struct Replaying<'a> {
     triangles: &'a [[u32; 3]],
     codes: &'a [u32],
     levels: Option<&'a [i8]>,
-    /// Symbols and C tips used so far.
+    /// Symbols used so far, and C tips placed so far (the index of the
+    /// code and level the next C reads).
     at: (usize, usize),
     contexts: Vec<u8>,
     splits: Vec<u64>,
@@ -349,12 +350,18 @@ impl Source for Replaying<'_> {
     }
 
     fn level(&mut self, _tip: usize, _gl: usize, _gr: usize) -> Result<Option<i8>, Error> {
-        let k = self.at.1;
-        self.at.1 += 1;
         match self.levels {
-            Some(l) => Ok(Some(*l.get(k).ok_or(bad("fewer levels than C tips"))?)),
+            Some(l) => Ok(Some(
+                *l.get(self.at.1).ok_or(bad("fewer levels than C tips"))?,
+            )),
             None => Ok(None),
         }
+    }
+
+    /// A C tip is placed once its code and level were read: the next C
+    /// reads the next ones.
+    fn placed(&mut self, _gate: [u32; 3]) {
+        self.at.1 += 1;
     }
 }
 

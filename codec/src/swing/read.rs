@@ -349,7 +349,9 @@ pub(super) fn read_levels(
 
 /// The figures of a SwingWrapper file, read without decoding geometry:
 /// the hole mask is decoded (it needs only the corner table), `REST` is
-/// parsed down to its section table.
+/// parsed down to its section table. A `CLRF` file is the exception: its
+/// symbols come out of the forward pass, which decodes `GEOM` and places
+/// every tip on its way.
 pub(crate) fn inspect(
     file: &Container<'_>,
     limits: &Limits,

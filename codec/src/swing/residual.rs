@@ -118,8 +118,9 @@ pub(crate) fn predict(codes: &[u32], angles: &super::AngleTable) -> u32 {
     best.0
 }
 
-/// The GEOM coder, one C tip at a time, in coding order: the state
-/// [`encode`] and the forward pass of `CLRF` (`swing::forward`) share.
+/// The GEOM coder, one C tip at a time, in coding order: [`encode`]'s
+/// state, the mirror of [`Reader`] (which the `CLRF` pass of
+/// `swing::forward` also drives).
 #[cfg(feature = "encoder")]
 pub(super) struct Writer {
     enc: Encoder,
