@@ -461,12 +461,21 @@ impl Retiler<'_> {
                     origin: c1,
                     normal: n1.cross(tangent),
                 };
-                let (k, _) = leave_vertex(s, &plane, p1)
+                let (k, x) = leave_vertex(s, &plane, p1)
                     .into_iter()
                     .filter(|&(_, x)| (x - c1).dot(tangent) > 0.0)
                     .max_by(|a, b| (a.1 - c1).dot(tangent).total_cmp(&(b.1 - c1).dot(tangent)))?;
+                // The walk leaves p1 across face(k) and enters the next
+                // face at x. Where face(k) itself reaches the sphere (an
+                // input face wider than L), p2 lies on p1–x and belongs to
+                // face(k): handed to the walker, it would be measured on
+                // p1–x but split into the face beyond, folding M there.
+                let d = x.distance(c1);
+                if d >= self.l {
+                    return Some((c1 + (x - c1) * (self.l / d), surface::face(k)));
+                }
                 let mut w = Walker::across(s, plane, k, s.face_count());
-                walk_to_radius(&mut w, c1, c1, self.l, 4.0 * self.l)
+                walk_to_radius(&mut w, x, c1, self.l, 4.0 * self.l - d)
             })
             .ok_or(Failure::NoSecondVertex)?;
         let (x1, x2) = (f32_exact(c1), f32_exact(p2));
