@@ -228,16 +228,22 @@ fn pipes_round_trip() {
 #[test]
 fn pipes_need_a_format() {
     let dir = scratch("cli-pipes-format");
-    let o = swm_piped(&["encode", "-", "-o", "x.swm", "--mode", "lossless"], b"");
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--format"));
-    let o = swm_piped(&["decode", "-", "-o", "-"], b"");
-    assert_eq!(o.status.code(), Some(2));
+    // One line naming the pipe and the missing option, for either side.
+    for args in [
+        &["encode", "-", "-o", "x.swm", "--mode", "lossless"][..],
+        &["decode", "-", "-o", "-"],
+        &["decode", "x.swm", "-o", "-"],
+    ] {
+        let o = swm_piped(args, b"");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
+        assert!(
+            stderr.starts_with("swm: error: -: ") && stderr.contains("needs --format"),
+            "{args:?}: {stderr}"
+        );
+        assert!(o.stdout.is_empty(), "{args:?}");
+    }
     let o = swm_piped(&["decode", "-", "-o", "-", "--format", "gltf"], b"");
     assert_eq!(o.status.code(), Some(2));
     let o = swm_piped(&["decode", "-", "-o", "-", "--format", "xyz"], b"");

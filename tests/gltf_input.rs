@@ -175,3 +175,26 @@ fn cli_encodes_gltf_and_glb() {
     assert!(stderr.contains("tet buffer.bin"), "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A primitive that draws no triangles (`LINES` here) is refused by
+/// `swm encode` with one line naming the file and the mode, rather
+/// than read as triangles or skipped.
+#[test]
+fn cli_refuses_other_primitive_modes() {
+    let dir = scratch("gltf_modes");
+    let mut doc = document(json!({}));
+    doc["meshes"][0]["primitives"][0]["mode"] = json!(1);
+    let lines = dir.join("lines.glb");
+    std::fs::write(&lines, glb(&doc, &bin())).unwrap();
+    let out = dir.join("out.swm");
+    let o = swm(&["encode", s(&lines), "-o", s(&out), "--mode", "lossless"]);
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with(&format!("swm: error: {}: ", s(&lines))) && stderr.contains("LINES"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
