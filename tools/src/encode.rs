@@ -107,6 +107,19 @@ pub struct Args {
     /// cut after its first lines and summed up by fate).
     #[arg(long)]
     verbose: bool,
+    /// No progress spinner. It is drawn on standard error only when that
+    /// is a terminal and the run takes over a second (phases: reading,
+    /// encoding, checking, writing), never on standard output.
+    #[arg(short, long)]
+    quiet: bool,
+    /// Exit 1 and write nothing when the check of the decoded mesh fails
+    /// (otherwise a warning on standard error). The check decodes the
+    /// file and measures it against the input (30,000 area-uniform
+    /// samples each way): it fails when the decoded surface area is
+    /// under 10% of the input's, or the Hausdorff distance is over 10% of
+    /// the input's bounding-box diagonal.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// Components listed one per line before the text report sums the rest
@@ -179,8 +192,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     crate::refuse_same_file(&args.input, &args.output)?;
     crate::pipe::data_on_stdout(&args.output);
     let format = crate::pipe::input_format(&args.input, args.format)?;
+    let progress = crate::progress::Progress::spinner(args.quiet).prefix("swm encode");
+    progress.phase("reading");
     let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
-    warn_dropped(&args.input, &read.dropped);
+    progress.suspend(|| warn_dropped(&args.input, &read.dropped));
     let target = match (args.size, args.bpv, args.edge_length) {
         (Some(b), _, _) => swm::SwingTarget::Bytes(b),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
@@ -218,11 +233,20 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         },
         ..Default::default()
     };
+    progress.phase("encoding");
     let start = Instant::now();
     let encoded = swm::encode(&mesh, &options).map_err(|e| CliError::new(&args.input, e))?;
     let seconds = start.elapsed().as_secs_f64();
+    progress.phase("checking");
+    let (fidelity, warning) = check(args, &mesh, &encoded.bytes)?;
+    progress.phase("writing");
     crate::pipe::write_bytes(&args.output, &encoded.bytes)
         .map_err(|e| CliError::new(&args.output, e))?;
+    // Cleared before anything else is printed.
+    drop(progress);
+    if let Some(line) = warning {
+        eprintln!("{line}");
+    }
     let stats = &encoded.stats;
     if let Some(r) = stats.rate.as_ref().filter(|r| !r.within_tolerance) {
         warn_missed_size(&args.input, r, encoded.bytes.len() as u64);
@@ -254,6 +278,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         if let Some(c) = &stats.choice {
             json["method"] = crate::report::choice_json(c);
         }
+        json["check"] = fidelity.map_or(serde_json::Value::Null, |f| f.to_json());
         crate::report::print_json(&json);
         return Ok(());
     }
@@ -348,6 +373,42 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Decodes the file made and measures it against the input (see
+/// `fidelity`). What is wrong comes back as the warning line to print
+/// once the progress is cleared; with `--strict` it is an error (exit 1,
+/// nothing written). A file that cannot be measured is a warning too (an
+/// error with `--strict`), with no figures.
+fn check(
+    args: &Args,
+    mesh: &swm::TriMesh,
+    bytes: &[u8],
+) -> Result<(Option<crate::fidelity::Fidelity>, Option<String>), CliError> {
+    let (fidelity, what) = match crate::fidelity::Fidelity::measure(mesh, bytes) {
+        Ok(f) => {
+            let problems = f.problems();
+            if problems.is_empty() {
+                return Ok((Some(f), None));
+            }
+            let hint = if args.edge_length.is_some() {
+                "a shorter --edge-length keeps more"
+            } else {
+                "a larger --size or --bpv keeps more"
+            };
+            (Some(f), format!("{}; {hint}", problems.join("; ")))
+        }
+        Err(e) => (
+            None,
+            format!("the file could not be checked against the input: {e}"),
+        ),
+    };
+    if args.strict {
+        let e = std::io::Error::other(format!("--strict: {what}; nothing written"));
+        return Err(CliError::new(&args.input, e));
+    }
+    let line = format!("swm: warning: {}: {what}", args.input.display());
+    Ok((fidelity, Some(line)))
 }
 
 /// Refuses an output named like a mesh file (`-o x.obj`): `encode`

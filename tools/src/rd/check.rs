@@ -196,7 +196,7 @@ pub fn run(args: &Args, table_path: &Path) -> Result<(), CliError> {
             samples: r.samples,
         })
         .collect();
-    let fresh = super::run_jobs(&cases, &jobs)?;
+    let fresh = super::run_jobs(&cases, &jobs, args.quiet)?;
     super::write_outputs(args, &cases, &fresh)?;
 
     let mut worse = Vec::new();

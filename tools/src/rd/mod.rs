@@ -2,8 +2,8 @@
 //!
 //! ```text
 //! swm rd MESH... [--rates 0.5,1,2,4,8] [--configs lossless,baseline,swing]
-//!        [--samples N] [--out DIR] [--name rd] [--json]
-//! swm rd --check TABLE.csv [--only MESH]... [--tolerance 0.01] [--out DIR] [--json]
+//!        [--samples N] [--out DIR] [--name rd] [--json] [--quiet]
+//! swm rd --check TABLE.csv [--only MESH]... [--tolerance 0.01] [--out DIR] [--json] [--quiet]
 //! ```
 //!
 //! For every mesh, rate and configuration, code the mesh into
@@ -35,7 +35,6 @@ mod table;
 use crate::CliError;
 use case::Case;
 use config::Config;
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use source::Source;
 use std::path::{Path, PathBuf};
@@ -83,6 +82,11 @@ pub struct Args {
     /// Print the rows (with --check: rows and verdicts) as JSON.
     #[arg(long)]
     json: bool,
+    /// No progress bar. It is drawn on standard error only when that is a
+    /// terminal and the run takes over a second (one step per mesh, rate
+    /// and configuration), never on standard output.
+    #[arg(short, long)]
+    quiet: bool,
 }
 
 const HELP: &str = "\
@@ -211,7 +215,7 @@ fn run_fresh(args: &Args) -> Result<(), CliError> {
             }
         }
     }
-    let rows = run_jobs(&cases, &jobs)?;
+    let rows = run_jobs(&cases, &jobs, args.quiet)?;
     write_outputs(args, &cases, &rows)?;
     explain(&rows);
     if args.json {
@@ -253,14 +257,12 @@ fn load(named: Vec<(Source, String)>, base: Option<&Path>) -> Result<Vec<Case>, 
     Ok(cases)
 }
 
-/// Runs every job in parallel, with a progress bar on a terminal; rows
-/// come back in job order.
-fn run_jobs(cases: &[Case], jobs: &[Job]) -> Result<Vec<Row>, CliError> {
-    let bar = ProgressBar::new(jobs.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("swm rd [{elapsed_precise}] {bar:40} {pos}/{len} rows")
-            .expect("a valid template"),
-    );
+/// Runs every job in parallel, with a progress bar over the (mesh, rate,
+/// configuration) cells on a terminal (see `progress`); rows come back in
+/// job order.
+fn run_jobs(cases: &[Case], jobs: &[Job], quiet: bool) -> Result<Vec<Row>, CliError> {
+    let bar = crate::progress::Progress::bar(jobs.len() as u64, quiet).prefix("swm rd");
+    bar.phase("cells");
     let rows = jobs
         .par_iter()
         .map(|job| {
@@ -268,7 +270,7 @@ fn run_jobs(cases: &[Case], jobs: &[Job]) -> Result<Vec<Row>, CliError> {
             let vertices = case.vertices();
             let budget = (job.rate * vertices as f64 / 8.0).floor() as u64;
             let outcome = job.config.run(case, budget, job.samples)?;
-            bar.inc(1);
+            bar.inc();
             Ok(Row {
                 mesh: case.table_name.clone(),
                 rate_bpv: job.rate,
@@ -280,7 +282,8 @@ fn run_jobs(cases: &[Case], jobs: &[Job]) -> Result<Vec<Row>, CliError> {
             })
         })
         .collect::<Result<Vec<Row>, CliError>>();
-    bar.finish_and_clear();
+    // Cleared before the rows, the reasons or an error are printed.
+    drop(bar);
     rows
 }
 
