@@ -156,7 +156,8 @@ fn decode_counts_everything_it_wrote() {
 
 /// Two components, one kept in `REST`, from an STL (whose corners
 /// cleaning merges): the cleaning line and the component lines go to
-/// stderr, the result lines stay on stdout.
+/// stderr, the result lines stay on stdout, among them the decoded
+/// mesh's counts, lossless rest included.
 #[test]
 fn cleaning_and_component_lines_go_to_stderr() {
     let dir = scratch("summaries-stderr");
@@ -189,6 +190,20 @@ fn cleaning_and_component_lines_go_to_stderr() {
     }
     assert!(stderr.contains("coincident vertices merged"), "{stderr}");
     assert!(stderr.contains("kept by lossless coding"), "{stderr}");
+    // The file's counts are the retiled sphere's; the decoded mesh also
+    // has the speck, and the report says so with the decoder's counts.
+    let back = dir.join("two.obj");
+    ok(&swm(&["decode", s(&output), "-o", s(&back)]));
+    let decoded = swm::io::read_mesh(&back).unwrap();
+    let line = format!(
+        "decoded mesh: {} vertices, {} triangles (",
+        decoded.vertex_count(),
+        decoded.face_count()
+    );
+    assert!(
+        stdout.lines().any(|l| l.starts_with(&line)),
+        "{line}: {stdout}"
+    );
     // With `-o -` everything but the file is on stderr, as before.
     let piped = swm(&[
         "encode",

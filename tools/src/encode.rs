@@ -1,8 +1,11 @@
 //! `swm encode IN -o OUT.swm [--mode auto|swing|lossless] [--size B | --bpv X |
 //! --edge-length L] [--angle-bits K] [--max-size B] [--qp N] [--format F]
-//! [--json] [--verbose] [--force]`. Options a mode does not use are
-//! refused, not ignored, and so is an output named like a mesh file
-//! (without `--force`). What the report says goes to stdout (stderr
+//! [--json] [--verbose] [--force] [--strict] [--quiet]`. Options a mode
+//! does not use are refused, not ignored, and so is an output named like
+//! a mesh file (without `--force`). The file is decoded and measured
+//! against the input before it is written (see `fidelity`; `--strict`
+//! makes a failed check an error), and a spinner shows the phase on a
+//! terminal (see `progress`). What the report says goes to stdout (stderr
 //! with `-o -`); warnings, what cleaning changed and each component's
 //! fate go to stderr. IN and OUT may be `-` (standard input and output, see `pipe`).
 
@@ -302,6 +305,18 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         triangles,
         seconds
     );
+    // The counts above are the file's (of a swing file, the retiled
+    // mesh); what a decoder gets differs by the hole masks and the
+    // lossless rest.
+    if let Some(f) =
+        fidelity.filter(|f| (f.vertices as u64, f.triangles as u64) != (vertices, triangles))
+    {
+        say!(
+            "decoded mesh: {} vertices, {} triangles (the retiled triangles less the hole masks, plus the lossless rest)",
+            f.vertices,
+            f.triangles
+        );
+    }
     if let Some(c) = &stats.choice {
         say!("{}", crate::report::choice_line(c));
     }
