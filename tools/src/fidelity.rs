@@ -88,8 +88,8 @@ impl Fidelity {
                 100.0 * MIN_AREA_RATIO
             ));
         }
-        // `!(a <= b)`: a NaN distance is no pass.
-        if !(hausdorff <= MAX_HAUSDORFF) {
+        // A NaN distance is no pass.
+        if hausdorff.is_nan() || hausdorff > MAX_HAUSDORFF {
             problems.push(format!(
                 "the decoded mesh lies up to {} of the bounding-box diagonal from the input (Hausdorff distance, over {:.0}%)",
                 percent(hausdorff),

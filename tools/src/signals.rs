@@ -20,6 +20,7 @@ pub fn install() {
         .name("signals".into())
         .spawn(move || {
             if let Some(signal) = signals.forever().next() {
+                clear_progress_line();
                 swm::io::discard_unfinished(|| std::process::exit(128 + signal));
             }
         });
@@ -27,3 +28,17 @@ pub fn install() {
 
 #[cfg(not(unix))]
 pub fn install() {}
+
+/// Wipes a progress line (see `progress`) from a terminal's stderr, so
+/// that the shell's prompt does not follow a half-drawn spinner. Every
+/// other line on stderr ends with its newline, so the line the cursor is
+/// on holds progress or nothing.
+#[cfg(unix)]
+fn clear_progress_line() {
+    use std::io::{IsTerminal as _, Write as _};
+    let mut e = std::io::stderr();
+    if e.is_terminal() {
+        let _ = e.write_all(b"\r\x1b[2K");
+        let _ = e.flush();
+    }
+}
