@@ -311,8 +311,13 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if let Some(f) =
         fidelity.filter(|f| (f.vertices as u64, f.triangles as u64) != (vertices, triangles))
     {
+        let why = if stats.swing.is_some() {
+            " (the retiled triangles less the hole masks, plus the lossless rest)"
+        } else {
+            ""
+        };
         say!(
-            "decoded mesh: {} vertices, {} triangles (the retiled triangles less the hole masks, plus the lossless rest)",
+            "decoded mesh: {} vertices, {} triangles{why}",
             f.vertices,
             f.triangles
         );
@@ -408,6 +413,8 @@ fn check(
             }
             let hint = if args.edge_length.is_some() {
                 "a shorter --edge-length keeps more"
+            } else if args.mode == ModeArg::Lossless && args.size.is_none() && args.bpv.is_none() {
+                "a larger --qp keeps more"
             } else {
                 "a larger --size or --bpv keeps more"
             };
