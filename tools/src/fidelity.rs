@@ -136,6 +136,35 @@ mod tests {
         }
     }
 
+    /// A file of a small sphere measured against itself passes; against
+    /// a sphere ten times as large around it, it keeps 1% of the area and
+    /// lies 0.9 radii (26% of the diagonal) from it: both problems.
+    #[test]
+    fn measure_decodes_and_compares_with_the_input() {
+        let small = swm_corpus::icosphere(0.1, 3);
+        let large = swm_corpus::icosphere(1.0, 3);
+        let bytes = swm::encode(&small, &swm::EncodeOptions::default())
+            .unwrap()
+            .bytes;
+        let same = Fidelity::measure(&small, &bytes).unwrap();
+        assert_eq!(
+            (same.vertices, same.triangles),
+            (small.vertex_count(), small.face_count())
+        );
+        assert!((same.area_ratio - 1.0).abs() < 1e-3, "{}", same.area_ratio);
+        assert!(same.hausdorff_relative.unwrap() < 1e-3);
+        assert!(same.problems().is_empty());
+        let lost = Fidelity::measure(&large, &bytes).unwrap();
+        assert!((lost.area_ratio - 0.01).abs() < 1e-3, "{}", lost.area_ratio);
+        let h = lost.hausdorff_relative.unwrap();
+        assert!((h - 0.9 / 12f64.sqrt()).abs() < 0.01, "{h}");
+        let p = lost.problems();
+        assert_eq!(p.len(), 2, "{p:?}");
+        assert!(p[0].contains("1.0% of the input's surface area"), "{p:?}");
+        // A file that is no .swm file is an error, not a pass.
+        assert!(Fidelity::measure(&small, &bytes[..bytes.len() / 2]).is_err());
+    }
+
     #[test]
     fn thresholds() {
         assert!(fidelity(1.0, Some(0.01)).problems().is_empty());
