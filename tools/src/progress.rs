@@ -21,6 +21,17 @@ use std::time::Duration;
 /// nothing to wipe.
 pub const DELAY: Duration = Duration::from_secs(1);
 
+/// How long a run goes before its progress is drawn: [`DELAY`], or
+/// `SWM_PROGRESS_DELAY_MS` milliseconds when that is set (the tests set
+/// 0, so that what they check does not depend on how fast the machine
+/// runs the command).
+fn delay() -> Duration {
+    std::env::var("SWM_PROGRESS_DELAY_MS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .map_or(DELAY, Duration::from_millis)
+}
+
 /// Redraws per second of the spinner and the elapsed time.
 const TICK: Duration = Duration::from_millis(100);
 
@@ -60,7 +71,7 @@ impl Progress {
             let handle = std::thread::spawn(move || {
                 // Only the timeout reveals; a dropped sender (the work
                 // ended) leaves the bar hidden.
-                if let Err(mpsc::RecvTimeoutError::Timeout) = rx.recv_timeout(DELAY) {
+                if let Err(mpsc::RecvTimeoutError::Timeout) = rx.recv_timeout(delay()) {
                     b.set_draw_target(ProgressDrawTarget::stderr());
                     b.enable_steady_tick(TICK);
                 }
