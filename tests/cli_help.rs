@@ -8,7 +8,9 @@ mod common;
 use common::*;
 use std::collections::BTreeSet;
 
-const SUBCOMMANDS: [&str; 6] = ["encode", "decode", "info", "distance", "sharpen", "rd"];
+const SUBCOMMANDS: [&str; 7] = [
+    "encode", "decode", "info", "distance", "sharpen", "rd", "render",
+];
 
 /// An option as `--help` lists it: its long name and its short one.
 #[derive(Debug)]

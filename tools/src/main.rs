@@ -4,9 +4,10 @@
 //! fails, 2 on bad usage (clap's convention): clap's own messages, the
 //! value parsers of `args`, options of the other encoding mode, an
 //! output extension no writer has, an `encode` output named like a mesh
-//! file without `--force`, and `-` (a pipe, see `pipe`) without
-//! `--format`. Every other failure prints one line on
-//! stderr, `swm: error: FILE: what is wrong`. SIGINT and SIGTERM exit
+//! file without `--force`, `-` (a pipe, see `pipe`) without
+//! `--format`, and `render`'s output not named `.svg` or a bad `--view`.
+//! Every other failure prints one line on stderr,
+//! `swm: error: FILE: what is wrong`. SIGINT and SIGTERM exit
 //! 130 and 143 after removing unfinished outputs (see `signals`).
 
 /// `println!` that ignores a closed stdout (`swm info x | head`): the
@@ -32,6 +33,7 @@ mod info;
 mod pipe;
 mod progress;
 mod rd;
+mod render;
 mod report;
 mod sharpen;
 mod signals;
@@ -70,6 +72,9 @@ enum Command {
     Rd(rd::Args),
     /// Restore sharp edges and corners of any mesh (EdgeSharpener), then optionally subdivide (Bender).
     Sharpen(sharpen::Args),
+    /// Draw a mesh or a .swm file as an SVG picture (flat-shaded
+    /// triangles, orthographic view).
+    Render(render::Args),
 }
 
 /// A failure tied to the file it concerns.
@@ -162,6 +167,7 @@ fn main() -> ExitCode {
         Command::Distance(args) => distance::run(&args),
         Command::Rd(args) => rd::run(&args),
         Command::Sharpen(args) => sharpen::run(&args),
+        Command::Render(args) => render::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
