@@ -169,3 +169,71 @@ fn bad_input_is_one_line() {
     assert!(leftovers.is_empty(), "{leftovers:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The README's before/after pictures are what its commands make today,
+/// and the byte counts its prose gives are the files': a change to the
+/// renderer or the encoder that alters them fails here until the
+/// pictures are made again with those commands.
+#[test]
+fn the_readme_pictures_are_what_its_commands_make() {
+    let Some(corpus) = shared_corpus() else {
+        return;
+    };
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let block = readme
+        .split("```sh\n")
+        .filter_map(|b| b.split("```").next())
+        .find(|b| b.contains("corpus/pictures/"))
+        .expect("a sh block that makes corpus/pictures/");
+    // Run where the outputs cannot replace the committed pictures, with
+    // the corpus wherever this checkout finds it.
+    let dir = scratch("render-readme");
+    std::fs::create_dir_all(dir.join("corpus/pictures")).unwrap();
+    let mut made = Vec::new();
+    for line in block.lines().filter(|l| !l.trim().is_empty()) {
+        let args: Vec<String> = line
+            .strip_prefix("swm ")
+            .unwrap_or_else(|| panic!("not a swm command: {line}"))
+            .split_whitespace()
+            .map(|a| match a.strip_prefix("../shared/corpus/") {
+                Some(name) => corpus.join(name).to_str().unwrap().to_string(),
+                None => a.to_string(),
+            })
+            .collect();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_swm"))
+            .args(&args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        ok(&out);
+        made.extend(args.iter().filter(|a| a.ends_with(".svg")).cloned());
+    }
+    assert_eq!(made.len(), 2, "{made:?}");
+    let commas = |n: usize| {
+        let s = n.to_string();
+        let mut out = String::new();
+        for (i, c) in s.chars().enumerate() {
+            if i > 0 && (s.len() - i).is_multiple_of(3) {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
+    };
+    let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    for svg in &made {
+        let fresh = std::fs::read(dir.join(svg)).unwrap();
+        let committed = std::fs::read(root.join(svg)).unwrap();
+        assert!(
+            fresh == committed,
+            "{svg} is not what the README's commands make"
+        );
+        let said = format!("{} bytes of SVG", commas(fresh.len()));
+        assert!(flat.contains(&said), "README should say {said:?} of {svg}");
+    }
+    let swm_bytes = std::fs::metadata(dir.join("spot.swm")).unwrap().len() as usize;
+    let said = format!("1 bit per vertex, {} bytes", commas(swm_bytes));
+    assert!(flat.contains(&said), "README should say {said:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
