@@ -107,6 +107,14 @@ fn view_and_size_change_the_picture() {
     );
     assert_ne!(triangles(&front), triangles(&back));
     assert_eq!(attribute(&back, "width"), 100.0);
+    // A canvas too small to show anything is bad usage, refused by clap.
+    let tiny = dir.join("tiny.svg");
+    let (i, t) = (input.to_str().unwrap(), tiny.to_str().unwrap());
+    assert_eq!(
+        swm(&["render", i, "-o", t, "--size", "8"]).status.code(),
+        Some(2)
+    );
+    assert!(!tiny.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

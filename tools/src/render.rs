@@ -5,8 +5,9 @@
 //!
 //! How it draws:
 //! - orthographic projection along the view direction (the direction
-//!   from the mesh towards the eye), world +Y up on the screen (+Z when
-//!   looking straight down or up the Y axis);
+//!   from the mesh towards the eye), world +Y up on the screen; along
+//!   the Y axis, where +Y cannot be up, +X stays to the right (looking
+//!   down from +Y shows +Z towards the bottom, as a map);
 //! - back faces culled: a triangle is drawn when its corners turn
 //!   counter-clockwise as seen from the eye, the outward orientation the
 //!   codec keeps; a mesh whose triangles face inward shows its inside;
@@ -23,7 +24,9 @@
 //! triangles, or triangles that overlap cyclically or whose centroids
 //! order them wrongly (long thin ones next to small ones), may draw in
 //! the wrong order. That is fine for a picture of a closed surface, not
-//! for measuring anything; `swm distance` is the measure.
+//! for measuring anything; `swm distance` is the measure. The SVG holds
+//! one path of about 50 bytes per front face, so a million-triangle mesh
+//! makes tens of MB: draw a decoded or simplified version of it instead.
 
 use crate::CliError;
 use std::fmt::Write as _;
@@ -34,7 +37,8 @@ use std::path::{Path, PathBuf};
 const DEFAULT_VIEW: [f64; 3] = [1.0, 0.6, 1.4];
 
 /// The light's direction in the eye's frame (right, up, towards the eye):
-/// from above left and in front, so that front faces are never black.
+/// from above left and in front, so that most front faces are lit and
+/// the shading reads as relief, the same in every view.
 const LIGHT: [f64; 3] = [-0.4, 0.6, 0.7];
 
 /// Grey of a triangle edge-on to the light (ambient) and the range the
@@ -64,8 +68,13 @@ pub struct Args {
     /// zero (default 1,0.6,1.4: front right, a little above).
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
     view: Option<String>,
-    /// Length of the picture's longer side in pixels.
-    #[arg(long, value_name = "PX", default_value_t = 512, value_parser = clap::value_parser!(u32).range(16..=16384))]
+    /// Length of the picture's longer side in pixels, 16 to 16384.
+    #[arg(
+        long,
+        value_name = "PX",
+        default_value_t = 512,
+        value_parser = clap::value_parser!(u32).range(16..=16384)
+    )]
     size: u32,
 }
 
@@ -178,8 +187,8 @@ fn normalize(a: [f64; 3]) -> [f64; 3] {
 fn eye_frame(d: [f64; 3]) -> [[f64; 3]; 3] {
     let d = normalize(d);
     // World +Y up, unless the view is (nearly) along Y, where it would
-    // leave no right vector; then -Z up, so that looking down from +Y
-    // shows +X to the right and +Z towards the bottom, as a map.
+    // leave no right vector; then Z, its sign chosen so that +X stays to
+    // the right (looking down from +Y, +Z is towards the bottom).
     let up = if d[1].abs() > 0.999 {
         [0.0, 0.0, -d[1].signum()]
     } else {
