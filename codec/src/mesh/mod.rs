@@ -13,6 +13,8 @@ mod topology;
 
 #[cfg(test)]
 pub(crate) mod test_rng;
+#[cfg(test)]
+pub(crate) mod test_shapes;
 
 #[cfg(feature = "encoder")]
 pub mod clean;

@@ -122,22 +122,8 @@ mod tests {
     /// face.
     #[test]
     fn cube_corners_point_along_diagonals() {
-        let p = (0..8)
-            .map(|i| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32])
-            .collect::<Vec<_>>();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let t = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect::<Vec<_>>();
-        let mesh = TriMesh::new(p.clone(), t);
+        let mesh = crate::mesh::test_shapes::unit_cube();
+        let p = mesh.positions.clone();
         let normals = vertex_normals(&mesh);
         for (v, n) in normals.iter().enumerate() {
             let d = DVec3::from(p[v].map(f64::from)) - DVec3::splat(0.5);

@@ -121,32 +121,12 @@ fn splits_keep_the_surface_consistent() {
     }
 }
 
-/// The unit cube as 12 triangles: faces many L wide.
-fn coarse_cube() -> TriMesh {
-    let p = (0..8)
-        .map(|i| [(i >> 2) as f32, ((i >> 1) & 1) as f32, (i & 1) as f32])
-        .collect();
-    let quads = [
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 1, 3, 2],
-        [4, 6, 7, 5],
-    ];
-    let f = quads
-        .iter()
-        .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
-        .collect();
-    TriMesh::new(p, f)
-}
-
 #[test]
 fn a_start_face_wider_than_l_keeps_m_unfolded() {
     // p2 lies inside the start face when that face is wider than L; it
     // was split into the face beyond, which folded M under the first
     // triangles, and every run at these lengths failed by the fifth gate.
-    let cube = coarse_cube();
+    let cube = crate::mesh::test_shapes::unit_cube();
     for l in [0.03, 0.05, 0.07, 0.1] {
         let r = run(&cube, l).unwrap_or_else(|e| panic!("L = {l}: {e:?}"));
         check_closed_genus0(&r);
