@@ -235,3 +235,107 @@ fn cli_defaults_to_auto_and_reports_the_method() {
         assert_eq!(out.status.code(), Some(2), "{refused:?}");
     }
 }
+
+/// Issue 20, clear limits: a request above what the whole mesh at the
+/// finest quantization needs gets that file at once (no retiling at an
+/// edge length far below the input's), reported as such; a request below
+/// the smallest file is refused naming it, and `--or-smallest` writes it.
+#[test]
+fn requests_beyond_either_end_are_answered_clearly() {
+    let dir = scratch("auto-limits");
+    let input = dir.join("part.obj");
+    swm::io::write_mesh(&input, &swm_corpus::fandisk_like(16)).unwrap();
+    let output = dir.join("part.swm");
+    let (i, o) = (input.to_str().unwrap(), output.to_str().unwrap());
+    let j = json(&swm(&[
+        "encode",
+        i,
+        "-o",
+        o,
+        "--size",
+        "100000000",
+        "--json",
+    ]));
+    assert_eq!(j["method"]["chosen"], "simplified", "{j}");
+    let failure = j["method"]["swing_failure"].as_str().unwrap_or_default();
+    assert!(failure.starts_with("not tried: the whole mesh"), "{j}");
+    // The whole mesh, at the quantization of lowest measured error.
+    assert_eq!(
+        j["simplified"]["faces"], j["simplified"]["input_faces"],
+        "{j}"
+    );
+    assert_eq!(j["size"]["whole_mesh_short"], true, "{j}");
+    assert_eq!(j["size"]["within_tolerance"], false, "{j}");
+    let out = swm(&["encode", i, "-o", o, "--size", "100000000"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("swm: note: ") && err.contains(": the whole mesh at "),
+        "{err}"
+    );
+
+    // Below the smallest file: refused, nothing written; allowed, written.
+    let _ = std::fs::remove_file(&output);
+    let out = swm(&["encode", i, "-o", o, "--size", "10"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let smallest: u64 = err
+        .split("the smallest possible is ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!(!output.exists());
+    let j = json(&swm(&[
+        "encode",
+        i,
+        "-o",
+        o,
+        "--size",
+        "10",
+        "--or-smallest",
+        "--json",
+    ]));
+    assert_eq!(j["bytes"], smallest, "{j}");
+    swm::decode(&std::fs::read(&output).unwrap(), &Default::default()).unwrap();
+    // Never above a cap.
+    let cap = (smallest - 1).to_string();
+    let out = swm(&[
+        "encode",
+        i,
+        "-o",
+        o,
+        "--size",
+        "10",
+        "--or-smallest",
+        "--max-size",
+        &cap,
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+}
+
+/// Issue 20: a torus whose tube is a thousandth of its ring (every coarse
+/// simplification degenerate, no retiling possible) encodes at a size
+/// that can hold it, and below that is refused naming the size.
+#[test]
+fn a_very_thin_torus_gives_a_valid_file() {
+    let dir = scratch("auto-thin-torus");
+    let input = dir.join("thin.obj");
+    swm::io::write_mesh(&input, &swm_corpus::torus(1.0, 0.001, 24, 6)).unwrap();
+    let output = dir.join("thin.swm");
+    let (i, o) = (input.to_str().unwrap(), output.to_str().unwrap());
+    let j = json(&swm(&["encode", i, "-o", o, "--size", "400", "--json"]));
+    let bytes = j["bytes"].as_u64().unwrap();
+    assert!((388..=400).contains(&bytes), "{j}");
+    let mesh = swm::decode(&std::fs::read(&output).unwrap(), &Default::default()).unwrap();
+    assert!(mesh.face_count() > 0);
+    let out = swm(&["encode", i, "-o", o]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("the smallest possible is"), "{err}");
+    let out = swm(&["encode", i, "-o", o, "--or-smallest"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -35,7 +35,9 @@ fn encode_decode_info_roundtrip() {
 
     let info = json(&swm(&["info", swm_file.to_str().unwrap(), "--json"]));
     assert_eq!(info["mode"], "lossless");
-    assert_eq!(info["version"], "1.0");
+    // The compact framing (format 1.1) is the default.
+    assert_eq!(info["version"], "1.1");
+    assert_eq!(info["framing"], "compact");
     assert_eq!(info["triangles"], 48 * 16 * 2);
     assert_eq!(info["qp"], 14);
     let clers = &info["clers"];

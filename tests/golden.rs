@@ -128,6 +128,7 @@ fn lossless_v1_0_is_the_golden_torus() {
 fn lossless_v1_0_reencodes_to_the_same_bytes() {
     let options = EncodeOptions {
         mode: EncodeMode::Lossless { qp: 12 },
+        framing: swm::Framing::Fixed,
         ..EncodeOptions::default()
     };
     let encoded = swm::encode(&golden_torus(), &options).unwrap();
@@ -135,6 +136,55 @@ fn lossless_v1_0_reencodes_to_the_same_bytes() {
         encoded.bytes, LOSSLESS_V1_0,
         "re-encoding the golden torus no longer gives golden/lossless-v1.0.swm"
     );
+}
+
+const LOSSLESS_COMPACT_V1_1: &[u8] =
+    include_bytes!("../format-spec/golden/lossless-compact-v1.1.swm");
+
+/// The golden torus in the compact framing (format 1.1): the same
+/// sections as `lossless-v1.0.swm`, so the same mesh, in fewer bytes.
+/// Must hold forever.
+#[test]
+fn lossless_compact_v1_1_decodes_to_the_1_0_test_vector() {
+    let mesh = swm::decode(LOSSLESS_COMPACT_V1_1, &DecodeOptions::default())
+        .expect("golden file lossless-compact-v1.1.swm must decode");
+    assert_eq!(mesh.positions.len(), LOSSLESS_V1_0_VERTICES);
+    assert_eq!(mesh.triangles.len(), LOSSLESS_V1_0_TRIANGLES);
+    assert_eq!(mesh_hash(&mesh), LOSSLESS_V1_0_FNV1A64);
+    assert_eq!(LOSSLESS_COMPACT_V1_1.len(), LOSSLESS_V1_0_COMPACT_LEN);
+    assert_eq!(&LOSSLESS_COMPACT_V1_1[4..8], &[1, 1, 1, 0], "1.1, compact");
+    let info = swm::inspect(LOSSLESS_COMPACT_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.framing, swm::Framing::Compact);
+    assert_eq!(info.frame_bytes, 26);
+}
+
+/// Its length: the 1.0 file less 33 bytes of framing (three counts of 4
+/// bytes become 1, the section count 2 → 1, four entries of 8 become 2,
+/// but GEOM's, whose length needs a second varint byte, 3).
+const LOSSLESS_V1_0_COMPACT_LEN: usize = 278 - 33;
+
+/// The default encoder writes the compact golden file (see
+/// `lossless_v1_0_reencodes_to_the_same_bytes` for what this pins).
+#[test]
+fn lossless_compact_v1_1_reencodes_to_the_same_bytes() {
+    let options = EncodeOptions {
+        mode: EncodeMode::Lossless { qp: 12 },
+        ..EncodeOptions::default()
+    };
+    let encoded = swm::encode(&golden_torus(), &options).unwrap();
+    assert_eq!(encoded.bytes, LOSSLESS_COMPACT_V1_1);
+}
+
+/// Writes the compact golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_lossless_compact_golden`).
+#[test]
+#[ignore]
+fn write_lossless_compact_golden() {
+    let options = EncodeOptions {
+        mode: EncodeMode::Lossless { qp: 12 },
+        ..EncodeOptions::default()
+    };
+    write_golden("lossless-compact-v1.1.swm", &golden_torus(), &options);
 }
 
 const SWING_V1_0: &[u8] = include_bytes!("../format-spec/golden/swing-v1.0.swm");
@@ -233,6 +283,8 @@ fn golden_swing_options() -> EncodeOptions {
             adaptive_density: false,
             front_contexts: false,
         },
+        // The golden files predate the compact framing (format 1.1).
+        framing: swm::Framing::Fixed,
         ..EncodeOptions::default()
     }
 }
@@ -326,6 +378,8 @@ fn golden_adaptive_options() -> EncodeOptions {
             adaptive_density: true,
             front_contexts: false,
         },
+        // The golden files predate the compact framing (format 1.1).
+        framing: swm::Framing::Fixed,
         ..EncodeOptions::default()
     }
 }

@@ -12,18 +12,24 @@
 //!   and never panic.
 
 mod common;
-use common::samples;
+use common::{samples, samples_in_both_framings, Frame};
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use swm::container::crc32;
 use swm::{DecodeOptions, Error, Malformed, TriMesh};
 
-/// Offsets of the fixed header (format-spec/01-container.md).
+/// Offsets of the preamble, the same in every framing
+/// (format-spec/01-container.md).
 const MAJOR: usize = 4;
 const MINOR: usize = 5;
 const FLAGS: usize = 6;
-const SECTION_COUNT: usize = 21;
-const TABLE: usize = 23;
+
+/// Where a valid file's first payload starts (its frame's length).
+fn table_end(b: &[u8]) -> usize {
+    swm::container::parse_container(b, &Default::default())
+        .unwrap()
+        .frame_len()
+}
 
 fn fix_crc(b: &mut [u8]) {
     let n = b.len() - 4;
@@ -218,7 +224,8 @@ fn other_versions() {
         fix_crc(&mut b);
         let mesh = try_decode(&b, &DecodeOptions::default(), s.name).unwrap();
         assert_eq!(mesh, plain, "{}: minor 9", s.name);
-        b[FLAGS] = 0x01;
+        // Bit 0 is 1.1's compact framing; bit 1 is nobody's.
+        b[FLAGS] |= 0x02;
         fix_crc(&mut b);
         let e = try_decode(&b, &DecodeOptions::default(), s.name).unwrap_err();
         assert!(matches!(e, Error::Unsupported(_)), "{}: {e:?}", s.name);
@@ -227,13 +234,11 @@ fn other_versions() {
 
 #[test]
 fn overwritten_header_bytes() {
-    for s in samples() {
-        // The whole fixed header and section table, each byte set to a few
+    for s in samples_in_both_framings() {
+        // The whole header and section table, each byte set to a few
         // values, first with the CRC left alone (caught by it), then fixed
         // (reaches the header, table and mode decoders).
-        let table_end =
-            TABLE + 8 * usize::from(u16::from_le_bytes([s.bytes[SECTION_COUNT], s.bytes[22]]));
-        for at in 4..table_end {
+        for at in 4..table_end(&s.bytes) {
             for v in [0x00, 0x01, 0x7F, 0x80, 0xFF, s.bytes[at].wrapping_add(1)] {
                 if v == s.bytes[at] {
                     continue;
@@ -256,9 +261,7 @@ fn overwritten_header_bytes() {
 #[test]
 fn overwritten_payload_bytes_with_the_crc_fixed() {
     for s in samples() {
-        let table_end =
-            TABLE + 8 * usize::from(u16::from_le_bytes([s.bytes[SECTION_COUNT], s.bytes[22]]));
-        for at in table_end..s.bytes.len() - 4 {
+        for at in table_end(&s.bytes)..s.bytes.len() - 4 {
             for v in [0x00, 0xFF, s.bytes[at] ^ 0x10] {
                 if v == s.bytes[at] {
                     continue;
@@ -272,32 +275,27 @@ fn overwritten_payload_bytes_with_the_crc_fixed() {
     }
 }
 
-/// Section `i`'s length field.
-fn length_at(i: usize) -> usize {
-    TABLE + 8 * i + 4
-}
-
-fn set_length(b: &mut [u8], i: usize, len: u32) {
-    b[length_at(i)..length_at(i) + 4].copy_from_slice(&len.to_le_bytes());
-}
-
-fn get_length(b: &[u8], i: usize) -> u32 {
-    u32::from_le_bytes(b[length_at(i)..length_at(i) + 4].try_into().unwrap())
+/// The file with section `i`'s length (and so its frame) rewritten.
+fn with_length(frame: &Frame, i: usize, len: u64) -> Vec<u8> {
+    let mut f = frame.clone();
+    f.entries[i].1 = len;
+    f.bytes()
 }
 
 #[test]
 fn sections_with_lying_lengths() {
-    for s in samples() {
-        let n = usize::from(u16::from_le_bytes([s.bytes[SECTION_COUNT], s.bytes[22]]));
+    for s in samples_in_both_framings() {
+        let frame = Frame::of(&s.bytes);
+        let n = frame.entries.len();
         for i in 0..n {
-            let len = get_length(&s.bytes, i);
+            let len = frame.entries[i].1;
             // Too long: runs into the CRC or past the end of the file.
-            for longer in [len + 1, len + 4, len + 1000, u32::MAX] {
-                let mut b = s.bytes.clone();
-                set_length(&mut b, i, longer);
-                fix_crc(&mut b);
+            for longer in [len + 1, len + 4, len + 1000, u64::from(u32::MAX)] {
+                let b = with_length(&frame, i, longer);
                 let what = format!("{} section {i} length {len} -> {longer}", s.name);
                 let e = try_decode(&b, &DecodeOptions::default(), &what).expect_err(&what);
+                // A compact entry's length may grow a varint byte, which
+                // moves the table's end: still out of bounds.
                 assert!(
                     matches!(format_error(&e), Some(Malformed::SectionOutOfBounds { .. })),
                     "{what}: {e:?}"
@@ -308,9 +306,7 @@ fn sections_with_lying_lengths() {
                 if shorter == len {
                     continue;
                 }
-                let mut b = s.bytes.clone();
-                set_length(&mut b, i, shorter);
-                fix_crc(&mut b);
+                let b = with_length(&frame, i, shorter);
                 let what = format!("{} section {i} length {len} -> {shorter}", s.name);
                 let e = try_decode(&b, &DecodeOptions::default(), &what).expect_err(&what);
                 assert!(
@@ -321,16 +317,16 @@ fn sections_with_lying_lengths() {
             // Overlapping: the boundary with the next section moves, so
             // the frame holds and each section starts inside the other.
             if i + 1 < n {
-                let next = get_length(&s.bytes, i + 1);
+                let next = frame.entries[i + 1].1;
                 for shift in [-3i64, -1, 1, 3, len as i64, -(next as i64)] {
                     let (a, c) = (len as i64 + shift, next as i64 - shift);
                     if a < 0 || c < 0 || shift == 0 {
                         continue;
                     }
-                    let mut b = s.bytes.clone();
-                    set_length(&mut b, i, a as u32);
-                    set_length(&mut b, i + 1, c as u32);
-                    fix_crc(&mut b);
+                    let mut f = frame.clone();
+                    f.entries[i].1 = a as u64;
+                    f.entries[i + 1].1 = c as u64;
+                    let b = f.bytes();
                     let what = format!("{} boundary {i}/{} moved by {shift}", s.name, i + 1);
                     refused_or_valid(&b, &what);
                 }
@@ -338,12 +334,13 @@ fn sections_with_lying_lengths() {
         }
         // A section count that lies: one more or one fewer entry.
         for count in [n + 1, n - 1, 0, 0xFFFF] {
-            let mut b = s.bytes.clone();
-            b[SECTION_COUNT..SECTION_COUNT + 2].copy_from_slice(&(count as u16).to_le_bytes());
-            fix_crc(&mut b);
+            let mut f = frame.clone();
+            f.count = count as u64;
+            let b = f.bytes();
             let what = format!("{} with {count} sections", s.name);
             // Refused as malformed, or as unsupported when payload bytes
-            // read as an entry make an unknown critical tag.
+            // read as an entry make an unknown critical tag (or, compact,
+            // a reserved tag code).
             let e = try_decode(&b, &DecodeOptions::default(), &what).expect_err(&what);
             assert!(
                 format_error(&e).is_some() || matches!(e, Error::Unsupported(_)),
@@ -354,13 +351,13 @@ fn sections_with_lying_lengths() {
 }
 
 fn header_counts(b: &[u8]) -> (u64, u64) {
-    let u = |at: usize| u64::from(u32::from_le_bytes(b[at..at + 4].try_into().unwrap()));
-    (u(9), u(13))
+    let c = Frame::of(b).counts;
+    (c[0], c[1])
 }
 
 #[test]
 fn huge_declared_counts_in_a_small_file_are_refused_quickly() {
-    for s in samples() {
+    for s in samples_in_both_framings() {
         // Within the default limits, consistent with each other, and far
         // more than the sections could code; then beyond the limits.
         for (v, t) in [
@@ -368,10 +365,10 @@ fn huge_declared_counts_in_a_small_file_are_refused_quickly() {
             (3 << 27, 1 << 29),
             (u32::MAX, u32::MAX),
         ] {
-            let mut b = s.bytes.clone();
-            b[9..13].copy_from_slice(&v.to_le_bytes());
-            b[13..17].copy_from_slice(&t.to_le_bytes());
-            fix_crc(&mut b);
+            let mut f = Frame::of(&s.bytes);
+            f.counts[0] = v.into();
+            f.counts[1] = t.into();
+            let b = f.bytes();
             let what = format!("{} declaring {v} vertices, {t} triangles", s.name);
             let start = std::time::Instant::now();
             let e = try_decode(&b, &DecodeOptions::default(), &what).expect_err(&what);
@@ -390,7 +387,7 @@ fn huge_declared_counts_in_a_small_file_are_refused_quickly() {
 
 #[test]
 fn tight_limits_refuse_a_valid_file() {
-    for s in samples() {
+    for s in samples_in_both_framings() {
         let mesh = swm::decode(&s.bytes, &DecodeOptions::default()).unwrap();
         // A hole-masked mesh has fewer faces than its header declares, and
         // the limits bound the header; REST adds faces the header does not

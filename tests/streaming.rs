@@ -33,7 +33,7 @@ const CUTS: &[&[usize]] = &[
 
 #[test]
 fn every_cut_decodes_to_the_whole_file_mesh() {
-    for s in common::samples() {
+    for s in common::samples_in_both_framings() {
         for options in [
             DecodeOptions::default(),
             DecodeOptions {
@@ -83,8 +83,11 @@ fn damaged_files_fail_the_same_way_for_every_cut() {
 
 #[test]
 fn a_bad_frame_stops_the_stream_early() {
-    let bytes = &common::samples()[3].bytes;
-    // The header's counts above the limits: refused at byte 27.
+    let compact = &common::samples()[3].bytes;
+    let fixed = &common::reframed(compact, swm::Framing::Fixed);
+    // The header's counts above the limits: refused at byte 27 in the
+    // fixed framing, as soon as the vertex count's varint is in in the
+    // compact one (byte 9 is its first).
     let tight = DecodeOptions {
         limits: Limits {
             max_vertices: 3,
@@ -92,13 +95,18 @@ fn a_bad_frame_stops_the_stream_early() {
         },
         ..Default::default()
     };
-    let s = StreamDecoder::new(tight.clone())
-        .push(&bytes[..26])
-        .unwrap();
-    assert!(matches!(
-        s.push(&bytes[26..27]),
-        Err(Error::LimitExceeded(_))
-    ));
+    let v = common::Frame::of(compact).counts[0];
+    let v_len = (64 - (v | 1).leading_zeros() as usize).div_ceil(7);
+    for (bytes, at) in [(fixed, 27), (compact, 9 + v_len)] {
+        let s = StreamDecoder::new(tight.clone())
+            .push(&bytes[..at - 1])
+            .unwrap();
+        assert!(matches!(
+            s.push(&bytes[at - 1..at]),
+            Err(Error::LimitExceeded(_))
+        ));
+    }
+    let bytes = compact;
 
     // A file longer than the allocation limit: refused once the section
     // table is in, before anything is reserved for it.

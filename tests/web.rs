@@ -123,6 +123,7 @@ fn cases() -> &'static Path {
             "swing-v1.0",
             "swing-v1.1",
             "swing-front-v1.1",
+            "lossless-compact-v1.1",
         ] {
             let path = Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join(format!("../format-spec/golden/{name}.swm"));

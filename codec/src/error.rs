@@ -714,6 +714,10 @@ pub enum UnsupportedFeature {
     CriticalSection([u8; 4]),
     /// Required flag bits this decoder does not know.
     RequiredFlags(u16),
+    /// A section tag code of the compact framing (format 1.1) that this
+    /// decoder does not know: a tag a later version registered, which may
+    /// be critical.
+    SectionCode(u8),
 }
 
 impl fmt::Display for UnsupportedError {
@@ -741,6 +745,10 @@ impl fmt::Display for UnsupportedError {
             UnsupportedFeature::RequiredFlags(bits) => write!(
                 f,
                 "the file (.swm version {ma}.{mi}) sets required flags {bits:#06x} unknown to this decoder (version {sa}.{si})"
+            ),
+            UnsupportedFeature::SectionCode(c) => write!(
+                f,
+                "the file (.swm version {ma}.{mi}) has a section with tag code {c}, unknown to this decoder (version {sa}.{si})"
             ),
         }
     }

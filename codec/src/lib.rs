@@ -61,7 +61,7 @@ pub use api::{
     SwingTarget, SwingTuning, AUTO_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
-pub use container::Mode;
+pub use container::{Framing, Mode};
 pub use error::{
     Error, FileKind, FormatError, InputError, LimitError, Limited, Location, Malformed,
     ParameterError, RetileError, RetileFailure, SizeError, TopologyError,

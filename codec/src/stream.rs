@@ -3,19 +3,26 @@
 //! as soon as its frame says it cannot be decoded, and decodes once the
 //! last byte is in.
 //!
-//! The frame tells its own length: after the fixed header and the section
+//! The frame tells its own length: after the header and the section
 //! table, `total = table end + Σ section lengths + 4` (format-spec
 //! 01-container.md). So the decoder buffers exactly `total` bytes, checked
 //! against `Limits::max_alloc_bytes` before it reserves them, and refuses
 //! a byte past the end.
 //!
 //! ```text
-//! bytes in   0    4                27        table end              total
-//!            |magic|  fixed header  | table    |   payloads     | CRC |
-//! checks:         ^ magic           ^ header   ^ length vs limits     ^ whole file:
-//!                                     (version, flags, mode,             `decode`
-//!                                      counts vs limits)
+//! bytes in   0    4       8              27        table end              total
+//!            |magic| ver. |  fixed header  | table    |   payloads     | CRC |
+//! checks:         ^ magic ^ version, flags ^ header   ^ length vs limits     ^ whole file:
+//!                           (the framing)   (mode,                              `decode`
+//!                                            counts vs limits)
 //! ```
+//!
+//! In the compact framing (format 1.1) the header and the table have no
+//! fixed length: after byte 8 the decoder reads them field by field as
+//! they arrive (checking each count against the limits, and each table
+//! entry as the whole-file parser does), and learns `total` when the last
+//! entry is in. It keeps its place, so the work stays linear in the
+//! table however the bytes are cut.
 //!
 //! Invariant: the outcome depends only on the bytes, never on how they
 //! were cut into pieces. Each check runs when the buffered prefix reaches
@@ -29,7 +36,10 @@
 
 use crate::prelude::*;
 
-use crate::container::{check_magic, declared_len, malformed, table_end, Header, MAGIC, MIN_LEN};
+use crate::container::{
+    check_magic, check_version_and_flags, declared_len, malformed, table_end, Header, Scan,
+    TableCheck, FLAG_COMPACT, MAGIC, MIN_LEN,
+};
 use crate::{decode, DecodeOptions, Error, Malformed, TriMesh};
 
 /// A `.swm` file being received; see the module documentation.
@@ -49,7 +59,24 @@ pub struct StreamDecoder {
     buf: Vec<u8>,
     /// The file's length, once the section table is in.
     total: Option<usize>,
+    /// A compact file's frame, once its flags are in.
+    compact: Option<CompactFrame>,
 }
+
+/// Where reading a compact frame stands.
+#[derive(Debug)]
+struct CompactFrame {
+    /// The buffer length at which reading goes on.
+    need: usize,
+    /// The header and the table's check, once the header is in.
+    table: Option<(Header, TableCheck)>,
+    /// The next entry's offset, and the entries left.
+    pos: usize,
+    left: usize,
+}
+
+/// The length of the preamble: magic, version, flags.
+const PREAMBLE_LEN: usize = 8;
 
 impl StreamDecoder {
     /// A decoder that will decode with `options` (and buffer no more than
@@ -59,6 +86,7 @@ impl StreamDecoder {
             options,
             buf: Vec::new(),
             total: None,
+            compact: None,
         }
     }
 
@@ -119,8 +147,12 @@ impl StreamDecoder {
             Some(total) if n >= total => None,
             Some(total) => Some(total),
             None if n < MAGIC.len() => Some(MAGIC.len()),
-            None if n < MIN_LEN => Some(MIN_LEN),
-            None => Some(table_end(&self.buf).max(MIN_LEN)),
+            None if n < PREAMBLE_LEN => Some(PREAMBLE_LEN),
+            None => match &self.compact {
+                Some(c) => Some(c.need),
+                None if n < MIN_LEN => Some(MIN_LEN),
+                None => Some(table_end(&self.buf).max(MIN_LEN)),
+            },
         }
     }
 
@@ -132,10 +164,27 @@ impl StreamDecoder {
         if len == MAGIC.len() {
             return check_magic(&self.buf);
         }
-        if len == MIN_LEN {
-            Header::read(&self.buf, &self.options.limits)?;
+        if len == PREAMBLE_LEN {
+            let flags = check_version_and_flags(&self.buf)?;
+            if flags & FLAG_COMPACT != 0 {
+                self.compact = Some(CompactFrame {
+                    need: PREAMBLE_LEN + 1,
+                    table: None,
+                    pos: 0,
+                    left: 0,
+                });
+            }
+            return Ok(());
         }
-        if let Some(total) = declared_len(&self.buf) {
+        let declared = if self.compact.is_some() {
+            self.compact_step()?
+        } else {
+            if len == MIN_LEN {
+                Header::read(&self.buf, &self.options.limits)?;
+            }
+            declared_len(&self.buf)
+        };
+        if let Some(total) = declared {
             self.options.limits.check_alloc(total)?;
             let total = usize::try_from(total).map_err(|_| {
                 Error::LimitExceeded(crate::LimitError {
@@ -149,5 +198,45 @@ impl StreamDecoder {
             self.total = Some(total);
         }
         Ok(())
+    }
+}
+
+impl StreamDecoder {
+    /// Reads as much of a compact frame as the buffer holds, from where
+    /// the last step stopped: the file's length once the table is all in.
+    fn compact_step(&mut self) -> Result<Option<u64>, Error> {
+        let buf = &self.buf;
+        let Some(c) = self.compact.as_mut() else {
+            return Ok(None);
+        };
+        if c.table.is_none() {
+            match crate::container::read_compact_head(buf, &self.options.limits)? {
+                Scan::Done(h) => {
+                    c.table = Some((h.header, TableCheck::unbounded(&h.header)));
+                    c.pos = h.table;
+                    c.left = h.count;
+                }
+                Scan::Need(n) => {
+                    c.need = n;
+                    return Ok(None);
+                }
+            }
+        }
+        let Some((header, check)) = c.table.as_mut() else {
+            return Ok(None);
+        };
+        while c.left > 0 {
+            match check.try_entry(buf, c.pos, header)? {
+                Scan::Done(next) => {
+                    c.pos = next;
+                    c.left -= 1;
+                }
+                Scan::Need(n) => {
+                    c.need = n;
+                    return Ok(None);
+                }
+            }
+        }
+        Ok(Some(c.pos as u64 + check.payload + 4))
     }
 }

@@ -1,10 +1,10 @@
 //! Unsigned LEB128 integers (the `varu` type of format-spec/00-conventions.md):
 //! 7 bits per byte, low group first, at most 10 bytes.
 
+use crate::prelude::*;
 use crate::{FormatError, Malformed};
 
 /// Appends `v` as a varu.
-#[cfg(feature = "encoder")]
 pub fn put(out: &mut Vec<u8>, mut v: u64) {
     while v >= 0x80 {
         out.push((v as u8) | 0x80);

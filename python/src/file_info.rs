@@ -100,5 +100,11 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
     }
     let (major, minor) = info.version;
     d.set_item("version", format!("{major}.{minor}"))?;
+    let framing = match info.framing {
+        swm::Framing::Fixed => "fixed",
+        _ => "compact",
+    };
+    d.set_item("framing", framing)?;
+    d.set_item("frame_bytes", info.frame_bytes)?;
     Ok(d)
 }

@@ -232,11 +232,7 @@ fn encode_report<'py>(py: Python<'py>, stats: &swm::EncodeStats) -> PyResult<Bou
             let d = PyDict::new(py);
             d.set_item("chosen", method_name(c.chosen))?;
             d.set_item("swing", candidate(&c.swing)?)?;
-            let failure = c.swing_failure.as_ref().map(|f| match f {
-                swm::SwingFailure::Retile(e) => e.to_string(),
-                swm::SwingFailure::Limit(e) => e.to_string(),
-                _ => "failed".to_string(),
-            });
+            let failure = c.swing_failure.as_ref().map(|f| f.to_string());
             d.set_item("swing_failure", failure)?;
             d.set_item("simplified", candidate(&c.simplified)?)?;
             out.set_item("choice", d)?;

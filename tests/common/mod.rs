@@ -96,6 +96,7 @@ pub const NON_MANIFOLD_CORPUS: &[(&str, u64, u64)] = &[
 ];
 
 /// A small valid `.swm` file.
+#[derive(Clone, Debug)]
 pub struct Sample {
     /// What kind of file it is.
     pub name: &'static str,
@@ -236,4 +237,117 @@ pub fn glb(doc: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
     out.extend(b"BIN\0");
     out.extend(bin);
     out
+}
+
+/// A valid file in the other framing (format-spec/01-container.md): the
+/// same header fields and sections, the header's framing flag changed.
+pub fn reframed(bytes: &[u8], framing: swm::Framing) -> Vec<u8> {
+    let file = swm::container::parse_container(bytes, &Default::default()).unwrap();
+    let sections: Vec<(swm::container::Tag, &[u8])> =
+        file.sections().map(|s| (s.tag, s.bytes)).collect();
+    swm::container::write_container(&file.header.with_framing(framing), &sections).unwrap()
+}
+
+/// Every sample in both framings: as the encoder writes it (compact) and
+/// in the fixed framing of format 1.0.
+pub fn samples_in_both_framings() -> &'static [Sample] {
+    static BOTH: OnceLock<Vec<Sample>> = OnceLock::new();
+    BOTH.get_or_init(|| {
+        let mut all = samples().to_vec();
+        for s in samples() {
+            let name: &'static str = Box::leak(format!("{} (fixed framing)", s.name).into());
+            all.push(Sample {
+                name,
+                bytes: reframed(&s.bytes, swm::Framing::Fixed),
+            });
+        }
+        all
+    })
+}
+
+/// A file's frame taken apart so that tests can make it lie: counts,
+/// section count and lengths are written as given, in the file's own
+/// framing, over the same payloads, with a fresh CRC.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub header: swm::container::Header,
+    /// Vertex, triangle and component counts.
+    pub counts: [u64; 3],
+    /// The section count written (may differ from `entries.len()`).
+    pub count: u64,
+    /// Each entry's tag and written length.
+    pub entries: Vec<(swm::container::Tag, u64)>,
+    /// All payloads, back to back.
+    pub payload: Vec<u8>,
+}
+
+/// The compact framing's registered tags, code k at index k - 1.
+const CODES: [&[u8; 4]; 9] = [
+    b"HEAD", b"CLRS", b"TOPO", b"GEOM", b"HOLE", b"REST", b"DENS", b"CLRF", b"meta",
+];
+
+impl Frame {
+    pub fn of(bytes: &[u8]) -> Frame {
+        let file = swm::container::parse_container(bytes, &Default::default()).unwrap();
+        let h = file.header;
+        Frame {
+            header: h,
+            counts: [h.vertex_count, h.triangle_count, h.component_count].map(u64::from),
+            count: file.section_count() as u64,
+            entries: file
+                .sections()
+                .map(|s| (s.tag, s.bytes.len() as u64))
+                .collect(),
+            payload: file.sections().flat_map(|s| s.bytes.to_vec()).collect(),
+        }
+    }
+
+    pub fn compact(&self) -> bool {
+        self.header.framing() == swm::Framing::Compact
+    }
+
+    pub fn bytes(&self) -> Vec<u8> {
+        let mut b = Vec::new();
+        let h = &self.header;
+        b.extend_from_slice(b"SWM\0");
+        b.extend_from_slice(&[h.major, h.minor]);
+        b.extend_from_slice(&h.flags.to_le_bytes());
+        b.push(h.mode.code());
+        let varu = |b: &mut Vec<u8>, mut v: u64| {
+            while v >= 0x80 {
+                b.push(v as u8 | 0x80);
+                v >>= 7;
+            }
+            b.push(v as u8);
+        };
+        if self.compact() {
+            for c in self.counts {
+                varu(&mut b, c);
+            }
+            varu(&mut b, self.count);
+            for (tag, len) in &self.entries {
+                match CODES.iter().position(|c| **c == tag.0) {
+                    Some(k) => b.push(k as u8 + 1),
+                    None => {
+                        b.push(0);
+                        b.extend_from_slice(&tag.0);
+                    }
+                }
+                varu(&mut b, *len);
+            }
+        } else {
+            for c in self.counts {
+                b.extend_from_slice(&(c as u32).to_le_bytes());
+            }
+            b.extend_from_slice(&(self.count as u16).to_le_bytes());
+            for (tag, len) in &self.entries {
+                b.extend_from_slice(&tag.0);
+                b.extend_from_slice(&(*len as u32).to_le_bytes());
+            }
+        }
+        b.extend_from_slice(&self.payload);
+        let crc = swm::container::crc32(&b);
+        b.extend_from_slice(&crc.to_le_bytes());
+        b
+    }
 }

@@ -79,6 +79,16 @@ pub struct Args {
     /// (`CLRF`), which takes about a fifth of the bits.
     #[arg(long)]
     plain_clers: bool,
+    /// How the file's header and section table are laid out: `compact`
+    /// (format 1.1: varints and one-byte tags, about 30 bytes fewer) or
+    /// `fixed` (format 1.0's layout, for decoders older than 1.1).
+    #[arg(long, value_enum, default_value_t = FramingArg::Compact)]
+    framing: FramingArg,
+    /// With --size or --bpv: when the request is below the smallest file
+    /// that can hold the mesh, write that smallest file (and say so)
+    /// instead of failing; never above --max-size.
+    #[arg(long)]
+    or_smallest: bool,
     /// Never write more than this many bytes (lossless: with --size or --bpv).
     #[arg(long, value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     max_size: Option<u64>,
@@ -234,11 +244,32 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             adaptive_density: args.adaptive,
             front_contexts: !args.plain_clers,
         },
+        framing: match args.framing {
+            FramingArg::Compact => swm::Framing::Compact,
+            FramingArg::Fixed => swm::Framing::Fixed,
+        },
         ..Default::default()
     };
     progress.phase("encoding");
     let start = Instant::now();
-    let encoded = swm::encode(&mesh, &options).map_err(|e| CliError::new(&args.input, e))?;
+    let encoded = match swm::encode(&mesh, &options) {
+        // Allowed to write more than asked: the smallest file there is.
+        Err(swm::Error::Size(e)) if args.or_smallest => {
+            let Some(mode) = at_size(&options.mode, e.smallest) else {
+                return Err(CliError::new(&args.input, swm::Error::Size(e)));
+            };
+            let encoded = swm::encode(&mesh, &swm::EncodeOptions { mode, ..options })
+                .map_err(|e| CliError::new(&args.input, e))?;
+            eprintln!(
+                "swm: note: {}: no file of {} bytes can hold this mesh; the smallest, {} bytes, was written (--or-smallest)",
+                args.input.display(),
+                e.requested,
+                encoded.bytes.len()
+            );
+            encoded
+        }
+        other => other.map_err(|e| CliError::new(&args.input, e))?,
+    };
     let seconds = start.elapsed().as_secs_f64();
     // The lossless mode at a given qp keeps every triangle and moves each
     // vertex by at most half a quantization step: nothing to catch, and
@@ -273,7 +304,25 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         (_, Some(s)) => (crate::report::swing_json(s), s.vertices, s.triangles),
         _ => (serde_json::json!({}), 0, 0),
     };
+    // The size asked for, when one was.
+    let requested = match (args.size, args.bpv) {
+        (Some(b), _) => Some(b),
+        (_, Some(bpv)) => Some((bpv * mesh.vertex_count() as f64 / 8.0).round() as u64),
+        _ => None,
+    };
+    let bytes = encoded.bytes.len() as u64;
+    // The whole mesh at the simplified method's quantization, well short
+    // of the request: nothing more to code (a note below, a flag in JSON).
+    let whole_short = stats.simplified.is_some_and(|s| s.faces == s.input_faces)
+        && requested.is_some_and(|r| bytes * 100 < r * 97);
     if args.json {
+        if let Some(r) = requested {
+            json["size"] = serde_json::json!({
+                "requested": r,
+                "within_tolerance": bytes * 100 >= r * 97 && bytes * 100 <= r * 103,
+                "whole_mesh_short": whole_short,
+            });
+        }
         json["encode_seconds"] = seconds.into();
         json["input_vertices"] = mesh.vertex_count().into();
         json["cleaning"] = crate::report::clean_json(&stats.clean);
@@ -344,13 +393,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         );
         // Never a silent miss: a request beyond what the whole mesh at
         // the finest quantization needs gets that file, and a note.
-        let requested = match (args.size, args.bpv) {
-            (Some(b), _) => Some(b),
-            (_, Some(bpv)) => Some((bpv * mesh.vertex_count() as f64 / 8.0).round() as u64),
-            _ => None,
-        };
-        let bytes = encoded.bytes.len() as u64;
-        if let Some(r) = requested.filter(|&r| s.faces == s.input_faces && bytes * 100 < r * 97) {
+        if let Some(r) = requested.filter(|_| whole_short) {
             eprintln!(
                 "swm: note: {}: the whole mesh at {} bits per coordinate takes {bytes} bytes, less than the {r} asked for; that file was written",
                 args.input.display(),
@@ -577,4 +620,36 @@ fn piece_json(p: &swm::PieceReport) -> serde_json::Value {
         _ => v["outcome"] = "other".into(),
     }
     v
+}
+
+/// `--framing`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum FramingArg {
+    Compact,
+    Fixed,
+}
+
+/// `mode` with its size or rate replaced by `bytes`, if it has one and no
+/// cap below `bytes` (`--or-smallest`).
+fn at_size(mode: &swm::EncodeMode, bytes: u64) -> Option<swm::EncodeMode> {
+    let target = swm::SwingTarget::Bytes(bytes);
+    let fits = |cap: &Option<u64>| cap.is_none_or(|c| bytes <= c);
+    match *mode {
+        swm::EncodeMode::Auto { max_bytes, .. } if fits(&max_bytes) => {
+            Some(swm::EncodeMode::Auto { target, max_bytes })
+        }
+        swm::EncodeMode::Simplified { max_bytes, .. } if fits(&max_bytes) => {
+            Some(swm::EncodeMode::Simplified { target, max_bytes })
+        }
+        swm::EncodeMode::Swing {
+            angle_bits,
+            max_bytes,
+            ..
+        } if fits(&max_bytes) => Some(swm::EncodeMode::Swing {
+            target,
+            angle_bits,
+            max_bytes,
+        }),
+        _ => None,
+    }
 }

@@ -97,6 +97,8 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     }
     let mut v = crate::report::lossless_json(&info.stats, info.qp);
     v["version"] = version(&info).into();
+    v["framing"] = framing(&info).into();
+    v["frame_bytes"] = info.frame_bytes.into();
     if args.json {
         crate::report::print_json(&v);
         return Ok(());
@@ -154,7 +156,17 @@ fn print_sections_and_clers(sections: &[([u8; 4], usize)], triangles: u64, clers
 pub fn swing_json(info: &swm::FileInfo, s: &swm::SwingStats) -> serde_json::Value {
     let mut v = crate::report::swing_json(s);
     v["version"] = version(info).into();
+    v["framing"] = framing(info).into();
+    v["frame_bytes"] = info.frame_bytes.into();
     v
+}
+
+/// "compact" or "fixed".
+fn framing(info: &swm::FileInfo) -> &'static str {
+    match info.framing {
+        swm::Framing::Fixed => "fixed",
+        _ => "compact",
+    }
 }
 
 /// The file's format version, "major.minor".
@@ -166,6 +178,11 @@ fn version(info: &swm::FileInfo) -> String {
 fn print_file_and_version(args: &Args, info: &swm::FileInfo) {
     say!("{}", args.file.display());
     say!("  format version        {}", version(info));
+    say!(
+        "  framing               {}, {} bytes",
+        framing(info),
+        info.frame_bytes
+    );
 }
 
 /// `swm info` of a SwingWrapper file.

@@ -180,12 +180,5 @@ fn method_name(m: swm::Method) -> &'static str {
 }
 
 fn failure_text(f: &swm::SwingFailure) -> String {
-    match f {
-        swm::SwingFailure::Retile(e) => e.to_string(),
-        swm::SwingFailure::Limit(e) => e.to_string(),
-        swm::SwingFailure::Oversized { bytes } => {
-            format!("its nearest file, {bytes} bytes, missed the size by more than 3%")
-        }
-        _ => "failed".to_string(),
-    }
+    f.to_string()
 }

@@ -46,8 +46,9 @@ pub(crate) const MIN_LEN: usize = at::TABLE + CRC_LEN;
 pub const FLAGS_REQUIRED: u16 = 0x00FF;
 /// Flag bits a decoder may ignore when it does not know them.
 pub const FLAGS_OPTIONAL: u16 = 0xFF00;
-/// Flag bits defined by this format version: none in 1.0.
-pub const KNOWN_FLAGS: u16 = 0;
+/// Flag bits defined by this format version: 1.1 defines bit 0, the
+/// compact framing ([`FLAG_COMPACT`](super::FLAG_COMPACT)).
+pub const KNOWN_FLAGS: u16 = super::compact::FLAG_COMPACT;
 
 /// How the sections encode the mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -88,7 +89,8 @@ pub struct Header {
     /// Minor format version. A decoder reads newer ones (skipping what it
     /// does not know, when it may).
     pub minor: u8,
-    /// Flag bits; see [`FLAGS_REQUIRED`] and [`FLAGS_OPTIONAL`]. Zero in 1.0.
+    /// Flag bits; see [`FLAGS_REQUIRED`] and [`FLAGS_OPTIONAL`]. Zero in 1.0;
+    /// 1.1 defines bit 0, the compact framing ([`Header::framing`]).
     pub flags: u16,
     /// How the sections encode the mesh.
     pub mode: Mode,
@@ -117,54 +119,69 @@ impl Header {
         }
     }
 
-    /// Appends magic, version, flags, mode and counts (up to, not
-    /// including, the section count).
-    pub(crate) fn write(&self, out: &mut Vec<u8>) {
+    /// The same header with the framing `framing` (format 1.1 for the
+    /// compact one: its flag bit is a 1.1 feature, so the minor version
+    /// is raised to at least 1).
+    pub fn with_framing(mut self, framing: Framing) -> Self {
+        match framing {
+            Framing::Fixed => self.flags &= !super::FLAG_COMPACT,
+            Framing::Compact => {
+                self.flags |= super::FLAG_COMPACT;
+                self.minor = self.minor.max(1);
+            }
+        }
+        self
+    }
+
+    /// How the header's counts and the section table are laid out.
+    pub const fn framing(&self) -> Framing {
+        if self.flags & super::FLAG_COMPACT != 0 {
+            Framing::Compact
+        } else {
+            Framing::Fixed
+        }
+    }
+
+    /// Appends magic, version and flags: the preamble every framing
+    /// starts with.
+    pub(crate) fn write_preamble(&self, out: &mut Vec<u8>) {
         out.extend_from_slice(&MAGIC);
         out.push(self.major);
         out.push(self.minor);
         put_u16(out, self.flags);
+    }
+
+    /// Appends the fixed framing's preamble, mode and counts (up to, not
+    /// including, the section count).
+    pub(crate) fn write(&self, out: &mut Vec<u8>) {
+        self.write_preamble(out);
         out.push(self.mode.code());
         put_u32(out, self.vertex_count);
         put_u32(out, self.triangle_count);
         put_u32(out, self.component_count);
     }
 
-    /// Reads and checks the fixed header of a file whose magic and CRC
-    /// have been verified. `bytes` holds at least [`MIN_FRAME_LEN`] bytes.
-    ///
-    /// Order matters: the version first (a newer major version may lay out
-    /// everything after it differently), then the length of the 1.x
-    /// header, then flags, mode, limits and consistency.
+    /// Reads and checks the fixed framing's header of a file whose magic,
+    /// CRC, version and flags were checked ([`check_preamble`]) and that
+    /// does not set the compact flag. `bytes` holds at least [`MIN_LEN`]
+    /// bytes.
     pub(crate) fn read(bytes: &[u8], limits: &Limits) -> Result<Header, Error> {
         let (major, minor) = (bytes[at::MAJOR], bytes[at::MINOR]);
-        let unsupported = |feature| UnsupportedError {
-            feature,
+        let flags = LE::read_u16(&bytes[at::FLAGS..]);
+        let code = bytes[at::MODE];
+        let mode = Mode::from_code(code).ok_or(UnsupportedError {
+            feature: UnsupportedFeature::Mode(code),
             major,
             minor,
             supported_major: FORMAT_MAJOR,
             supported_minor: FORMAT_MINOR,
-        };
-        if major != FORMAT_MAJOR {
-            return Err(unsupported(UnsupportedFeature::Version).into());
-        }
-        if bytes.len() < MIN_LEN {
-            return Err(malformed(Malformed::Truncated, bytes.len()));
-        }
-        let flags = LE::read_u16(&bytes[at::FLAGS..]);
-        let unknown_required = flags & FLAGS_REQUIRED & !KNOWN_FLAGS;
-        if unknown_required != 0 {
-            return Err(unsupported(UnsupportedFeature::RequiredFlags(unknown_required)).into());
-        }
-        let code = bytes[at::MODE];
-        let mode = Mode::from_code(code).ok_or(unsupported(UnsupportedFeature::Mode(code)))?;
+        })?;
         let vertex_count = LE::read_u32(&bytes[at::VERTEX_COUNT..]);
         let triangle_count = LE::read_u32(&bytes[at::TRIANGLE_COUNT..]);
         let component_count = LE::read_u32(&bytes[at::COMPONENT_COUNT..]);
         limits.check_vertices(vertex_count.into())?;
         limits.check_faces(triangle_count.into())?;
-        check_counts(vertex_count, triangle_count, component_count)?;
-        Ok(Header {
+        let header = Header {
             major,
             minor,
             flags,
@@ -172,41 +189,104 @@ impl Header {
             vertex_count,
             triangle_count,
             component_count,
-        })
+        };
+        check_counts(
+            &header,
+            [at::VERTEX_COUNT, at::TRIANGLE_COUNT, at::COMPONENT_COUNT],
+        )?;
+        Ok(header)
     }
+}
+
+/// How a file lays out its header's counts and its section table (the
+/// preamble, the payloads and the CRC are the same in both).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Framing {
+    /// Format 1.0's layout: `u32` counts, a `u16` section count and eight
+    /// bytes (tag, `u32` length) per section; 27 bytes and 8 per section.
+    /// Readable by every 1.x decoder.
+    Fixed,
+    /// Format 1.1's compact layout (flag bit 0): varint counts and
+    /// lengths, one-byte codes for registered tags; about 17 bytes and 2
+    /// per section. The default of the encoder.
+    #[default]
+    Compact,
+}
+
+/// Checks what every 1.x file has at the same place before its layout can
+/// differ: the major version, then the required flags (one of which
+/// selects the framing), then the file's length against the framing's
+/// smallest file. Returns the flags. `bytes` holds at least
+/// [`MIN_FRAME_LEN`] bytes.
+pub(crate) fn check_preamble(bytes: &[u8]) -> Result<u16, Error> {
+    let flags = check_version_and_flags(bytes)?;
+    let min = if flags & super::FLAG_COMPACT != 0 {
+        super::compact::MIN_COMPACT_LEN
+    } else {
+        MIN_LEN
+    };
+    if bytes.len() < min {
+        return Err(malformed(Malformed::Truncated, bytes.len()));
+    }
+    Ok(flags)
+}
+
+/// The major version, then the required flags; returns the flags.
+/// `bytes` holds at least the eight bytes of the preamble.
+pub(crate) fn check_version_and_flags(bytes: &[u8]) -> Result<u16, Error> {
+    let (major, minor) = (bytes[at::MAJOR], bytes[at::MINOR]);
+    let unsupported = |feature| UnsupportedError {
+        feature,
+        major,
+        minor,
+        supported_major: FORMAT_MAJOR,
+        supported_minor: FORMAT_MINOR,
+    };
+    if major != FORMAT_MAJOR {
+        return Err(unsupported(UnsupportedFeature::Version).into());
+    }
+    let flags = LE::read_u16(&bytes[at::FLAGS..]);
+    let unknown_required = flags & FLAGS_REQUIRED & !KNOWN_FLAGS;
+    if unknown_required != 0 {
+        return Err(unsupported(UnsupportedFeature::RequiredFlags(unknown_required)).into());
+    }
+    Ok(flags)
 }
 
 /// What any triangle mesh without unreferenced vertices satisfies. These
 /// bound every count by the triangle count, so the limit on triangles
 /// bounds all allocations sized by the header.
-fn check_counts(vertices: u32, triangles: u32, components: u32) -> Result<(), Error> {
+/// `at` locates the vertex, triangle and component counts for errors.
+pub(crate) fn check_counts(header: &Header, at: [usize; 3]) -> Result<(), Error> {
     let (v, t, c) = (
-        u64::from(vertices),
-        u64::from(triangles),
-        u64::from(components),
+        u64::from(header.vertex_count),
+        u64::from(header.triangle_count),
+        u64::from(header.component_count),
     );
+    let [vertex_at, _, component_at] = at;
     if c > t {
         return Err(malformed(
             Malformed::BadHeader("more components than triangles"),
-            at::COMPONENT_COUNT,
+            component_at,
         ));
     }
     if t > 0 && c == 0 {
         return Err(malformed(
             Malformed::BadHeader("triangles but no component"),
-            at::COMPONENT_COUNT,
+            component_at,
         ));
     }
     if v > 3 * t {
         return Err(malformed(
             Malformed::BadHeader("more than three vertices per triangle"),
-            at::VERTEX_COUNT,
+            vertex_at,
         ));
     }
     if t > 0 && v < 3 {
         return Err(malformed(
             Malformed::BadHeader("triangles but fewer than three vertices"),
-            at::VERTEX_COUNT,
+            vertex_at,
         ));
     }
     Ok(())

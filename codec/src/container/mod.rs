@@ -1,9 +1,13 @@
-//! The `.swm` container, format version 1.0: the framing every coding mode
-//! writes into (normative text: `format-spec/01-container.md`).
+//! The `.swm` container, format versions 1.0 and 1.1: the framing every
+//! coding mode writes into (normative text: `format-spec/01-container.md`).
 //!
 //! ```text
 //! "SWM\0" major minor flags | mode vertices triangles components | n | n × (tag, length) | payloads | CRC-32
 //! ```
+//!
+//! Two framings write these fields: the fixed one of 1.0 (`u32` counts,
+//! eight-byte entries) and 1.1's compact one (flag bit 0: varints and
+//! one-byte tag codes), which makes a small file mostly payload.
 //!
 //! The container knows nothing about how a section is coded. It frames
 //! sections, checks the frame, and refuses a file before anything sized by
@@ -23,9 +27,11 @@
 //!
 //! One concern per file: `crc` (checksum), `tag` (section names and the
 //! 1.0 registry), `header` (fixed fields, version and limit checks),
-//! `write` and `read` (the frame), `count` (the "count cannot fit" rule),
+//! `write` and `read` (the frame), `compact` (the compact framing's
+//! fields), `count` (the "count cannot fit" rule),
 //! `meta` (the `meta` key/value section).
 
+mod compact;
 mod count;
 mod crc;
 mod header;
@@ -36,6 +42,8 @@ mod write;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_compact;
 
 /// Rewrites the trailing CRC so that a mutation reaches the decoder
 /// proper instead of stopping at the checksum (mode tests).
@@ -75,13 +83,26 @@ pub(crate) fn with_section(bytes: &[u8], tag: Tag, payload: &[u8]) -> Vec<u8> {
     write_container(&file.header, &refs).unwrap()
 }
 
+/// The same file in the other framing (same sections, same version
+/// otherwise): tests compare what each framing costs and check that
+/// decoders read both alike.
+#[cfg(all(test, feature = "encoder"))]
+pub(crate) fn reframe(bytes: &[u8], framing: Framing) -> Vec<u8> {
+    let file = parse_container(bytes, &crate::Limits::default()).unwrap();
+    let refs: Vec<(Tag, &[u8])> = file.sections().map(|s| (s.tag, s.bytes)).collect();
+    write_container(&file.header.with_framing(framing), &refs).unwrap()
+}
+
 pub use crate::error::{UnsupportedError, UnsupportedFeature};
+pub use compact::FLAG_COMPACT;
+pub(crate) use compact::{read_head as read_compact_head, Scan};
 pub use count::check_count_fits;
 pub use crc::{crc32, Crc32};
+pub(crate) use header::check_version_and_flags;
 pub(crate) use header::{malformed, MIN_LEN};
-pub use header::{Header, Mode, FLAGS_OPTIONAL, FLAGS_REQUIRED, KNOWN_FLAGS};
+pub use header::{Framing, Header, Mode, FLAGS_OPTIONAL, FLAGS_REQUIRED, KNOWN_FLAGS};
 pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
-pub(crate) use read::{check_magic, declared_len, table_end};
+pub(crate) use read::{check_magic, declared_len, table_end, TableCheck};
 pub use read::{parse_container, Container, Section, Sections};
 pub use tag::Tag;
 pub use write::{container_len, write_container, write_container_into};

@@ -10,9 +10,15 @@
 //! 3. version, flags, mode, counts against [`Limits`] and each other;
 //! 4. the section table: tags, criticality, duplicates, lengths, and that
 //!    the payloads exactly fill the space up to the CRC.
+//!
+//! Steps 3 and 4 read the fixed framing or the compact one (`compact`),
+//! as the flags say; the checks on each entry are the same.
 
+use super::compact::{self, Scan, FLAG_COMPACT};
 use super::crc::crc32;
-use super::header::{at, malformed, Header, CRC_LEN, MIN_FRAME_LEN, MIN_LEN, TABLE_ENTRY_LEN};
+use super::header::{
+    at, check_preamble, malformed, Header, CRC_LEN, MIN_FRAME_LEN, TABLE_ENTRY_LEN,
+};
 use super::tag::KNOWN_CRITICAL;
 use super::{Tag, UnsupportedError, UnsupportedFeature, FORMAT_MAJOR, FORMAT_MINOR, MAGIC};
 use crate::{Error, Limits, Malformed};
@@ -24,8 +30,12 @@ use byteorder::{ByteOrder, LittleEndian as LE};
 pub struct Container<'a> {
     /// The fixed header, checked against the limits.
     pub header: Header,
-    /// The section table's entries.
+    /// The section table's entries, in the header's framing.
     table: &'a [u8],
+    /// Number of entries.
+    count: usize,
+    /// File offset of `table` (where the section-table errors point).
+    table_offset: usize,
     /// All payloads, in table order.
     data: &'a [u8],
     /// File offset of `data`.
@@ -57,7 +67,9 @@ impl<'a> Container<'a> {
     /// Every section, in file order, unknown ancillary ones included.
     pub fn sections(&self) -> Sections<'a> {
         Sections {
+            header: self.header,
             table: self.table,
+            left: self.count,
             data: self.data,
             offset: self.data_offset,
         }
@@ -65,7 +77,13 @@ impl<'a> Container<'a> {
 
     /// Number of sections.
     pub fn section_count(&self) -> usize {
-        self.table.len() / TABLE_ENTRY_LEN
+        self.count
+    }
+
+    /// Bytes of the file before the first payload: preamble, header and
+    /// section table (what the framing costs, with the CRC's four).
+    pub fn frame_len(&self) -> usize {
+        self.data_offset
     }
 
     /// The first section with this tag.
@@ -83,14 +101,16 @@ impl<'a> Container<'a> {
     /// not the container's.
     pub fn require(&self, tag: Tag) -> Result<Section<'a>, Error> {
         self.find(tag)
-            .ok_or_else(|| malformed(Malformed::MissingSection { tag: tag.0 }, at::SECTION_COUNT))
+            .ok_or_else(|| malformed(Malformed::MissingSection { tag: tag.0 }, self.table_offset))
     }
 }
 
 /// Iterator over a container's sections in file order.
 #[derive(Clone, Debug)]
 pub struct Sections<'a> {
+    header: Header,
     table: &'a [u8],
+    left: usize,
     data: &'a [u8],
     offset: usize,
 }
@@ -99,10 +119,21 @@ impl<'a> Iterator for Sections<'a> {
     type Item = Section<'a>;
 
     fn next(&mut self) -> Option<Section<'a>> {
-        let (entry, table) = self.table.split_first_chunk::<TABLE_ENTRY_LEN>()?;
-        let tag = Tag([entry[0], entry[1], entry[2], entry[3]]);
-        let len = LE::read_u32(&entry[4..]) as usize;
-        // The parser checked every length; `get` keeps this panic-free anyway.
+        if self.left == 0 {
+            return None;
+        }
+        // The parser checked every entry; `?` and `get` keep this
+        // panic-free anyway.
+        let (tag, len, table) = if self.header.flags & FLAG_COMPACT != 0 {
+            match compact::read_entry(self.table, 0, &self.header).ok()? {
+                Scan::Done(e) => (e.tag, e.len as usize, &self.table[e.end..]),
+                Scan::Need(_) => return None,
+            }
+        } else {
+            let (entry, table) = self.table.split_first_chunk::<TABLE_ENTRY_LEN>()?;
+            let tag = Tag([entry[0], entry[1], entry[2], entry[3]]);
+            (tag, LE::read_u32(&entry[4..]) as usize, table)
+        };
         let bytes = self.data.get(..len)?;
         let section = Section {
             tag,
@@ -110,14 +141,14 @@ impl<'a> Iterator for Sections<'a> {
             bytes,
         };
         self.table = table;
+        self.left -= 1;
         self.data = &self.data[len..];
         self.offset += len;
         Some(section)
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let n = self.table.len() / TABLE_ENTRY_LEN;
-        (n, Some(n))
+        (self.left, Some(self.left))
     }
 }
 
@@ -165,22 +196,143 @@ pub fn parse_container<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container
         ));
     }
 
-    let header = Header::read(bytes, limits)?;
-
-    let table_end = table_end(bytes);
-    if table_end > crc_at {
-        // The table alone runs into the CRC.
-        return Err(malformed(Malformed::Truncated, at::SECTION_COUNT));
-    }
-    let table = &bytes[at::TABLE..table_end];
-    let mut end = table_end as u64;
-    let mut seen_critical = 0u8;
-    for (i, entry) in table.chunks_exact(TABLE_ENTRY_LEN).enumerate() {
-        let entry_at = at::TABLE + i * TABLE_ENTRY_LEN;
-        let tag = Tag([entry[0], entry[1], entry[2], entry[3]]);
-        if !tag.is_valid() {
-            return Err(malformed(Malformed::BadSectionTag { tag: tag.0 }, entry_at));
+    let flags = check_preamble(bytes)?;
+    let frame = if flags & FLAG_COMPACT != 0 {
+        match compact::read_head(&bytes[..crc_at], limits)? {
+            Scan::Done(h) => Frame {
+                header: h.header,
+                count: h.count,
+                table: h.table,
+            },
+            // The header runs into the CRC.
+            Scan::Need(_) => return Err(malformed(Malformed::Truncated, crc_at)),
         }
+    } else {
+        let header = Header::read(bytes, limits)?;
+        let count = usize::from(LE::read_u16(&bytes[at::SECTION_COUNT..]));
+        if table_end(bytes) > crc_at {
+            // The table alone runs into the CRC.
+            return Err(malformed(Malformed::Truncated, at::SECTION_COUNT));
+        }
+        Frame {
+            header,
+            count,
+            table: at::TABLE,
+        }
+    };
+    // The table's end: known from the count in the fixed framing; in the
+    // compact one, found by reading the entries once (checking each alone:
+    // codes, tags, criticality, duplicates) before their lengths are
+    // added up from it.
+    let table_end = if frame.header.flags & FLAG_COMPACT != 0 {
+        let mut scan = TableCheck::unbounded(&frame.header);
+        let mut pos = frame.table;
+        for _ in 0..frame.count {
+            pos = scan.entry(&bytes[..crc_at], pos, &frame.header)?;
+        }
+        pos
+    } else {
+        frame.table + TABLE_ENTRY_LEN * frame.count
+    };
+    let mut table = TableCheck {
+        base: Some(table_end),
+        limit: crc_at as u64,
+        ..TableCheck::unbounded(&frame.header)
+    };
+    let mut pos = frame.table;
+    for _ in 0..frame.count {
+        pos = table.entry(&bytes[..crc_at], pos, &frame.header)?;
+    }
+    debug_assert_eq!(pos, table_end);
+    let end = pos as u64 + table.payload;
+    if end != crc_at as u64 {
+        // Bytes between the last payload and the CRC belong to no section.
+        return Err(malformed(Malformed::TrailingData, end as usize));
+    }
+    Ok(Container {
+        header: frame.header,
+        table: &bytes[frame.table..pos],
+        count: frame.count,
+        table_offset: frame.table,
+        data: &bytes[pos..crc_at],
+        data_offset: pos,
+    })
+}
+
+/// A checked header, its section count and where its table starts.
+struct Frame {
+    header: Header,
+    count: usize,
+    table: usize,
+}
+
+/// The checks on the section table's entries, one entry at a time, for
+/// either framing: tags, criticality, duplicates, and that the payloads
+/// stay before the CRC. The stream decoder runs it as the table arrives.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TableCheck {
+    compact: bool,
+    seen_critical: u8,
+    /// Sum of the lengths so far.
+    pub(crate) payload: u64,
+    /// Where the table ends, when known; otherwise the end of the entry
+    /// being checked stands in for it, a lower bound.
+    base: Option<usize>,
+    /// The most the table and payloads may reach: the CRC's offset, or
+    /// `u64::MAX` while the file's length is not known.
+    limit: u64,
+}
+
+impl TableCheck {
+    /// A check for a file whose length is not known yet.
+    pub(crate) fn unbounded(header: &Header) -> Self {
+        TableCheck {
+            compact: header.flags & FLAG_COMPACT != 0,
+            seen_critical: 0,
+            payload: 0,
+            base: None,
+            limit: u64::MAX,
+        }
+    }
+
+    /// Checks the entry at `pos` of a table that `bytes` holds whole and
+    /// returns the offset after it.
+    fn entry(&mut self, bytes: &[u8], pos: usize, header: &Header) -> Result<usize, Error> {
+        match self.try_entry(bytes, pos, header)? {
+            Scan::Done(next) => Ok(next),
+            // The table runs into the CRC.
+            Scan::Need(_) => Err(malformed(Malformed::Truncated, pos)),
+        }
+    }
+
+    /// Checks the entry at `pos` if `bytes` holds it: the offset after it,
+    /// or the prefix length needed to go on.
+    pub(crate) fn try_entry(
+        &mut self,
+        bytes: &[u8],
+        pos: usize,
+        header: &Header,
+    ) -> Result<Scan<usize>, Error> {
+        let (tag, len, len_at, next) = if self.compact {
+            match compact::read_entry(bytes, pos, header)? {
+                Scan::Done(e) => (e.tag, e.len, e.len_at, e.end),
+                Scan::Need(n) => return Ok(Scan::Need(n)),
+            }
+        } else {
+            let Some(entry) = bytes.get(pos..pos + TABLE_ENTRY_LEN) else {
+                return Ok(Scan::Need(pos + TABLE_ENTRY_LEN));
+            };
+            let tag = Tag([entry[0], entry[1], entry[2], entry[3]]);
+            if !tag.is_valid() {
+                return Err(malformed(Malformed::BadSectionTag { tag: tag.0 }, pos));
+            }
+            (
+                tag,
+                LE::read_u32(&entry[4..]),
+                pos + 4,
+                pos + TABLE_ENTRY_LEN,
+            )
+        };
         if tag.is_critical() {
             let Some(k) = KNOWN_CRITICAL.iter().position(|&t| t == tag) else {
                 return Err(UnsupportedError {
@@ -192,37 +344,26 @@ pub fn parse_container<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container
                 }
                 .into());
             };
-            if seen_critical & (1 << k) != 0 {
-                return Err(malformed(
-                    Malformed::DuplicateSection { tag: tag.0 },
-                    entry_at,
-                ));
+            if self.seen_critical & (1 << k) != 0 {
+                return Err(malformed(Malformed::DuplicateSection { tag: tag.0 }, pos));
             }
-            seen_critical |= 1 << k;
+            self.seen_critical |= 1 << k;
         }
-        // u64: a u32 length added to a usize offset cannot overflow.
-        end += u64::from(LE::read_u32(&entry[4..]));
-        if end > crc_at as u64 {
+        // u64: a u32 length added to the sum cannot overflow.
+        self.payload += u64::from(len);
+        let end = self.base.unwrap_or(next) as u64 + self.payload;
+        if end > self.limit {
             return Err(malformed(
                 Malformed::SectionOutOfBounds {
                     tag: tag.0,
                     end,
-                    limit: crc_at as u64,
+                    limit: self.limit,
                 },
-                entry_at + 4,
+                len_at,
             ));
         }
+        Ok(Scan::Done(next))
     }
-    if end != crc_at as u64 {
-        // Bytes between the last payload and the CRC belong to no section.
-        return Err(malformed(Malformed::TrailingData, end as usize));
-    }
-    Ok(Container {
-        header,
-        table,
-        data: &bytes[table_end..crc_at],
-        data_offset: table_end,
-    })
 }
 
 /// Where the section table ends, from the section count of a 1.x fixed
@@ -234,13 +375,31 @@ pub(crate) fn table_end(bytes: &[u8]) -> usize {
 /// The length a 1.x file declares: its section table's end, the sections'
 /// lengths and the CRC; `None` while the table is not all in `bytes`.
 /// Unverified: the CRC vouches for it only once the whole file is in.
+/// Reads either framing (a compact table entry by entry, so this is
+/// linear in the table).
 pub(crate) fn declared_len(bytes: &[u8]) -> Option<u64> {
-    let table = bytes.get(at::TABLE..table_end(bytes))?;
-    let payload: u64 = table
-        .chunks_exact(TABLE_ENTRY_LEN)
-        .map(|e| u64::from(LE::read_u32(&e[4..])))
-        .sum();
-    Some((at::TABLE + table.len()) as u64 + payload + CRC_LEN as u64)
+    let flags = LE::read_u16(bytes.get(at::FLAGS..at::MODE)?);
+    if flags & FLAG_COMPACT == 0 {
+        bytes.get(..at::TABLE)?;
+        let table = bytes.get(at::TABLE..table_end(bytes))?;
+        let payload: u64 = table
+            .chunks_exact(TABLE_ENTRY_LEN)
+            .map(|e| u64::from(LE::read_u32(&e[4..])))
+            .sum();
+        return Some((at::TABLE + table.len()) as u64 + payload + CRC_LEN as u64);
+    }
+    let Ok(Scan::Done(h)) = compact::read_head(bytes, &Limits::UNLIMITED) else {
+        return None;
+    };
+    let (mut pos, mut payload) = (h.table, 0u64);
+    for _ in 0..h.count {
+        let Ok(Scan::Done(e)) = compact::read_entry(bytes, pos, &h.header) else {
+            return None;
+        };
+        payload += u64::from(e.len);
+        pos = e.end;
+    }
+    Some(pos as u64 + payload + CRC_LEN as u64)
 }
 
 /// The magic, or the error every reader of `.swm` bytes gives for it.
@@ -265,7 +424,7 @@ pub(crate) fn check_magic(bytes: &[u8]) -> Result<(), Error> {
 /// "extra bytes after the file" instead of "damaged" for a good file
 /// followed by garbage. Reads only; allocates nothing.
 fn valid_prefix_len(bytes: &[u8]) -> Option<usize> {
-    if bytes[at::MAJOR] != FORMAT_MAJOR || bytes.len() < MIN_LEN {
+    if bytes[at::MAJOR] != FORMAT_MAJOR || bytes.len() < compact::MIN_COMPACT_LEN {
         return None;
     }
     let end = usize::try_from(declared_len(bytes)?).ok()?;

@@ -72,7 +72,7 @@ fn round_trip() {
     let sections = golden_sections(&meta);
     let header = Header::new(Mode::Swing, 4, 4, 1);
     let bytes = write_container(&header, &sections).unwrap();
-    assert_eq!(bytes.len(), container_len(&sections));
+    assert_eq!(bytes.len(), container_len(&header, &sections));
     let c = parse(&bytes).unwrap();
     assert_eq!(c.header, header);
     assert_eq!(c.section_count(), 5);
@@ -247,11 +247,12 @@ fn unknown_critical_section_is_unsupported() {
 #[test]
 fn unknown_required_flag_and_mode_are_unsupported() {
     let mut bytes = sample();
-    bytes[6] = 0x05;
+    // Bit 0 is 1.1's compact framing; bits 1 and 2 are nobody's.
+    bytes[6] = 0x07;
     refresh_crc(&mut bytes);
     assert_eq!(
         unsupported(parse(&bytes)).feature,
-        UnsupportedFeature::RequiredFlags(0x0005)
+        UnsupportedFeature::RequiredFlags(0x0006)
     );
     let mut bytes = sample();
     bytes[8] = 7;

@@ -1,4 +1,6 @@
-//! Writing the frame: fixed header, section table, payloads, CRC-32.
+//! Writing the frame: header, section table, payloads, CRC-32, in the
+//! framing the header's flags name (fixed, or format 1.1's compact one:
+//! `compact`).
 //!
 //! The writer frames whatever sections it is given, in the order given,
 //! and writes the header's fields as they are (so an encoder can pin an
@@ -8,16 +10,23 @@
 use crate::prelude::*;
 
 use super::crc::crc32;
-use super::header::{at, put_u16, put_u32, Header, MIN_LEN, TABLE_ENTRY_LEN};
-use super::Tag;
+use super::header::{at, put_u16, put_u32, Framing, Header, CRC_LEN, MIN_LEN, TABLE_ENTRY_LEN};
+use super::{compact, Tag};
 use crate::{Error, ParameterError};
 
 /// The exact size in bytes of the container [`write_container`] makes of
-/// these sections (saturating at `usize::MAX`).
-pub fn container_len(sections: &[(Tag, &[u8])]) -> usize {
-    sections.iter().fold(MIN_LEN, |n, (_, s)| {
-        n.saturating_add(TABLE_ENTRY_LEN).saturating_add(s.len())
-    })
+/// these sections under `header` (saturating at `usize::MAX`).
+pub fn container_len(header: &Header, sections: &[(Tag, &[u8])]) -> usize {
+    let payload = sections
+        .iter()
+        .fold(0usize, |n, (_, s)| n.saturating_add(s.len()));
+    let frame = match header.framing() {
+        Framing::Fixed => MIN_LEN.saturating_add(TABLE_ENTRY_LEN.saturating_mul(sections.len())),
+        Framing::Compact => {
+            compact::frame_len(header, sections.iter().map(|(t, s)| (*t, s.len()))) + CRC_LEN
+        }
+    };
+    frame.saturating_add(payload)
 }
 
 /// Frames `sections` under `header` into a new buffer.
@@ -35,7 +44,7 @@ pub fn write_container(header: &Header, sections: &[(Tag, &[u8])]) -> Result<Vec
 }
 
 /// Appends the container to `out` (caller-owned output) and returns the
-/// number of bytes appended, [`container_len`]`(sections)`. On error `out`
+/// number of bytes appended, [`container_len`]`(header, sections)`. On error `out`
 /// is left unchanged. Errors and panics as [`write_container`].
 pub fn write_container_into(
     header: &Header,
@@ -44,21 +53,32 @@ pub fn write_container_into(
 ) -> Result<usize, Error> {
     check_sections(sections)?;
     let start = out.len();
-    out.reserve(container_len(sections));
-    header.write(out);
-    debug_assert_eq!(out.len() - start, at::SECTION_COUNT);
-    // Lengths and count were checked above; the casts cannot truncate.
-    put_u16(out, sections.len() as u16);
-    for (tag, bytes) in sections {
-        out.extend_from_slice(&tag.0);
-        put_u32(out, bytes.len() as u32);
+    out.reserve(container_len(header, sections));
+    match header.framing() {
+        Framing::Fixed => {
+            header.write(out);
+            debug_assert_eq!(out.len() - start, at::SECTION_COUNT);
+            // Lengths and count were checked above; the casts cannot truncate.
+            put_u16(out, sections.len() as u16);
+            for (tag, bytes) in sections {
+                out.extend_from_slice(&tag.0);
+                put_u32(out, bytes.len() as u32);
+            }
+        }
+        Framing::Compact => {
+            header.write_preamble(out);
+            compact::write_head(header, sections.len(), out);
+            for (tag, bytes) in sections {
+                compact::write_entry(*tag, bytes.len(), out);
+            }
+        }
     }
     for (_, bytes) in sections {
         out.extend_from_slice(bytes);
     }
     let crc = crc32(&out[start..]);
     put_u32(out, crc);
-    debug_assert_eq!(out.len() - start, container_len(sections));
+    debug_assert_eq!(out.len() - start, container_len(header, sections));
     Ok(out.len() - start)
 }
 

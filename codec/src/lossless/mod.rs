@@ -20,7 +20,7 @@ use crate::prelude::*;
 use crate::container::parse_container;
 use crate::container::{check_count_fits, Container, Tag};
 #[cfg(feature = "encoder")]
-use crate::container::{write_container, Header, Mode};
+use crate::container::{write_container, Framing, Header, Mode};
 use crate::edgebreaker::{self, Connectivity, Side, SplitEvent, Symbol};
 #[cfg(feature = "encoder")]
 use crate::entropy::Encoder;
@@ -93,6 +93,7 @@ pub(crate) fn encode(
     table: &CornerTable,
     mesh: &TriMesh,
     qp: u8,
+    framing: Framing,
 ) -> Result<(Vec<u8>, LosslessStats, Vec<u32>), Error> {
     let closed = edgebreaker::close_holes(table).table;
     let eb = edgebreaker::encode(&closed)?;
@@ -150,7 +151,8 @@ pub(crate) fn encode(
     let geom = enc.finish();
 
     let triangles = mesh.face_count() as u32;
-    let header = Header::new(Mode::Lossless, real, triangles, conn.components);
+    let header =
+        Header::new(Mode::Lossless, real, triangles, conn.components).with_framing(framing);
     let sections: [(Tag, &[u8]); 4] = [
         (Tag::HEAD, &head),
         (Tag::TOPO, &topo),
@@ -565,8 +567,8 @@ mod tests {
     /// of the decoded mesh recompresses to the same symbols.
     pub(crate) fn check_roundtrip(name: &str, mesh: &TriMesh, qp: u8) -> usize {
         let c = crate::clean(mesh, &CleanOptions::default()).unwrap();
-        let (bytes, stats, source) = encode(&c.table, &c.mesh, qp).unwrap();
-        let again = encode(&c.table, &c.mesh, qp).unwrap().0;
+        let (bytes, stats, source) = encode(&c.table, &c.mesh, qp, Framing::default()).unwrap();
+        let again = encode(&c.table, &c.mesh, qp, Framing::default()).unwrap().0;
         assert_eq!(bytes, again, "{name}: encoding is not deterministic");
         let out = decode_bytes(&bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
         let mapped = out.triangles.iter().map(|t| t.map(|v| source[v as usize]));
@@ -635,7 +637,7 @@ mod tests {
     fn corrupt_files_are_errors() {
         use crate::edgebreaker::tests_support::*;
         let c = crate::clean(&torus(8, 5), &CleanOptions::default()).unwrap();
-        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        let bytes = encode(&c.table, &c.mesh, 12, Framing::default()).unwrap().0;
         for cut in 0..bytes.len() {
             assert!(decode_bytes(&bytes[..cut]).is_err());
         }
@@ -653,7 +655,7 @@ mod tests {
     fn random_overwrites_with_valid_crc_never_panic() {
         use crate::edgebreaker::tests_support::*;
         let c = crate::clean(&torus(10, 6), &CleanOptions::default()).unwrap();
-        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        let bytes = encode(&c.table, &c.mesh, 12, Framing::default()).unwrap().0;
         let mut rng = crate::mesh::test_rng::Rng(0x9e37_79b9_7f4a_7c15);
         for _ in 0..4000 {
             let b = crate::container::overwrite_randomly(&bytes, &mut rng);
@@ -667,7 +669,7 @@ mod tests {
     fn absurd_counts_are_refused_before_allocating() {
         use crate::edgebreaker::tests_support::*;
         let c = crate::clean(&torus(10, 6), &CleanOptions::default()).unwrap();
-        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        let bytes = encode(&c.table, &c.mesh, 12, Framing::default()).unwrap().0;
         // Header counts at offsets 9 (vertices), 13 (triangles), 17 (components).
         for (at, value) in [
             (9, u32::MAX),
@@ -694,7 +696,7 @@ mod tests {
     fn hostile_sections_with_valid_frames_are_errors() {
         use crate::edgebreaker::tests_support::*;
         let c = crate::clean(&grid(6, 4), &CleanOptions::default()).unwrap();
-        let bytes = encode(&c.table, &c.mesh, 12).unwrap().0;
+        let bytes = encode(&c.table, &c.mesh, 12, Framing::default()).unwrap().0;
         let file = parse_container(&bytes, &Limits::default()).unwrap();
         let (clrs, topo) = (
             file.section(Tag::CLRS).unwrap().to_vec(),

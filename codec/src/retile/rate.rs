@@ -72,6 +72,8 @@ pub struct Knobs {
     pub adaptive_density: bool,
     /// [`SwingTuning::front_contexts`](crate::SwingTuning).
     pub front_contexts: bool,
+    /// [`EncodeOptions::framing`](crate::EncodeOptions).
+    pub framing: crate::container::Framing,
 }
 
 /// A finished encoding.
@@ -114,6 +116,7 @@ fn run(
                 } else {
                     crate::swing::Clers::Plain
                 },
+                knobs.framing,
             )?;
             Ok(Ok((bytes, stats, c.report)))
         }

@@ -277,7 +277,8 @@ const HEADER_ALLOWANCE: f64 = 85.0;
 fn decoding_reproduces_the_retiled_mesh_exactly() {
     for (mesh, l) in [(sphere(4), 0.2), (ellipsoid(5), 0.12)] {
         let r = run(&mesh, l).unwrap();
-        let (bytes, stats) = crate::swing::write(&r, crate::swing::Clers::Smaller).unwrap();
+        let (bytes, stats) =
+            crate::swing::write(&r, crate::swing::Clers::Smaller, Default::default()).unwrap();
         let decoded = crate::decode(&bytes, &Default::default()).unwrap();
         assert_eq!(decoded.triangles, r.triangles);
         let expected: Vec<[f32; 3]> = r.positions.iter().map(|p| p.map(|c| c as f32)).collect();
@@ -295,6 +296,7 @@ const KNOBS: rate::Knobs = rate::Knobs {
     fit_tips: true,
     adaptive_density: false,
     front_contexts: true,
+    framing: crate::container::Framing::Compact,
 };
 
 #[test]

@@ -334,9 +334,10 @@ fn front_coded_symbols_decode_to_the_clrs_mesh() {
     meshes.push(("torus-and-tetrahedron", two));
     for (name, mesh) in meshes {
         let r = emulate(&mesh, 8);
-        let front = write(&r, Clers::Front).unwrap().0;
-        let plain = write(&r, Clers::Plain).unwrap().0;
-        let best = write(&r, Clers::Smaller).unwrap().0;
+        let front = write(&r, Clers::Front, Default::default()).unwrap().0;
+        let plain = write(&r, Clers::Plain, Default::default()).unwrap().0;
+        let best = write(&r, Clers::Smaller, Default::default()).unwrap().0;
+        let plain_fixed = write(&r, Clers::Plain, crate::Framing::Fixed).unwrap().0;
         assert_eq!(best.len(), front.len().min(plain.len()), "{name}");
         let file = crate::container::parse_container(&front, &crate::Limits::default()).unwrap();
         assert!(
@@ -346,8 +347,15 @@ fn front_coded_symbols_decode_to_the_clrs_mesh() {
         assert!(file.find(Tag::CLRS).is_none(), "{name}: both sections");
         assert_eq!((file.header.major, file.header.minor), (1, 1), "{name}");
         let plain_file =
-            crate::container::parse_container(&plain, &crate::Limits::default()).unwrap();
-        assert_eq!(plain_file.header.minor, 0, "{name}: CLRS files stay 1.0");
+            crate::container::parse_container(&plain_fixed, &crate::Limits::default()).unwrap();
+        assert_eq!(
+            plain_file.header.minor, 0,
+            "{name}: fixed CLRS files stay 1.0"
+        );
+        assert_eq!(
+            decode_bytes(&plain_fixed).unwrap(),
+            decode_bytes(&plain).unwrap()
+        );
         let (a, b) = (decode_bytes(&front).unwrap(), decode_bytes(&plain).unwrap());
         assert_eq!(a, b, "{name}: the two files decode differently");
         assert_eq!(a.triangles, r.triangles, "{name}");
@@ -367,7 +375,7 @@ fn the_pass_places_the_tips_where_the_rebuilding_pass_does() {
     let limits = crate::Limits::default();
     for (name, mesh) in test_meshes() {
         let r = emulate(&mesh, 8);
-        let bytes = write(&r, Clers::Front).unwrap().0;
+        let bytes = write(&r, Clers::Front, Default::default()).unwrap().0;
         let file = crate::container::parse_container(&bytes, &limits).unwrap();
         let (head, _, table, tips) = read::read_connectivity(&file, &limits).unwrap();
         let tips = tips.expect("a CLRF file");
@@ -417,10 +425,10 @@ fn emulated_retilings_roundtrip_bit_for_bit() {
     for (name, mesh) in test_meshes() {
         for bits in [4, 8, 12] {
             let r = emulate(&mesh, bits);
-            let (bytes, stats) =
-                write(&r, Clers::Smaller).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let (bytes, stats) = write(&r, Clers::Smaller, Default::default())
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
             assert_eq!(
-                write(&r, Clers::Smaller).unwrap().0,
+                write(&r, Clers::Smaller, Default::default()).unwrap().0,
                 bytes,
                 "{name}: not deterministic"
             );
@@ -465,7 +473,7 @@ fn file_size_obeys_the_thesis_bound() {
     // bits <= 288 + 5.83·T + allowance (format-spec/05-swing.md).
     for (name, mesh) in test_meshes() {
         let r = emulate(&mesh, 8);
-        let (bytes, stats) = write(&r, Clers::Smaller).unwrap();
+        let (bytes, stats) = write(&r, Clers::Smaller, Default::default()).unwrap();
         let bound = 288.0 + 5.83 * stats.triangles as f64 + 8.0 * 85.0;
         assert!(
             (8 * bytes.len()) as f64 <= bound,
@@ -478,29 +486,38 @@ fn file_size_obeys_the_thesis_bound() {
 #[test]
 fn the_writer_refuses_an_inconsistent_retiling() {
     let good = emulate(&flat_icosahedron(2), 8);
-    assert!(write(&good, Clers::Smaller).is_ok());
+    assert!(write(&good, Clers::Smaller, Default::default()).is_ok());
     let mut bad = good.clone();
     bad.codes[5] ^= 1;
     assert!(
-        write(&bad, Clers::Smaller).is_err(),
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
         "positions no longer match the codes"
     );
     let mut bad = good.clone();
     bad.codes.push(0);
-    assert!(write(&bad, Clers::Smaller).is_err(), "one code too many");
+    assert!(
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
+        "one code too many"
+    );
     let mut bad = good.clone();
     bad.positions[7][1] += 1e-9;
-    assert!(write(&bad, Clers::Smaller).is_err(), "moved vertex");
+    assert!(
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
+        "moved vertex"
+    );
     let mut bad = good.clone();
     bad.first[0][0][0] += 1e-12;
     bad.positions[0] = bad.first[0][0];
     assert!(
-        write(&bad, Clers::Smaller).is_err(),
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
         "first vertex is not binary32"
     );
     let mut bad = good.clone();
     bad.edge_length *= 1.0 + f64::EPSILON;
-    assert!(write(&bad, Clers::Smaller).is_err(), "edge length");
+    assert!(
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
+        "edge length"
+    );
     let mut bad = good.clone();
     let other = bad
         .symbols
@@ -508,21 +525,30 @@ fn the_writer_refuses_an_inconsistent_retiling() {
         .position(|&x| x != bad.symbols[0])
         .unwrap();
     bad.symbols.swap(0, other);
-    assert!(write(&bad, Clers::Smaller).is_err(), "symbols");
+    assert!(
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
+        "symbols"
+    );
     let mut bad = good.clone();
     bad.triangles.swap(3, 4);
-    assert!(write(&bad, Clers::Smaller).is_err(), "triangle order");
+    assert!(
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
+        "triangle order"
+    );
     let mut bad = good.clone();
     bad.triangles[2] = [
         bad.triangles[2][1],
         bad.triangles[2][2],
         bad.triangles[2][0],
     ];
-    assert!(write(&bad, Clers::Smaller).is_err(), "tip corner");
+    assert!(
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
+        "tip corner"
+    );
     let mut bad = good.clone();
     bad.angle_bits = 13;
     assert!(matches!(
-        write(&bad, Clers::Smaller),
+        write(&bad, Clers::Smaller, Default::default()),
         Err(Error::Parameter(_))
     ));
 }
@@ -536,6 +562,7 @@ fn small_file_with(front: bool) -> Vec<u8> {
     write(
         &emulate(&flat_icosahedron(1), 8),
         if front { Clers::Front } else { Clers::Plain },
+        Default::default(),
     )
     .unwrap()
     .0
@@ -927,9 +954,9 @@ fn assert_same_bits(got: &TriMesh, want: &TriMesh, what: &str) {
 /// Encodes `r`, checks that decoding and `inspect` agree with the writer,
 /// returns the bytes, the stats and the decoded mesh.
 fn roundtrip(r: &Retiled) -> (Vec<u8>, SwingStats, TriMesh) {
-    let (bytes, stats) = write(r, Clers::Smaller).unwrap();
+    let (bytes, stats) = write(r, Clers::Smaller, Default::default()).unwrap();
     assert_eq!(
-        write(r, Clers::Smaller).unwrap().0,
+        write(r, Clers::Smaller, Default::default()).unwrap().0,
         bytes,
         "not deterministic"
     );
@@ -961,19 +988,19 @@ fn two_components_roundtrip_bit_for_bit() {
     let mut bad = good.clone();
     bad.first[1][2][1] = f64::from(bad.first[1][2][1] as f32 + 0.5);
     assert!(
-        write(&bad, Clers::Smaller).is_err(),
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
         "second first triangle moved"
     );
     let mut bad = good.clone();
     bad.first.pop();
     assert!(
-        write(&bad, Clers::Smaller).is_err(),
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
         "one first triangle missing"
     );
     let mut bad = good.clone();
     bad.first.push(bad.first[1]);
     assert!(
-        write(&bad, Clers::Smaller).is_err(),
+        write(&bad, Clers::Smaller, Default::default()).is_err(),
         "one first triangle too many"
     );
 }
@@ -1005,13 +1032,20 @@ fn a_masked_disk_is_dropped_by_the_decoder() {
     // An all-false mask writes no HOLE: the same bytes as no mask at all.
     let mut none = r.clone();
     none.hole_mask = vec![false; r.triangles.len()];
-    let plain = write(&emulate(&sphere(4, |_| 1.0), 8), Clers::Smaller)
-        .unwrap()
-        .0;
-    assert_eq!(write(&none, Clers::Smaller).unwrap().0, plain);
+    let plain = write(
+        &emulate(&sphere(4, |_| 1.0), 8),
+        Clers::Smaller,
+        Default::default(),
+    )
+    .unwrap()
+    .0;
+    assert_eq!(
+        write(&none, Clers::Smaller, Default::default()).unwrap().0,
+        plain
+    );
     // A mask of the wrong length is the retiler's bug.
     none.hole_mask.pop();
-    assert!(write(&none, Clers::Smaller).is_err());
+    assert!(write(&none, Clers::Smaller, Default::default()).is_err());
 }
 
 fn stats_boundary_edges(mesh: &TriMesh) -> usize {
@@ -1102,7 +1136,7 @@ fn the_lossless_rest_follows_the_retiled_mesh() {
     // REST's mesh is the lossless decoding: decoded vertex k is input
     // vertex source[k], within the quantization error.
     let table = CornerTable::new(&rest.triangles, rest.vertex_count()).unwrap();
-    let (_, _, source) = crate::lossless::encode(&table, &rest, 12).unwrap();
+    let (_, _, source) = crate::lossless::encode(&table, &rest, 12, Default::default()).unwrap();
     let step = rest.bbox_diagonal() / 4096.0;
     for (k, &s) in source.iter().enumerate() {
         let (p, q) = (out.positions[nv + k], rest.positions[s as usize]);
@@ -1132,8 +1166,8 @@ fn the_lossless_rest_follows_the_retiled_mesh() {
     r0.rest = Some((TriMesh::default(), 12));
     r.rest = None;
     assert_eq!(
-        write(&r0, Clers::Smaller).unwrap().0,
-        write(&r, Clers::Smaller).unwrap().0
+        write(&r0, Clers::Smaller, Default::default()).unwrap().0,
+        write(&r, Clers::Smaller, Default::default()).unwrap().0
     );
 }
 
@@ -1163,7 +1197,7 @@ fn file_with_hole_and_rest() -> Vec<u8> {
     r.hole_mask = disk_mask(&r, [0.0, 0.0, 1.0], 40.0);
     assert!(r.hole_mask.contains(&true));
     r.rest = Some((crate::edgebreaker::tests_support::tetra(), 8));
-    write(&r, Clers::Smaller).unwrap().0
+    write(&r, Clers::Smaller, Default::default()).unwrap().0
 }
 
 #[test]

@@ -10,7 +10,7 @@ use super::read::{write_head, Head};
 use super::{
     angle, density, forward, hole, residual, Retiled, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS,
 };
-use crate::container::{write_container, Header, Mode, Tag};
+use crate::container::{write_container, Framing, Header, Mode, Tag};
 use crate::edgebreaker;
 use crate::lossless::{write_clers, write_topo};
 use crate::{CornerTable, Error, FormatError, Malformed, ParameterError};
@@ -116,7 +116,11 @@ fn front_coded(
 /// writer made before either existed, byte for byte. `clers` says
 /// where the symbols go; `CLRF` is kept only if its pass follows the
 /// mesh and its bytes decode back to the same symbols, codes and levels.
-pub(crate) fn write(retiled: &Retiled, clers: Clers) -> Result<(Vec<u8>, SwingStats), Error> {
+pub(crate) fn write(
+    retiled: &Retiled,
+    clers: Clers,
+    framing: Framing,
+) -> Result<(Vec<u8>, SwingStats), Error> {
     let bits = retiled.angle_bits;
     if !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(&bits) {
         return Err(ParameterError::OutOfRange {
@@ -244,7 +248,7 @@ pub(crate) fn write(retiled: &Retiled, clers: Clers) -> Result<(Vec<u8>, SwingSt
     let (rest_bytes, rest_triangles) = match &retiled.rest {
         Some((mesh, qp)) if mesh.face_count() > 0 => {
             let table = CornerTable::new(&mesh.triangles, mesh.vertex_count())?;
-            let (bytes, _, _) = crate::lossless::encode(&table, mesh, *qp)?;
+            let (bytes, _, _) = crate::lossless::encode(&table, mesh, *qp, framing)?;
             (Some(bytes), mesh.face_count() as u64)
         }
         _ => (None, 0),
@@ -259,6 +263,7 @@ pub(crate) fn write(retiled: &Retiled, clers: Clers) -> Result<(Vec<u8>, SwingSt
         // DENS and CLRF are format 1.1 sections.
         header.minor = 1;
     }
+    let header = header.with_framing(framing);
     let mut sections: Vec<(Tag, &[u8])> = vec![
         (Tag::HEAD, &head_bytes),
         (Tag::TOPO, &topo),

@@ -65,7 +65,7 @@ fn coded(
         (_, Some(s)) => s.angle_bits,
         _ => 0,
     };
-    let coded = measure(
+    let mut coded = measure(
         case,
         qp,
         samples,
@@ -73,5 +73,12 @@ fn coded(
         encode_s,
         &Default::default(),
     )?;
+    coded.method = match (&stats.simplified, &stats.swing) {
+        (Some(s), _) if s.faces >= s.input_faces => "whole",
+        (Some(_), _) => "simplified",
+        (_, Some(_)) => "swing",
+        _ => "lossless",
+    }
+    .into();
     Ok(Some(coded))
 }

@@ -133,7 +133,8 @@ impl Config {
 fn lossless(case: &Case, budget: u64, samples: u64) -> Result<Option<Coded>, CliError> {
     for qp in (swm::geometry::MIN_BITS..=swm::geometry::MAX_BITS).rev() {
         if case.lossless_size(qp)? <= budget {
-            let coded = finish(case, qp, samples, || Ok(Cow::Borrowed(&case.mesh)))?;
+            let mut coded = finish(case, qp, samples, || Ok(Cow::Borrowed(&case.mesh)))?;
+            coded.method = "lossless".into();
             return Ok(Some(coded));
         }
     }
@@ -164,7 +165,8 @@ fn swing(
             // The angle bits rate control chose, as the file says.
             let info = swm::inspect(bytes, &swm::Limits::default()).map_err(|e| case.err(e))?;
             let bits = info.swing.map_or(0, |s| s.angle_bits);
-            let coded = measure(case, bits, samples, bytes, *encode_s, post)?;
+            let mut coded = measure(case, bits, samples, bytes, *encode_s, post)?;
+            coded.method = "swing".into();
             return Ok(Outcome::Coded(coded));
         }
         Err(e) => e,
@@ -208,7 +210,7 @@ pub fn finish<'a>(
 /// Decodes a file made in `encode_s` seconds (timed) and measures the
 /// decoded mesh against the reference. `qp` is the row's quantization
 /// figure; `options` says how to decode (post-processing included in the
-/// decode time).
+/// decode time). The method is left empty for the caller to name.
 pub fn measure(
     case: &Case,
     qp: u8,
@@ -229,6 +231,7 @@ pub fn measure(
         hausdorff_rel,
         encode_s,
         decode_s,
+        method: String::new(),
     })
 }
 

@@ -20,6 +20,7 @@
 //! | `l2_rel` | L2 (max of the one-sided RMS), in 1e-4 of the input's bbox diagonal |
 //! | `hausdorff_rel` | Hausdorff distance, same unit |
 //! | `encode_s`, `decode_s` | wall times (simplification included in the baseline's encode, the rate search in swing's) |
+//! | `method` | how the file codes the mesh: `swing` (retiled), `simplified` (simplified, then lossless), `whole` (the whole mesh, lossless, at the quantization the simplified method chose: nothing more to code), `lossless` (the `lossless` row); for `auto`, the method it chose |
 //!
 //! Rows without a file (every status but `ok`) leave the measured columns
 //! empty. Numbers other than
@@ -106,6 +107,9 @@ pub struct Coded {
     pub encode_s: f64,
     /// Seconds to decode.
     pub decode_s: f64,
+    /// How the file codes the mesh: `swing`, `simplified`, `whole` or
+    /// `lossless` (empty when read from a table written before).
+    pub method: String,
 }
 
 /// One row of the table.
@@ -168,12 +172,13 @@ impl Row {
             "hausdorff_rel": c.map(|c| c.hausdorff_rel),
             "encode_s": c.map(|c| c.encode_s),
             "decode_s": c.map(|c| c.decode_s),
+            "method": c.map(|c| c.method.clone()),
         })
     }
 }
 
 /// The CSV columns, in the order written.
-pub const COLUMNS: [&str; 15] = [
+pub const COLUMNS: [&str; 16] = [
     "mesh",
     "rate_bpv",
     "config",
@@ -189,6 +194,7 @@ pub const COLUMNS: [&str; 15] = [
     "hausdorff_rel",
     "encode_s",
     "decode_s",
+    "method",
 ];
 
 /// The table as CSV.
@@ -215,6 +221,7 @@ pub fn to_csv(rows: &[Row]) -> String {
             opt(c.map(|c| c.hausdorff_rel.to_string())),
             opt(c.map(|c| format!("{:.4}", c.encode_s))),
             opt(c.map(|c| format!("{:.4}", c.decode_s))),
+            opt(c.map(|c| c.method.clone())),
         ];
         out.push_str(&cells.join(","));
         out.push('\n');
@@ -280,10 +287,11 @@ pub fn from_csv(text: &str) -> Result<Vec<Row>, swm::Error> {
     let col = |name: &str| header.iter().position(|h| h.trim() == name);
     let mut index = [0usize; COLUMNS.len()];
     for (slot, name) in index.iter_mut().zip(COLUMNS) {
-        // Times are informative only; every other column is needed.
+        // Times are informative only, and `method` came later; every
+        // other column is needed.
         *slot = match col(name) {
             Some(i) => i,
-            None if name.ends_with("_s") => usize::MAX,
+            None if name.ends_with("_s") || name == "method" => usize::MAX,
             None => return Err(bad(header_line, "the header lacks a column swm rd writes")),
         };
     }
@@ -323,6 +331,7 @@ fn parse_row<'a>(n: usize, get: impl Fn(usize) -> &'a str) -> Result<Row, swm::E
             hausdorff_rel: num(n, get(12), "hausdorff_rel is not a number")?,
             encode_s: get(13).parse().unwrap_or(f64::NAN),
             decode_s: get(14).parse().unwrap_or(f64::NAN),
+            method: get(15).to_string(),
         }),
         _ => return Err(bad(n, "status must be ok, infeasible, failed or n/a")),
     };
@@ -384,13 +393,17 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
         let mut configs: Vec<Config> = mine.iter().map(|r| r.config).collect();
         configs.sort();
         configs.dedup();
-        let metrics: [(&str, Show); 3] = [
+        let metrics: [(&str, Show); 4] = [
             ("L2", |c| format!("{:.3}", c.l2_rel)),
             ("Hausdorff", |c| format!("{:.2}", c.hausdorff_rel)),
             ("bytes", |c| c.bytes.to_string()),
+            ("method", |c| c.method.clone()),
         ];
         for config in configs {
-            for (metric, show) in metrics {
+            // Which method wrote the file is news only where a choice is
+            // made: the automatic mode's rows.
+            let shown = if config == Config::Auto { 4 } else { 3 };
+            for (metric, show) in metrics.into_iter().take(shown) {
                 out.push_str(&format!("| {} | {metric} |", config.name()));
                 for rate in &rates {
                     let cell = mine
@@ -457,6 +470,7 @@ mod tests {
             hausdorff_rel: 1.0 / 3.0,
             encode_s: 0.25,
             decode_s: 0.0625,
+            method: "swing".into(),
         };
         let why = "because".to_string();
         let rows = vec![

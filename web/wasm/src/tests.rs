@@ -60,7 +60,11 @@ fn message(out: &Output) -> &str {
 
 #[test]
 fn golden_files_decode_as_the_library_does() {
-    for (name, mode) in [("lossless-v1.0.swm", 0), ("swing-v1.0.swm", 1)] {
+    for (name, mode, minor) in [
+        ("lossless-v1.0.swm", 0, 0),
+        ("swing-v1.0.swm", 1, 0),
+        ("lossless-compact-v1.1.swm", 0, 1),
+    ] {
         let bytes = golden(name);
         for (sharpen, bend, normals) in [(false, 0, false), (true, 1, true)] {
             let expected = swm::decode(
@@ -76,7 +80,7 @@ fn golden_files_decode_as_the_library_does() {
             // SAFETY: `swm_decode` returns a valid Output.
             let o = unsafe { &*out };
             assert_eq!(o.status, STATUS_OK, "{name}: {}", message(o));
-            assert_eq!((o.mode, o.major, o.minor), (mode, 1, 0), "{name}");
+            assert_eq!((o.mode, o.major, o.minor), (mode, 1, minor), "{name}");
             let (p, i, n) = arrays(o);
             assert_eq!(p, expected.positions.as_flattened(), "{name}");
             assert_eq!(i, expected.triangles.as_flattened(), "{name}");

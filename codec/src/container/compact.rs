@@ -1,0 +1,273 @@
+//! The compact framing of format 1.1 (`format-spec/01-container.md`,
+//! "Compact framing"): the same header fields and section table as the
+//! fixed framing, written with varints and one-byte tag codes.
+//!
+//! A file that sets the required flag bit 0 ([`FLAG_COMPACT`]) lays out
+//! everything between its flags and its first payload this way:
+//!
+//! ```text
+//!  0      4     5     6       8      9
+//!  | magic | major | minor | flags | mode | varu V | varu T | varu C | varu n |
+//!  | n entries: code u8 [tag bytes[4] when code = 0] varu length | payloads | CRC-32 |
+//! ```
+//!
+//! Why: the fixed framing spends 23 bytes on its header, 8 per section and
+//! 4 on the CRC, 59 bytes for a four-section file; at 1 bit per vertex a
+//! 500-vertex mesh has 63 bytes in all (issue 20, "small files"). Compact
+//! framing spends 8 + 5 + 2 per section + 4, about 25 bytes, on the same
+//! facts. The magic, version, flags and trailing CRC stay where every
+//! version keeps them, so a decoder still checks the CRC and names the
+//! version before it reads anything else, and a 1.0 decoder rejects the
+//! file as *unsupported* (an unknown required flag) rather than
+//! misreading it.
+//!
+//! Invariants: every varu is in its shortest form (a longer one is
+//! malformed), so a file has one framing byte string; the parser reads a
+//! prefix and says how much more it needs, never reading past the bytes
+//! it was given, so the stream decoder and the whole-file parser share it;
+//! nothing here allocates.
+
+use crate::prelude::*;
+
+use super::header::{malformed, Header, Mode};
+use super::tag::Tag;
+use super::{UnsupportedError, UnsupportedFeature, FORMAT_MAJOR, FORMAT_MINOR};
+use crate::{Error, Limits, Malformed};
+
+/// Required flag bit 0: the header's counts and the section table are in
+/// the compact framing (format 1.1).
+pub const FLAG_COMPACT: u16 = 0x0001;
+
+/// Offset of the mode byte, the first byte the framings lay out
+/// differently after it.
+pub(crate) const MODE_AT: usize = 8;
+
+/// Smallest compact file: preamble, mode, three one-byte counts, a
+/// one-byte section count, the CRC.
+pub(crate) const MIN_COMPACT_LEN: usize = MODE_AT + 1 + 3 + 1 + super::header::CRC_LEN;
+
+/// Registered tags and their codes: code `k` (1..=9) is `CODES[k − 1]`.
+/// Code 0 announces a literal four-byte tag; codes 10–255 are reserved
+/// for tags later versions register, and a decoder that meets one cannot
+/// tell whether the section is critical, so it rejects the file as
+/// unsupported.
+pub(crate) const CODES: [Tag; 9] = [
+    Tag::HEAD,
+    Tag::CLRS,
+    Tag::TOPO,
+    Tag::GEOM,
+    Tag::HOLE,
+    Tag::REST,
+    Tag::DENS,
+    Tag::CLRF,
+    Tag::META,
+];
+
+/// The one-byte code of a registered tag.
+pub(crate) fn code_of(tag: Tag) -> Option<u8> {
+    CODES.iter().position(|&t| t == tag).map(|k| k as u8 + 1)
+}
+
+/// The result of reading a prefix: done, or the prefix length at which
+/// reading can go on (at least one byte more than was given).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Scan<T> {
+    Done(T),
+    Need(usize),
+}
+
+/// Reads the shortest-form varu at `*pos`, at most `max`. `Ok(None)`: the
+/// prefix ends inside it.
+fn varu(bytes: &[u8], pos: &mut usize, max: u64) -> Result<Option<u64>, Error> {
+    let start = *pos;
+    let mut v = 0u64;
+    for i in 0..10 {
+        let Some(&b) = bytes.get(start + i) else {
+            return Ok(None);
+        };
+        let bad = || malformed(Malformed::BadNumber, start);
+        if i == 9 && b > 1 {
+            return Err(bad());
+        }
+        v |= u64::from(b & 0x7f) << (7 * i);
+        if b < 0x80 {
+            // A last group of zero after the first adds a byte and no
+            // value: not the shortest form.
+            if (i > 0 && b == 0) || v > max {
+                return Err(bad());
+            }
+            *pos = start + i + 1;
+            return Ok(Some(v));
+        }
+    }
+    Err(malformed(Malformed::BadNumber, start))
+}
+
+/// The header fields of a compact file and where its table starts.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CompactHead {
+    pub header: Header,
+    /// Number of section table entries.
+    pub count: usize,
+    /// Offset of the first entry.
+    pub table: usize,
+}
+
+/// Reads and checks the header of a compact file (its flags set
+/// [`FLAG_COMPACT`], its magic, version and required flags were checked):
+/// mode, counts against `limits` and each other, section count.
+pub(crate) fn read_head(bytes: &[u8], limits: &Limits) -> Result<Scan<CompactHead>, Error> {
+    let (major, minor, flags) = (bytes[4], bytes[5], u16::from_le_bytes([bytes[6], bytes[7]]));
+    let Some(&code) = bytes.get(MODE_AT) else {
+        return Ok(Scan::Need(MODE_AT + 1));
+    };
+    let mode = Mode::from_code(code).ok_or(UnsupportedError {
+        feature: UnsupportedFeature::Mode(code),
+        major,
+        minor,
+        supported_major: FORMAT_MAJOR,
+        supported_minor: FORMAT_MINOR,
+    })?;
+    let mut pos = MODE_AT + 1;
+    let mut at = [0usize; 3];
+    let mut counts = [0u32; 3];
+    for (k, c) in counts.iter_mut().enumerate() {
+        at[k] = pos;
+        match varu(bytes, &mut pos, u32::MAX.into())? {
+            Some(v) => *c = v as u32,
+            None => return Ok(Scan::Need(bytes.len() + 1)),
+        }
+        // The limits as soon as each count is known, as the fixed framing
+        // does once its header is in.
+        match k {
+            0 => limits.check_vertices(v64(*c))?,
+            1 => limits.check_faces(v64(*c))?,
+            _ => {}
+        }
+    }
+    let header = Header {
+        major,
+        minor,
+        flags,
+        mode,
+        vertex_count: counts[0],
+        triangle_count: counts[1],
+        component_count: counts[2],
+    };
+    super::header::check_counts(&header, [at[0], at[1], at[2]])?;
+    let Some(count) = varu(bytes, &mut pos, u16::MAX.into())? else {
+        return Ok(Scan::Need(bytes.len() + 1));
+    };
+    Ok(Scan::Done(CompactHead {
+        header,
+        count: count as usize,
+        table: pos,
+    }))
+}
+
+fn v64(v: u32) -> u64 {
+    u64::from(v)
+}
+
+/// One section table entry of a compact file.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Entry {
+    pub tag: Tag,
+    pub len: u32,
+    /// Offset of its length.
+    pub len_at: usize,
+    /// Offset of the byte after the entry.
+    pub end: usize,
+}
+
+/// Reads the entry at `pos`. Checks what the entry alone can show: a
+/// reserved code (*unsupported*), a literal tag that is not four letters,
+/// a length that is not a shortest-form varu of at most 2^32 − 1.
+/// Criticality, duplicates and bounds are the caller's, as for the fixed
+/// framing.
+pub(crate) fn read_entry(bytes: &[u8], pos: usize, header: &Header) -> Result<Scan<Entry>, Error> {
+    let need = || Ok(Scan::Need(bytes.len() + 1));
+    let Some(&code) = bytes.get(pos) else {
+        return need();
+    };
+    let (tag, mut p) = match code {
+        0 => {
+            let Some(b) = bytes.get(pos + 1..pos + 5) else {
+                return need();
+            };
+            let tag = Tag([b[0], b[1], b[2], b[3]]);
+            if !tag.is_valid() {
+                return Err(malformed(Malformed::BadSectionTag { tag: tag.0 }, pos + 1));
+            }
+            (tag, pos + 5)
+        }
+        c if usize::from(c) <= CODES.len() => (CODES[usize::from(c) - 1], pos + 1),
+        c => {
+            return Err(UnsupportedError {
+                feature: UnsupportedFeature::SectionCode(c),
+                major: header.major,
+                minor: header.minor,
+                supported_major: FORMAT_MAJOR,
+                supported_minor: FORMAT_MINOR,
+            }
+            .into())
+        }
+    };
+    let len_at = p;
+    let Some(len) = varu(bytes, &mut p, u32::MAX.into())? else {
+        return need();
+    };
+    Ok(Scan::Done(Entry {
+        tag,
+        len: len as u32,
+        len_at,
+        end: p,
+    }))
+}
+
+/// Appends the compact header: mode, counts, section count (the preamble
+/// is the caller's).
+pub(crate) fn write_head(header: &Header, sections: usize, out: &mut Vec<u8>) {
+    out.push(header.mode.code());
+    for v in [
+        header.vertex_count,
+        header.triangle_count,
+        header.component_count,
+    ] {
+        crate::varint::put(out, v.into());
+    }
+    crate::varint::put(out, sections as u64);
+}
+
+/// Appends one compact table entry.
+pub(crate) fn write_entry(tag: Tag, len: usize, out: &mut Vec<u8>) {
+    match code_of(tag) {
+        Some(c) => out.push(c),
+        None => {
+            out.push(0);
+            out.extend_from_slice(&tag.0);
+        }
+    }
+    crate::varint::put(out, len as u64);
+}
+
+/// Bytes of a varu.
+pub(crate) fn varu_len(v: u64) -> usize {
+    (64 - (v | 1).leading_zeros() as usize).div_ceil(7)
+}
+
+/// Bytes of the compact header and table for these counts and sections.
+pub(crate) fn frame_len(header: &Header, sections: impl Iterator<Item = (Tag, usize)>) -> usize {
+    let counts = [
+        header.vertex_count,
+        header.triangle_count,
+        header.component_count,
+    ];
+    let mut n = MODE_AT + 1 + counts.iter().map(|&c| varu_len(c.into())).sum::<usize>();
+    let mut k = 0u64;
+    for (tag, len) in sections {
+        k += 1;
+        n += 1 + if code_of(tag).is_some() { 0 } else { 4 } + varu_len(len as u64);
+    }
+    n + varu_len(k)
+}
