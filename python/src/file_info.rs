@@ -76,6 +76,8 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
             d.set_item("valence6_share", s.valence6_share)?;
             let holes = PyDict::new(py);
             holes.set_item("masked_triangles", s.holes_masked_triangles)?;
+            let masked = s.holes_masked_triangles as f64 / s.triangles.max(1) as f64;
+            holes.set_item("masked_share", masked)?;
             holes.set_item("bytes", s.hole_bytes)?;
             let share = s.hole_bytes as f64 / s.file_bytes.max(1) as f64;
             holes.set_item("file_share", share)?;

@@ -223,8 +223,9 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
     }
     if s.holes_masked_triangles > 0 || s.hole_bytes > 0 {
         say!(
-            "  holes                 {} masked triangles, {} bytes ({:.1}% of the file)",
+            "  holes                 {} masked triangles ({:.1}% of the retiled ones), {} bytes ({:.1}% of the file)",
             s.holes_masked_triangles,
+            100.0 * s.holes_masked_triangles as f64 / s.triangles.max(1) as f64,
             s.hole_bytes,
             100.0 * s.hole_bytes as f64 / s.file_bytes.max(1) as f64
         );

@@ -87,6 +87,7 @@ pub fn swing_json(s: &swm::SwingStats) -> Value {
         "valence6_share": s.valence6_share,
         "holes": {
             "masked_triangles": s.holes_masked_triangles,
+            "masked_share": s.holes_masked_triangles as f64 / s.triangles.max(1) as f64,
             "bytes": s.hole_bytes,
             "file_share": s.hole_bytes as f64 / s.file_bytes.max(1) as f64,
         },
