@@ -29,9 +29,10 @@
 
 use crate::prelude::*;
 
-use super::header::{malformed, Header, Mode};
+use super::header::{malformed, read_mode, unsupported, Header};
 use super::tag::Tag;
-use super::{UnsupportedError, UnsupportedFeature, FORMAT_MAJOR, FORMAT_MINOR};
+use super::UnsupportedFeature;
+use crate::varint::Reader;
 use crate::{Error, Limits, Malformed};
 
 /// Required flag bit 0: the header's counts and the section table are in
@@ -80,27 +81,22 @@ pub(crate) enum Scan<T> {
 /// prefix ends inside it.
 fn varu(bytes: &[u8], pos: &mut usize, max: u64) -> Result<Option<u64>, Error> {
     let start = *pos;
-    let mut v = 0u64;
-    for i in 0..10 {
-        let Some(&b) = bytes.get(start + i) else {
-            return Ok(None);
-        };
-        let bad = || malformed(Malformed::BadNumber, start);
-        if i == 9 && b > 1 {
-            return Err(bad());
-        }
-        v |= u64::from(b & 0x7f) << (7 * i);
-        if b < 0x80 {
-            // A last group of zero after the first adds a byte and no
-            // value: not the shortest form.
-            if (i > 0 && b == 0) || v > max {
-                return Err(bad());
+    let rest = bytes.get(start..).unwrap_or_default();
+    let mut reader = Reader::new(rest);
+    match reader.varu() {
+        Ok(v) => {
+            let len = rest.len() - reader.remaining();
+            // More bytes than the value needs (a last group of zero after
+            // the first) is not the shortest form.
+            if len != varu_len(v) || v > max {
+                return Err(malformed(Malformed::BadNumber, start));
             }
-            *pos = start + i + 1;
-            return Ok(Some(v));
+            *pos = start + len;
+            Ok(Some(v))
         }
+        Err(e) if e.what == Malformed::Truncated => Ok(None),
+        Err(_) => Err(malformed(Malformed::BadNumber, start)),
     }
-    Err(malformed(Malformed::BadNumber, start))
 }
 
 /// The header fields of a compact file and where its table starts.
@@ -121,13 +117,7 @@ pub(crate) fn read_head(bytes: &[u8], limits: &Limits) -> Result<Scan<CompactHea
     let Some(&code) = bytes.get(MODE_AT) else {
         return Ok(Scan::Need(MODE_AT + 1));
     };
-    let mode = Mode::from_code(code).ok_or(UnsupportedError {
-        feature: UnsupportedFeature::Mode(code),
-        major,
-        minor,
-        supported_major: FORMAT_MAJOR,
-        supported_minor: FORMAT_MINOR,
-    })?;
+    let mode = read_mode(code, major, minor)?;
     let mut pos = MODE_AT + 1;
     let mut at = [0usize; 3];
     let mut counts = [0u32; 3];
@@ -203,14 +193,8 @@ pub(crate) fn read_entry(bytes: &[u8], pos: usize, header: &Header) -> Result<Sc
         }
         c if usize::from(c) <= CODES.len() => (CODES[usize::from(c) - 1], pos + 1),
         c => {
-            return Err(UnsupportedError {
-                feature: UnsupportedFeature::SectionCode(c),
-                major: header.major,
-                minor: header.minor,
-                supported_major: FORMAT_MAJOR,
-                supported_minor: FORMAT_MINOR,
-            }
-            .into())
+            let feature = UnsupportedFeature::SectionCode(c);
+            return Err(unsupported(feature, header.major, header.minor));
         }
     };
     let len_at = p;

@@ -168,14 +168,7 @@ impl Header {
     pub(crate) fn read(bytes: &[u8], limits: &Limits) -> Result<Header, Error> {
         let (major, minor) = (bytes[at::MAJOR], bytes[at::MINOR]);
         let flags = LE::read_u16(&bytes[at::FLAGS..]);
-        let code = bytes[at::MODE];
-        let mode = Mode::from_code(code).ok_or(UnsupportedError {
-            feature: UnsupportedFeature::Mode(code),
-            major,
-            minor,
-            supported_major: FORMAT_MAJOR,
-            supported_minor: FORMAT_MINOR,
-        })?;
+        let mode = read_mode(bytes[at::MODE], major, minor)?;
         let vertex_count = LE::read_u32(&bytes[at::VERTEX_COUNT..]);
         let triangle_count = LE::read_u32(&bytes[at::TRIANGLE_COUNT..]);
         let component_count = LE::read_u32(&bytes[at::COMPONENT_COUNT..]);
@@ -236,22 +229,34 @@ pub(crate) fn check_preamble(bytes: &[u8]) -> Result<u16, Error> {
 /// `bytes` holds at least the eight bytes of the preamble.
 pub(crate) fn check_version_and_flags(bytes: &[u8]) -> Result<u16, Error> {
     let (major, minor) = (bytes[at::MAJOR], bytes[at::MINOR]);
-    let unsupported = |feature| UnsupportedError {
+    if major != FORMAT_MAJOR {
+        return Err(unsupported(UnsupportedFeature::Version, major, minor));
+    }
+    let flags = LE::read_u16(&bytes[at::FLAGS..]);
+    let unknown_required = flags & FLAGS_REQUIRED & !KNOWN_FLAGS;
+    if unknown_required != 0 {
+        let feature = UnsupportedFeature::RequiredFlags(unknown_required);
+        return Err(unsupported(feature, major, minor));
+    }
+    Ok(flags)
+}
+
+/// The error for a file of version `major.minor` that uses `feature`,
+/// unknown to this decoder.
+pub(crate) fn unsupported(feature: UnsupportedFeature, major: u8, minor: u8) -> Error {
+    UnsupportedError {
         feature,
         major,
         minor,
         supported_major: FORMAT_MAJOR,
         supported_minor: FORMAT_MINOR,
-    };
-    if major != FORMAT_MAJOR {
-        return Err(unsupported(UnsupportedFeature::Version).into());
     }
-    let flags = LE::read_u16(&bytes[at::FLAGS..]);
-    let unknown_required = flags & FLAGS_REQUIRED & !KNOWN_FLAGS;
-    if unknown_required != 0 {
-        return Err(unsupported(UnsupportedFeature::RequiredFlags(unknown_required)).into());
-    }
-    Ok(flags)
+    .into()
+}
+
+/// The mode a file's mode byte names, or *unsupported* (both framings).
+pub(crate) fn read_mode(code: u8, major: u8, minor: u8) -> Result<Mode, Error> {
+    Mode::from_code(code).ok_or_else(|| unsupported(UnsupportedFeature::Mode(code), major, minor))
 }
 
 /// What any triangle mesh without unreferenced vertices satisfies. These

@@ -17,10 +17,11 @@
 use super::compact::{self, Scan, FLAG_COMPACT};
 use super::crc::crc32;
 use super::header::{
-    at, check_preamble, malformed, Header, CRC_LEN, MIN_FRAME_LEN, TABLE_ENTRY_LEN,
+    at, check_preamble, malformed, unsupported, Framing, Header, CRC_LEN, MIN_FRAME_LEN,
+    TABLE_ENTRY_LEN,
 };
 use super::tag::KNOWN_CRITICAL;
-use super::{Tag, UnsupportedError, UnsupportedFeature, FORMAT_MAJOR, FORMAT_MINOR, MAGIC};
+use super::{Tag, UnsupportedFeature, FORMAT_MAJOR, MAGIC};
 use crate::{Error, Limits, Malformed};
 use byteorder::{ByteOrder, LittleEndian as LE};
 
@@ -124,7 +125,7 @@ impl<'a> Iterator for Sections<'a> {
         }
         // The parser checked every entry; `?` and `get` keep this
         // panic-free anyway.
-        let (tag, len, table) = if self.header.flags & FLAG_COMPACT != 0 {
+        let (tag, len, table) = if self.header.framing() == Framing::Compact {
             match compact::read_entry(self.table, 0, &self.header).ok()? {
                 Scan::Done(e) => (e.tag, e.len as usize, &self.table[e.end..]),
                 Scan::Need(_) => return None,
@@ -224,7 +225,7 @@ pub fn parse_container<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container
     // compact one, found by reading the entries once (checking each alone:
     // codes, tags, criticality, duplicates) before their lengths are
     // added up from it.
-    let table_end = if frame.header.flags & FLAG_COMPACT != 0 {
+    let table_end = if frame.header.framing() == Framing::Compact {
         let mut scan = TableCheck::unbounded(&frame.header);
         let mut pos = frame.table;
         for _ in 0..frame.count {
@@ -287,7 +288,7 @@ impl TableCheck {
     /// A check for a file whose length is not known yet.
     pub(crate) fn unbounded(header: &Header) -> Self {
         TableCheck {
-            compact: header.flags & FLAG_COMPACT != 0,
+            compact: header.framing() == Framing::Compact,
             seen_critical: 0,
             payload: 0,
             base: None,
@@ -335,14 +336,8 @@ impl TableCheck {
         };
         if tag.is_critical() {
             let Some(k) = KNOWN_CRITICAL.iter().position(|&t| t == tag) else {
-                return Err(UnsupportedError {
-                    feature: UnsupportedFeature::CriticalSection(tag.0),
-                    major: header.major,
-                    minor: header.minor,
-                    supported_major: FORMAT_MAJOR,
-                    supported_minor: FORMAT_MINOR,
-                }
-                .into());
+                let feature = UnsupportedFeature::CriticalSection(tag.0);
+                return Err(unsupported(feature, header.major, header.minor));
             };
             if self.seen_critical & (1 << k) != 0 {
                 return Err(malformed(Malformed::DuplicateSection { tag: tag.0 }, pos));
