@@ -19,10 +19,9 @@ fn static_library() -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let deps = exe.parent().unwrap();
     let profile = deps.parent().unwrap();
+    // The newest of `cargo build`'s copy and the test build's own: a copy
+    // left by an earlier `cargo build -p swm-ffi` may be stale.
     let direct = profile.join("libswm_ffi.a");
-    if direct.exists() {
-        return direct;
-    }
     std::fs::read_dir(deps)
         .unwrap()
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -30,6 +29,7 @@ fn static_library() -> PathBuf {
             let name = p.file_name().unwrap().to_string_lossy().into_owned();
             name.starts_with("libswm_ffi") && name.ends_with(".a")
         })
+        .chain(direct.exists().then_some(direct))
         .max_by_key(|p| p.metadata().and_then(|m| m.modified()).ok())
         .unwrap_or_else(|| panic!("no libswm_ffi.a under {}", profile.display()))
 }
@@ -46,12 +46,9 @@ fn example() -> &'static Path {
             .arg("-I")
             .arg(ffi_dir().join("include"))
             .arg(static_library())
-            // -lstdc++: built inside this workspace, the library is
-            // compiled with the features the CLI asks for (cargo unifies
-            // them), the encoder's C++ simplifier (meshoptimizer)
-            // included; `cargo build -p swm-ffi` alone, as an embedder
-            // builds it, needs no C++ runtime.
-            .args(["-lpthread", "-ldl", "-lm", "-lstdc++", "-o"])
+            // No C++ runtime: the library is all Rust, even built with
+            // the features the CLI asks for (cargo unifies them).
+            .args(["-lpthread", "-ldl", "-lm", "-o"])
             .arg(&out)
             .status()
             .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));

@@ -120,6 +120,30 @@ fn the_committed_tables_answer_every_cell() {
     assert_eq!(check_table("generated", 7), 35);
 }
 
+/// Issue 20's CAD bar: on fandisk the default mode is at or below the
+/// L2 of quadric simplification + Draco (`../shared/corpus/README.md`,
+/// 1e-4 of the diagonal) at every rate. `tests/rd.rs` re-runs these rows
+/// against the code, so the committed figures are today's.
+#[test]
+fn fandisk_default_is_at_or_below_quadric_and_draco() {
+    const DRACO: [f64; 5] = [12.32, 8.09, 1.36, 0.43, 0.12];
+    let t = table("shared");
+    for (rate, draco) in RATES.iter().zip(DRACO) {
+        let key = (
+            "shared:fandisk.obj".to_string(),
+            rate.to_string(),
+            "auto".to_string(),
+        );
+        let row = &t[&key];
+        assert_eq!(row["status"], "ok", "fandisk {rate} b/v");
+        let l2 = num(row, "l2_rel");
+        assert!(
+            l2 <= draco,
+            "fandisk {rate} b/v: L2 {l2} above Draco's {draco}"
+        );
+    }
+}
+
 /// What the default mode writes for every generated mesh at every rate,
 /// through the command line as a user runs it: refused with the smallest
 /// size, or a file that decodes to a manifold mesh with as many

@@ -167,7 +167,7 @@ def encode(
     * ``"lossless"``: without ``size`` or ``bpv``, the input's own
       triangles with positions on ``qp`` bits (default 12; ``max_size``
       refused). With ``size`` or ``bpv``, the mesh is first simplified
-      (quadric error, meshoptimizer) to the largest face count and the
+      (greedy quadric edge collapse) to the largest face count and the
       quantization that fit the size, ``max_size`` included; ``qp`` is
       then refused. ``edge_length`` and ``angle_bits`` are refused.
 

@@ -19,8 +19,8 @@ pub enum Config {
     /// swm's lossless mode alone: the input's triangles, at the largest qp
     /// (6..=24) whose file fits.
     Lossless,
-    /// "Simplify, then lossless" (thesis Table 7-3): quadric simplification
-    /// (meshoptimizer) to the face count and qp (6..=16) with the lowest L2
+    /// "Simplify, then lossless" (thesis Table 7-3): quadric edge collapse
+    /// (swm's own) to the face count and qp (6..=16) with the lowest L2
     /// that fits (`swm encode --mode lossless --size B`).
     Baseline,
     /// `swm encode`'s default: SwingWrapper or `baseline`, whichever the

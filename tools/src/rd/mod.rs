@@ -93,7 +93,7 @@ const HELP: &str = "\
 Rates: the byte budget is floor(rate x V / 8), V = vertices of the mesh as read.
 Configurations:
   lossless  swm's lossless mode, the largest qp (6..24) that fits
-  baseline  quadric simplification (meshoptimizer), then the lossless mode,
+  baseline  quadric edge collapse (swm's), then the lossless mode,
             at the face count and qp (6..16) with the lowest L2 that fits
             (swm encode --mode lossless --size B)
   auto      swm encode's default: swing or baseline, whichever the encoder

@@ -5,9 +5,9 @@
 //! SwingWrapper (`api::encode`, [`EncodeMode::Auto`](crate::EncodeMode)).
 //!
 //! Sources: Garland & Heckbert, "Surface simplification using quadric
-//! error metrics" (1997), through meshoptimizer's
-//! `meshopt_simplifyWithUpdate` (quadric error with optimal vertex
-//! placement); thesis Table 7-3 (simplification, then Edgebreaker with
+//! error metrics" (1997): greedy edge collapse to the quadric's minimum,
+//! recorded once per input and replayed to each face count the search
+//! asks for ([`qem`]); thesis Table 7-3 (simplification, then Edgebreaker with
 //! quantized positions); the shared corpus's "quadric + Draco" figures,
 //! which keep the best pair of face count and quantization in 7..14 bits.
 //!
@@ -32,12 +32,11 @@
 //!    the budget allows) is out of the search, which goes on above it.
 //!
 //! Invariants: every file returned fits B; the result depends only on the
-//! mesh and B (meshoptimizer is deterministic, the distance's samples are
-//! seeded and summed in a fixed order), never on the thread count.
-//! meshoptimizer is asked for a face count with an error limit it cannot
-//! reach, so the count alone decides; it may stop a few faces short where
-//! topology forbids collapses. The input must be welded (`clean`):
-//! meshoptimizer treats vertices split along seams as borders.
+//! mesh and B (the collapse order is deterministic, the distance's
+//! samples are seeded and summed in a fixed order), never on the thread
+//! count. A simplification may stop above the face count asked where no
+//! collapse keeps the mesh a manifold. The input must be welded
+//! (`clean`): split vertices along seams would be holes to the quadrics.
 
 use crate::container::Framing;
 use crate::metrics::{DistanceOptions, Surface, SurfaceDistance};
@@ -45,6 +44,9 @@ use crate::retile::valence::{max_valence, MAX_VALENCE};
 use crate::{CleanOptions, Error, TopologyError, TriMesh};
 use alloc::borrow::Cow;
 use core::ops::RangeInclusive;
+use std::sync::OnceLock;
+
+pub mod qem;
 
 /// Quantizations considered: the lossless mode's coarsest (small meshes
 /// at low rates want it: spot and cow chose 7, the old floor, at 0.5-2
@@ -71,13 +73,15 @@ const FILL: f64 = 0.99;
 /// counts takes about 25 probes); if it did, the best fit so far stands.
 const MAX_PROBES: usize = 64;
 
-/// A welded mesh, ready for meshoptimizer.
+/// A welded mesh and, once made, its collapse sequence.
 pub struct Simplifier<'a> {
     mesh: &'a TriMesh,
-    /// What meshoptimizer simplifies and distances are measured against:
+    /// What is simplified and what distances are measured against:
     /// `mesh`, or its copy with high-valence fans rebuilt (see `new`).
     work: Cow<'a, TriMesh>,
-    indices: Vec<u32>,
+    /// The greedy collapse sequence of `work`, made on first use (an
+    /// automatic encode whose retiling wins early may never need it).
+    collapses: OnceLock<qem::Collapses>,
     /// The framing of the files it writes.
     framing: Framing,
 }
@@ -93,12 +97,10 @@ impl<'a> Simplifier<'a> {
     /// A mesh with a vertex of valence above the retiler's cap (a fanned
     /// polygon face, a cone's apex) is simplified from a copy whose fans
     /// are rebuilt as the retiler's are (`retile::valence`, the same
-    /// surface within about 1e-4 of a spoke): meshoptimizer's vertex
-    /// classification looks every edge up in its end's adjacency list, so
-    /// its time grows as the square of the valence (a 100,000-gon: 50 s
-    /// per simplification), and a distance measured against the fan's
-    /// slivers visits all of them for each sample. Other meshes are used
-    /// as they are.
+    /// surface within about 1e-4 of a spoke): a collapse's checks walk the
+    /// rings of its ends, so their time grows as the square of the
+    /// valence, and a distance measured against the fan's slivers visits
+    /// all of them for each sample. Other meshes are used as they are.
     pub fn new(mesh: &'a TriMesh, framing: Framing) -> Simplifier<'a> {
         let work = if max_valence(mesh) > MAX_VALENCE {
             let mut copy = mesh.clone();
@@ -108,11 +110,10 @@ impl<'a> Simplifier<'a> {
         } else {
             Cow::Borrowed(mesh)
         };
-        let indices = work.triangles.iter().flatten().copied().collect();
         Simplifier {
             mesh,
             work,
-            indices,
+            collapses: OnceLock::new(),
             framing,
         }
     }
@@ -134,21 +135,11 @@ impl<'a> Simplifier<'a> {
         if target >= self.faces() {
             return self.mesh.clone();
         }
-        let mut indices = self.indices.clone();
-        let mut positions = self.work.positions.clone();
-        let n = meshopt::simplify_with_update(
-            &mut indices,
-            &mut positions,
-            &mut [],
-            &[],
-            0,
-            None,
-            3 * target as usize,
-            f32::MAX,
-            meshopt::SimplifyOptions::None,
-            None,
-        );
-        compact(&positions, &indices[..n])
+        let c = self
+            .collapses
+            .get_or_init(|| qem::Collapses::run(&self.work, MIN_FACES));
+        let r = c.replay(&self.work, target);
+        compact(&r.positions, &r.triangles)
     }
 }
 
@@ -159,12 +150,12 @@ pub fn lossless_bytes(mesh: &TriMesh, qp: u8, framing: Framing) -> Result<Vec<u8
     Ok(crate::lossless::encode(&cleaned.table, &cleaned.mesh, qp, framing)?.0)
 }
 
-/// Keeps the vertices `indices` use, renumbered in order of first use.
-fn compact(positions: &[[f32; 3]], indices: &[u32]) -> TriMesh {
+/// Keeps the vertices `triangles` use, renumbered in order of first use.
+fn compact(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> TriMesh {
     let mut remap = vec![u32::MAX; positions.len()];
-    let mut out = TriMesh::new(Vec::new(), Vec::with_capacity(indices.len() / 3));
-    for t in indices.chunks_exact(3) {
-        let tri = [t[0], t[1], t[2]].map(|v| {
+    let mut out = TriMesh::new(Vec::new(), Vec::with_capacity(triangles.len()));
+    for t in triangles {
+        let tri = t.map(|v| {
             let slot = &mut remap[v as usize];
             if *slot == u32::MAX {
                 *slot = out.positions.len() as u32;
@@ -549,9 +540,6 @@ mod tests {
             .unwrap()
             .mesh;
         let s = Simplifier::new(&m, Framing::default());
-        assert!(coded(&s.simplify(MIN_FACES), 6, s.framing)
-            .unwrap()
-            .is_none());
         let smallest = smallest_bytes(&s).unwrap();
         let reference = Surface::new(s.reference()).unwrap();
         let (fit, _) = best_fit(&s, smallest, &reference, 2000).unwrap().unwrap();
