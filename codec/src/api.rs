@@ -80,6 +80,10 @@ pub enum Method {
     Swing,
     /// Quadric simplification, then the lossless mode (mode 0).
     Simplified,
+    /// Each component by the method measured closer at its share of the
+    /// size: a SwingWrapper file (mode 1) whose `REST` holds the
+    /// simplified components.
+    Mixed,
 }
 
 #[cfg(feature = "encoder")]
@@ -106,6 +110,11 @@ pub struct MethodChoice {
     pub swing_failure: Option<SwingFailure>,
     /// The simplified candidate; `None` when nothing fits the size.
     pub simplified: Option<Candidate>,
+    /// The candidate with a method per component; `None` for a mesh of
+    /// one component, or when every measured component chose the same
+    /// method (the file would be one of the two above), or when its
+    /// encode failed.
+    pub mixed: Option<Candidate>,
 }
 
 #[cfg(feature = "encoder")]
@@ -452,7 +461,6 @@ pub(crate) fn encode_swing(
     angle_bits: Option<u8>,
     max_bytes: Option<u64>,
 ) -> Result<Encoded, Error> {
-    use crate::retile::rate;
     use crate::swing::{MAX_ANGLE_BITS, MIN_ANGLE_BITS};
     if let Some(angle_bits) = angle_bits.filter(|k| !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(k))
     {
@@ -465,6 +473,30 @@ pub(crate) fn encode_swing(
         .into());
     }
     let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
+    encode_swing_pieces(
+        &pieces,
+        &cleaned.report,
+        input_vertices,
+        options,
+        target,
+        angle_bits,
+        max_bytes,
+    )
+}
+
+#[cfg(feature = "encoder")]
+/// [`encode_swing`] of the components `pieces` (some of them perhaps
+/// marked to be kept simplified, `Piece::keep`).
+pub(crate) fn encode_swing_pieces(
+    pieces: &[crate::retile::fill::Piece],
+    clean: &CleanReport,
+    input_vertices: usize,
+    options: &EncodeOptions,
+    target: SwingTarget,
+    angle_bits: Option<u8>,
+    max_bytes: Option<u64>,
+) -> Result<Encoded, Error> {
+    use crate::retile::rate;
     let budget = crate::retile::Budget::new(options.limits);
     let knobs = rate::Knobs {
         angle_bits: angle_bits.unwrap_or(DEFAULT_ANGLE_BITS),
@@ -475,12 +507,12 @@ pub(crate) fn encode_swing(
         framing: options.framing,
     };
     let at_size = |b: u64| match angle_bits {
-        Some(_) => rate::at_size(&pieces, b, max_bytes, knobs, &budget),
-        None => rate::at_size_auto(&pieces, b, max_bytes, knobs, &budget),
+        Some(_) => rate::at_size(pieces, b, max_bytes, knobs, &budget),
+        None => rate::at_size_auto(pieces, b, max_bytes, knobs, &budget),
     };
     let chosen = match target {
         SwingTarget::EdgeLength(l) => {
-            rate::at_length(&pieces, positive("edge length", l)?, knobs, &budget)?
+            rate::at_length(pieces, positive("edge length", l)?, knobs, &budget)?
         }
         SwingTarget::Bytes(b) => {
             let b = positive("size", b as f64)? as u64;
@@ -510,7 +542,7 @@ pub(crate) fn encode_swing(
     Ok(Encoded {
         bytes: chosen.bytes,
         stats: EncodeStats {
-            clean: cleaned.report.clone(),
+            clean: clean.clone(),
             lossless: None,
             swing: Some(chosen.stats),
             rate: Some(chosen.report),

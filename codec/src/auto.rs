@@ -1,6 +1,8 @@
 //! The automatic mode: SwingWrapper or simplify-then-lossless, whichever
 //! the encoder itself measures closer to the input at the same size
-//! (issue 20, "method per piece", here per file).
+//! (issue 20, "method per piece"), per file and, for a mesh of several
+//! components, per component ([`crate::mixed`], a third candidate that
+//! competes by the same rule, a tie going to it).
 //!
 //! Retiling wins where the surface is smooth and the rate low enough that
 //! its regular sampling and one-angle vertices pay; quadric
@@ -58,6 +60,9 @@ pub(crate) fn encode(
     // side by side (each is deterministic, so the bytes do not depend on
     // the threads); with an edge length the simplified one waits for the
     // retiled file's size.
+    // The third candidate, a method per component (`mixed`), for a
+    // size or a rate above the whole mesh's.
+    let mut mixed = Ok(None);
     let (swing, budget, simplified) = match target {
         SwingTarget::EdgeLength(_) => {
             // No retiling at this L: no size to give the simplified file,
@@ -83,7 +88,11 @@ pub(crate) fn encode(
                 let unneeded = Err(Ok(SwingFailure::Unneeded { whole_bytes: whole }));
                 (unneeded, budget, simplify(budget))
             } else {
-                let (swing, simplified) = rayon::join(retile, || simplify(budget));
+                let ((swing, simplified), m) = rayon::join(
+                    || rayon::join(retile, || simplify(budget)),
+                    || crate::mixed::encode(&cleaned, vertices, options, budget, max_bytes),
+                );
+                mixed = m;
                 (swing.map_err(swing_failure), budget, simplified)
             }
         }
@@ -152,19 +161,43 @@ pub(crate) fn encode(
         .and_then(|e| e.stats.simplified)
         .is_some_and(|s| s.faces >= s.input_faces);
     let chosen = choose(swing_candidate, simplified_candidate, budget, whole);
+    // A mixed file that failed (no edge length retiles its retiled part
+    // within the size) or misses the size is no candidate.
+    let mixed = match mixed {
+        Ok(Some(e)) if !over(&e) => Some(e),
+        Ok(_) | Err(Error::Retile(_) | Error::LimitExceeded(_) | Error::Size(_)) => None,
+        Err(e) => return Err(e),
+    };
+    let mixed_candidate = match &mixed {
+        Some(e) => Some(measure(e)?),
+        None => None,
+    };
+    // The mixed file against the better of the two, by the same rule (it
+    // is rate controlled as a retiled file is; a tie goes to the mixed).
+    let best = match chosen {
+        Method::Swing => swing_candidate,
+        _ => simplified_candidate,
+    };
+    let best_whole = whole && chosen == Method::Simplified;
+    let chosen = match (mixed_candidate, best) {
+        (Some(m), b) if choose(Some(m), b, budget, best_whole) == Method::Swing => Method::Mixed,
+        _ => chosen,
+    };
     let choice = MethodChoice {
         chosen,
         swing: swing_candidate,
         swing_failure: swing.as_ref().err().cloned(),
         simplified: simplified_candidate,
+        mixed: mixed_candidate,
     };
-    let mut encoded = match (chosen, swing, simplified) {
-        (Method::Swing, Ok(e), _) => e,
-        (_, _, Some(e)) => e,
+    let mut encoded = match (chosen, swing, simplified, mixed) {
+        (Method::Mixed, _, _, Some(e)) => e,
+        (Method::Swing, Ok(e), _, _) => e,
+        (_, _, Some(e), _) => e,
         // Unreachable by the match above: a method is chosen only with
         // its file. Kept total rather than panicking.
-        (_, Err(f), None) => return Err(failure_error(f)),
-        (_, Ok(e), None) => e,
+        (_, Err(f), None, _) => return Err(failure_error(f)),
+        (_, Ok(e), None, _) => e,
     };
     encoded.stats.choice = Some(choice);
     Ok(encoded)

@@ -41,6 +41,8 @@ mod math;
 pub mod mesh;
 #[cfg(feature = "metrics")]
 pub mod metrics;
+#[cfg(feature = "encoder")]
+mod mixed;
 pub mod post;
 #[cfg(feature = "encoder")]
 mod retile;

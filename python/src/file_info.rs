@@ -84,6 +84,7 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
             d.set_item("holes", holes)?;
             let rest = PyDict::new(py);
             rest.set_item("triangles", s.rest_triangles)?;
+            rest.set_item("components", s.rest_components)?;
             rest.set_item("bytes", s.rest_bytes)?;
             d.set_item("rest", rest)?;
             match s.density_levels {

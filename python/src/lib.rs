@@ -208,6 +208,7 @@ fn encode_report<'py>(py: Python<'py>, stats: &swm::EncodeStats) -> PyResult<Bou
     let method_name = |m: swm::Method| match m {
         swm::Method::Swing => "swing",
         swm::Method::Simplified => "simplified",
+        swm::Method::Mixed => "mixed",
         _ => "other",
     };
     let method = match (&stats.choice, &stats.simplified, &stats.swing) {
@@ -235,6 +236,7 @@ fn encode_report<'py>(py: Python<'py>, stats: &swm::EncodeStats) -> PyResult<Bou
             let failure = c.swing_failure.as_ref().map(|f| f.to_string());
             d.set_item("swing_failure", failure)?;
             d.set_item("simplified", candidate(&c.simplified)?)?;
+            d.set_item("mixed", candidate(&c.mixed)?)?;
             out.set_item("choice", d)?;
         }
         None => out.set_item("choice", py.None())?,

@@ -175,9 +175,10 @@ def encode(
     smallest possible size); options the mode has no use for raise
     ``ValueError``. With ``report=True`` the result is ``(bytes, report)``,
     ``report`` a dict: ``method``, what made the file (``"swing"``,
-    ``"simplified"`` or ``"lossless"``); ``choice``, in the automatic
-    mode, the ``method`` object of ``swm encode --json`` (``chosen``, the
-    ``swing`` and ``simplified`` candidates as ``{"bytes", "l2_rel"}`` or
+    ``"simplified"``, ``"mixed"``, a method per component, or
+    ``"lossless"``); ``choice``, in the automatic mode, the ``method``
+    object of ``swm encode --json`` (``chosen``, the ``swing``,
+    ``simplified`` and ``mixed`` candidates as ``{"bytes", "l2_rel"}`` or
     ``None``, and ``swing_failure``, the retiling's error or ``None``),
     else ``None``; ``simplified``, when a simplified file was written,
     ``{"input_faces", "faces", "qp"}``, else ``None``.

@@ -541,16 +541,18 @@ fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes) {
 /// How many components met each fate, e.g. "3 retiled, 99997 kept by
 /// lossless coding".
 fn fates(pieces: &[swm::PieceReport]) -> String {
-    let (mut retiled, mut lossless, mut other) = (0usize, 0usize, 0usize);
+    let (mut retiled, mut lossless, mut simplified, mut other) = (0usize, 0usize, 0usize, 0usize);
     for p in pieces {
         match p.outcome {
             swm::PieceOutcome::Retiled { .. } => retiled += 1,
             swm::PieceOutcome::Lossless => lossless += 1,
+            swm::PieceOutcome::Simplified { .. } => simplified += 1,
             _ => other += 1,
         }
     }
     [
         (retiled, "retiled"),
+        (simplified, "simplified"),
         (lossless, "kept by lossless coding"),
         (other, "other"),
     ]
@@ -599,6 +601,9 @@ fn piece_line(p: &swm::PieceReport) -> String {
         swm::PieceOutcome::Lossless => {
             format!("{shape}: too small for this edge length, kept by lossless coding")
         }
+        swm::PieceOutcome::Simplified { faces } => {
+            format!("{shape}: simplified to {faces} triangles (closer than a retiling at its share of the size), kept by lossless coding")
+        }
         _ => shape.to_string(),
     }
 }
@@ -617,6 +622,10 @@ fn piece_json(p: &swm::PieceReport) -> serde_json::Value {
             v["lost_holes"] = (*lost_holes).into();
         }
         swm::PieceOutcome::Lossless => v["outcome"] = "lossless".into(),
+        swm::PieceOutcome::Simplified { faces } => {
+            v["outcome"] = "simplified".into();
+            v["triangles"] = (*faces).into();
+        }
         _ => v["outcome"] = "other".into(),
     }
     v

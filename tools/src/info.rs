@@ -241,7 +241,13 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
     }
     if s.rest_bytes > 0 {
         say!(
-            "  kept losslessly       {} triangles, {} bytes",
+            "  kept losslessly       {} {} not retiled, {} triangles, {} bytes",
+            s.rest_components,
+            if s.rest_components == 1 {
+                "component"
+            } else {
+                "components"
+            },
             s.rest_triangles,
             s.rest_bytes
         );

@@ -91,7 +91,7 @@ pub fn swing_json(s: &swm::SwingStats) -> Value {
             "bytes": s.hole_bytes,
             "file_share": s.hole_bytes as f64 / s.file_bytes.max(1) as f64,
         },
-        "rest": { "triangles": s.rest_triangles, "bytes": s.rest_bytes },
+        "rest": { "triangles": s.rest_triangles, "components": s.rest_components, "bytes": s.rest_bytes },
         "density": s.density_levels.map(|(lo, hi)| json!({
             "min_level": lo,
             "max_level": hi,
@@ -151,6 +151,7 @@ pub fn choice_json(c: &swm::MethodChoice) -> Value {
         "swing": candidate(&c.swing),
         "swing_failure": c.swing_failure.as_ref().map(failure_text),
         "simplified": candidate(&c.simplified),
+        "mixed": candidate(&c.mixed),
     })
 }
 
@@ -165,8 +166,12 @@ pub fn choice_line(c: &swm::MethodChoice) -> String {
         Some(f) => format!("failed ({})", failure_text(f)),
         None => figure(&c.swing),
     };
+    let mixed = match &c.mixed {
+        Some(_) => format!("; a method per component {}", figure(&c.mixed)),
+        None => String::new(),
+    };
     format!(
-        "method: {} (swing {swing}; simplified {})",
+        "method: {} (swing {swing}; simplified {}{mixed})",
         method_name(c.chosen),
         figure(&c.simplified)
     )
@@ -176,6 +181,7 @@ fn method_name(m: swm::Method) -> &'static str {
     match m {
         swm::Method::Swing => "swing",
         swm::Method::Simplified => "simplified",
+        swm::Method::Mixed => "mixed",
         _ => "other",
     }
 }

@@ -54,6 +54,13 @@ pub enum PieceOutcome {
     },
     /// Too small to retile at this L: kept by the lossless mode.
     Lossless,
+    /// Coded by the simplified method (the automatic mode measured it
+    /// closer than a retiling at its share of the size): simplified to
+    /// `faces` triangles, kept by the lossless mode.
+    Simplified {
+        /// Triangles kept.
+        faces: u64,
+    },
 }
 
 /// The retiled file contents and the report per component.
@@ -84,10 +91,28 @@ pub fn retile_pieces(
     let mut fixed: Option<f64> = None;
     let mut report = Vec::with_capacity(pieces.len());
     let mut rest: Vec<&TriMesh> = Vec::new();
+    // The finest step each kept simplification asks for.
+    let mut kept_step: Option<f64> = None;
+    // Some component was too small to retile.
+    let mut tiny = false;
     for p in pieces {
         let l = fixed.unwrap_or(opt.edge_length);
         let tri_area = l * l * 3f64.sqrt() / 4.0;
         let mut outcome = PieceOutcome::Lossless;
+        if let Some(qp) = p.keep {
+            let step = extent(&p.original) / f64::from(1u32 << qp.min(31));
+            kept_step = Some(kept_step.map_or(step, |s: f64| s.min(step)));
+            rest.push(&p.original);
+            report.push(PieceReport {
+                faces: p.faces,
+                holes: p.holes,
+                genus: p.genus,
+                outcome: PieceOutcome::Simplified {
+                    faces: p.original.face_count() as u64,
+                },
+            });
+            continue;
+        }
         if p.area >= TINY_TRIANGLES * tri_area {
             match retile_tries(p, opt, fixed, budget) {
                 Ok((r, cover)) => {
@@ -108,9 +133,10 @@ pub fn retile_pieces(
         }
         if outcome == PieceOutcome::Lossless {
             rest.push(&p.original);
+            tiny = true;
         }
         report.push(PieceReport {
-            faces: p.original.face_count() as u64,
+            faces: p.faces,
             holes: p.holes,
             genus: p.genus,
             outcome,
@@ -126,7 +152,14 @@ pub fn retile_pieces(
     }
     if !rest.is_empty() {
         let merged = merge(&rest);
-        let qp = rest_bits(&merged, l);
+        // Tiny components get a step of REST_STEP x L; kept
+        // simplifications the step of their own quantization.
+        let step = match (tiny, kept_step) {
+            (true, Some(k)) => k.min(REST_STEP * l),
+            (false, Some(k)) => k,
+            (_, None) => REST_STEP * l,
+        };
+        let qp = rest_bits(&merged, step);
         out.rest = Some((merged, qp));
     }
     Ok(Composed {
@@ -232,11 +265,16 @@ fn merge(parts: &[&TriMesh]) -> TriMesh {
     m
 }
 
-/// Bits per coordinate that make the lossless step about `REST_STEP`·L
-/// over the kept components' bounding box.
-fn rest_bits(m: &TriMesh, l: f64) -> u8 {
-    let extent = m.bbox().map_or(0.0, |(lo, hi)| (hi - lo).max_element());
-    let steps = (extent / (REST_STEP * l)).max(1.0);
+/// The largest side of a mesh's bounding box.
+fn extent(m: &TriMesh) -> f64 {
+    m.bbox().map_or(0.0, |(lo, hi)| (hi - lo).max_element())
+}
+
+/// Bits per coordinate that make the lossless step at most `step` over
+/// the kept components' bounding box.
+fn rest_bits(m: &TriMesh, step: f64) -> u8 {
+    let extent = extent(m);
+    let steps = (extent / step).max(1.0);
     let bits = steps.log2().ceil() as i64;
     bits.clamp(
         i64::from(crate::geometry::MIN_BITS),

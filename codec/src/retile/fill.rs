@@ -66,6 +66,14 @@ pub struct Piece {
     pub original: TriMesh,
     /// Area of `mesh` (patches included).
     pub area: f64,
+    /// Set by the automatic mode when the simplified method serves this
+    /// component better than retiling: `original` then holds its
+    /// simplification, which goes to `REST` unretiled with at least the
+    /// resolution of this quantization over its own bounding box.
+    pub keep: Option<u8>,
+    /// Faces of the component in the cleaned input (`original`'s, unless
+    /// `keep` replaced it).
+    pub faces: u64,
 }
 
 /// Splits a clean mesh into its components and closes each one.
@@ -129,8 +137,10 @@ fn piece(mesh: &TriMesh, faces: &[u32]) -> Result<Piece, TopologyError> {
         patch,
         holes: loops.len() as u32,
         genus,
+        faces: original.face_count() as u64,
         original,
         area,
+        keep: None,
     })
 }
 

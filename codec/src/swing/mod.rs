@@ -145,6 +145,10 @@ pub struct SwingStats {
     pub rest_bytes: u64,
     /// Triangles of the lossless remainder, appended to the decoded mesh.
     pub rest_triangles: u64,
+    /// Connected components of the lossless remainder: the input's
+    /// components not retiled (too small, or simplified by the automatic
+    /// mode's choice per component), as coded.
+    pub rest_components: u64,
     /// Bytes of the density (`DENS`, format 1.1; 0 without one).
     pub density_bytes: u64,
     /// The lowest and highest level of the C tips (radius r·2^(ℓ/4)), when
@@ -170,7 +174,7 @@ impl SwingStats {
         sections: Vec<([u8; 4], usize)>,
         file_bytes: usize,
         masked: u64,
-        rest_triangles: u64,
+        (rest_triangles, rest_components): (u64, u64),
     ) -> Self {
         let mut clers = [0u64; 5];
         for &s in &conn.symbols {
@@ -215,6 +219,7 @@ impl SwingStats {
             holes_masked_triangles: masked,
             rest_bytes,
             rest_triangles,
+            rest_components,
             density_bytes,
             density_levels: None,
         }

@@ -368,16 +368,17 @@ pub(crate) fn inspect(
     };
     // As strict as `decode` about REST's counts too: its frame against
     // the limits, its connectivity against its header.
-    let rest_triangles = match rest_frame(file, limits)? {
+    let rest_counts = match rest_frame(file, limits)? {
         Some((rest, offset)) => {
             let check = || {
                 let (_, conn, dummies) = crate::lossless::read_connectivity(&rest, limits)?;
-                crate::lossless::decode_topology(&rest, &conn, &dummies)
+                crate::lossless::decode_topology(&rest, &conn, &dummies)?;
+                Ok::<_, Error>(conn.components)
             };
-            check().map_err(in_section(offset))?;
-            u64::from(rest.header.triangle_count)
+            let components = check().map_err(in_section(offset))?;
+            (u64::from(rest.header.triangle_count), u64::from(components))
         }
-        None => 0,
+        None => (0, 0),
     };
     let sections = file.sections().map(|s| (s.tag.0, s.bytes.len())).collect();
     // The density needs only the corner table, like the mask.
@@ -393,7 +394,7 @@ pub(crate) fn inspect(
         sections,
         file_bytes,
         masked,
-        rest_triangles,
+        rest_counts,
     );
     stats.density_levels = levels.as_deref().and_then(super::level_range);
     Ok((conn, stats))

@@ -245,13 +245,13 @@ pub(crate) fn write(
     };
     let masked = mask.iter().filter(|&&m| m).count() as u64;
     let hole_bytes = (masked > 0).then(|| hole::encode(&decoded, mask));
-    let (rest_bytes, rest_triangles) = match &retiled.rest {
+    let (rest_bytes, rest_counts) = match &retiled.rest {
         Some((mesh, qp)) if mesh.face_count() > 0 => {
             let table = CornerTable::new(&mesh.triangles, mesh.vertex_count())?;
-            let (bytes, _, _) = crate::lossless::encode(&table, mesh, *qp, framing)?;
-            (Some(bytes), mesh.face_count() as u64)
+            let (bytes, stats, _) = crate::lossless::encode(&table, mesh, *qp, framing)?;
+            (Some(bytes), (mesh.face_count() as u64, stats.components))
         }
-        _ => (None, 0),
+        _ => (None, (0, 0)),
     };
     let mut header = Header::new(
         Mode::Swing,
@@ -288,7 +288,7 @@ pub(crate) fn write(
         tags,
         bytes.len(),
         masked,
-        rest_triangles,
+        rest_counts,
     );
     stats.density_levels = levels.as_deref().and_then(super::level_range);
     Ok((bytes, stats))

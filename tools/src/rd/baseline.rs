@@ -73,9 +73,14 @@ fn coded(
         encode_s,
         &Default::default(),
     )?;
+    let mixed = stats
+        .choice
+        .as_ref()
+        .is_some_and(|c| c.chosen == swm::Method::Mixed);
     coded.method = match (&stats.simplified, &stats.swing) {
         (Some(s), _) if s.faces >= s.input_faces => "whole",
         (Some(_), _) => "simplified",
+        (_, Some(_)) if mixed => "mixed",
         (_, Some(_)) => "swing",
         _ => "lossless",
     }

@@ -1,0 +1,278 @@
+//! A method per component (issue 20, items 1 and 2): the automatic mode's
+//! third candidate for a mesh of several components, where each one is
+//! coded by SwingWrapper or by the simplified method, whichever the
+//! encoder measures closer at that component's share of the size.
+//!
+//! The file needs nothing new: a mode-1 file already carries retiled
+//! components in its body and, in `REST`, a mode-0 file whose mesh the
+//! decoder appends (05-swing.md). Here `REST` holds the simplified
+//! components (and any too small to retile), so the choice is recorded
+//! per component by where it is coded.
+//!
+//! ```text
+//!  components, by area ──► share b_i = F + (B − F)·area_i / area
+//!        │ (the MEASURED largest)
+//!        ├──► SwingWrapper alone at b_i ──► L2_i(swing)  ┐ lower wins
+//!        └──► simplified alone at b_i  ──► L2_i(simpl.)  ┘
+//!  simplified ones ──► REST, at their qp (their shares then moved by need)
+//!  retiled ones, and the unmeasured rest ──► rate control on the whole
+//!  file at B (REST included; a component too small to retile is kept whole)
+//! ```
+//!
+//! The split of the size (item 2): each component's share follows its
+//! area, as a uniform retiling's triangle count does, plus the frame a
+//! file of its own would spend ([`FRAME`]); within the simplified part the
+//! quadric collapse of each component keeps its faces where its error is,
+//! and within the retiled part one edge length serves every component.
+//! The file as a whole is rate controlled to the request (±3%, never
+//! above `--max-size`), so the shares decide only which method serves
+//! each component and the simplified components' sizes.
+//!
+//! Invariants: the choice depends only on the mesh and the request (each
+//! per-component encode is deterministic, the measures are seeded, and
+//! the parallel trials are collected in component order); a component
+//! neither method can code alone at its share is left to the file's own
+//! rule (retiled, or kept whole when too small for the edge length).
+
+use crate::api::{encode_swing_pieces, EncodeOptions, Encoded, SwingTarget};
+use crate::metrics::{DistanceOptions, Surface};
+use crate::retile::fill::Piece;
+use crate::simplify::{best_fit, Simplifier};
+use crate::{Cleaned, Error, TriMesh};
+use rayon::prelude::*;
+
+/// Components measured one by one, the largest by area; smaller ones
+/// follow the file's own rule, retiled or, too small for the edge length,
+/// kept whole (a file of thousands of parts would otherwise pay thousands
+/// of trials).
+pub const MEASURED: usize = 16;
+/// Bytes a file of its own spends on frame and header, added to each
+/// component's share for its trial encodes.
+const FRAME: u64 = 40;
+/// Face samples per direction for a component's two trial files (a
+/// tenth of the file's own measure: the trials only rank two methods).
+const TRIAL_SAMPLES: u64 = 10_000;
+
+/// What the trials decided for one component.
+enum Verdict {
+    /// Retile it; its trial's absolute L2.
+    Swing(f64),
+    /// Keep this simplification.
+    Simplified(Fit),
+    /// Neither trial made a file: leave it to the file's own rule.
+    Open,
+}
+
+/// A component's simplified file at some size.
+struct Fit {
+    mesh: TriMesh,
+    qp: u8,
+    /// Absolute L2 to the component.
+    l2: f64,
+    /// The size it was fitted to.
+    bytes: u64,
+}
+
+/// Halvings and doublings tried on a simplified component's share.
+const MOVES: usize = 6;
+
+/// The mixed file for `budget` bytes, or `None` when the mesh has one
+/// component or every measured component chose the same method.
+pub(crate) fn encode(
+    cleaned: &Cleaned,
+    input_vertices: usize,
+    options: &EncodeOptions,
+    budget: u64,
+    max_bytes: Option<u64>,
+) -> Result<Option<Encoded>, Error> {
+    let mut pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
+    if pieces.len() < 2 {
+        return Ok(None);
+    }
+    let areas: Vec<f64> = pieces.iter().map(|p| p.original.area()).collect();
+    let total: f64 = areas.iter().sum();
+    if total.is_nan() || total <= 0.0 {
+        return Ok(None);
+    }
+    let share = |i: usize| {
+        let body = budget.saturating_sub(FRAME) as f64 * areas[i] / total;
+        FRAME + body.floor() as u64
+    };
+    // The largest components, ties to the lower index.
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    order.sort_by(|&a, &b| areas[b].total_cmp(&areas[a]).then(a.cmp(&b)));
+    let measured: Vec<usize> = order.iter().copied().take(MEASURED).collect();
+    let verdicts: Vec<Result<Verdict, Error>> = order
+        .par_iter()
+        .map(|&i| {
+            let piece = &pieces[i];
+            if measured.contains(&i) {
+                trial(piece, share(i), options)
+            } else {
+                Ok(Verdict::Open)
+            }
+        })
+        .collect();
+    let mut verdicts: Vec<(usize, Verdict)> = order
+        .iter()
+        .copied()
+        .zip(verdicts)
+        .map(|(i, v)| v.map(|v| (i, v)))
+        .collect::<Result<_, _>>()?;
+    // The retiled part's gain per byte: a retiling's L2 falls as 1/bytes
+    // (bytes grow as the triangle count, 1/L^2, and the error as L^2), so
+    // its area-weighted squared error D falls at 2 D / bytes.
+    let (mut d_swing, mut b_swing) = (0.0, 0u64);
+    for (i, v) in &verdicts {
+        if let Verdict::Swing(l2) = v {
+            d_swing += areas[*i] * l2 * l2;
+            b_swing += share(*i);
+        }
+    }
+    let any_simplified = verdicts
+        .iter()
+        .any(|(_, v)| matches!(v, Verdict::Simplified(_)));
+    if b_swing == 0 || !any_simplified {
+        return Ok(None);
+    }
+    let gain = 2.0 * d_swing / b_swing as f64;
+    // Each simplified component's share moves by halvings (or doublings)
+    // while the error it adds per byte given up is below the retiled
+    // part's gain per byte (or the error it saves per byte taken is
+    // above it): a flat part exact at a few faces gives its share away.
+    let resized: Vec<Result<Option<Fit>, Error>> = verdicts
+        .par_iter()
+        .map(|(i, v)| match v {
+            Verdict::Simplified(f) => resize(&pieces[*i], f, areas[*i], gain, budget, options),
+            _ => Ok(None),
+        })
+        .collect();
+    for ((_, v), r) in verdicts.iter_mut().zip(resized) {
+        if let Some(f) = r? {
+            *v = Verdict::Simplified(f);
+        }
+    }
+    for (i, v) in verdicts {
+        if let Verdict::Simplified(f) = v {
+            pieces[i].original = f.mesh;
+            pieces[i].keep = Some(f.qp);
+        }
+    }
+    let target = SwingTarget::Bytes(budget);
+    let encoded = encode_swing_pieces(
+        &pieces,
+        &cleaned.report,
+        input_vertices,
+        options,
+        target,
+        None,
+        max_bytes.or(Some(budget)),
+    )?;
+    Ok(Some(encoded))
+}
+
+/// Both methods on one component alone at `bytes`, measured against it.
+fn trial(piece: &Piece, bytes: u64, options: &EncodeOptions) -> Result<Verdict, Error> {
+    let reference = Surface::new(&piece.original)?;
+    let samples = DistanceOptions::area_uniform(TRIAL_SAMPLES);
+    let simplified = simplified(piece, bytes, options)?;
+    let alone = crate::clean(&piece.original, &options.clean)?;
+    // A retiling that fails or misses the share is no candidate.
+    let swing = match crate::api::encode_swing(
+        &alone,
+        alone.mesh.vertex_count(),
+        options,
+        SwingTarget::Bytes(bytes),
+        None,
+        Some(bytes),
+    ) {
+        Ok(e) => {
+            let decoded = crate::decode(&e.bytes, &Default::default())?;
+            Some(
+                crate::metrics::distance_between(&reference, &Surface::new(&decoded)?, &samples)?
+                    .l2(),
+            )
+        }
+        Err(Error::Retile(_) | Error::LimitExceeded(_) | Error::Size(_)) => None,
+        Err(e) => return Err(e),
+    };
+    Ok(match (swing, simplified) {
+        (Some(w), Some(f)) if f.l2 < w => Verdict::Simplified(f),
+        (Some(w), _) => Verdict::Swing(w),
+        (None, Some(f)) => Verdict::Simplified(f),
+        (None, None) => Verdict::Open,
+    })
+}
+
+/// A better share for a simplified component than `fit`'s, by the
+/// marginal rule above; `None` when `fit` stands.
+fn resize(
+    piece: &Piece,
+    fit: &Fit,
+    area: f64,
+    gain: f64,
+    budget: u64,
+    options: &EncodeOptions,
+) -> Result<Option<Fit>, Error> {
+    let d = |f: &Fit| area * f.l2 * f.l2;
+    let s = Simplifier::new(&piece.original, options.framing);
+    let reference = Surface::new(s.reference())?;
+    let mut best: Option<Fit> = None;
+    // Smaller while giving bytes away costs less than they buy.
+    for _ in 0..MOVES {
+        let at = best.as_ref().unwrap_or(fit);
+        let Some(f) = fit_at(&s, &reference, at.bytes / 2)? else {
+            break;
+        };
+        let saved = (at.bytes - f.bytes) as f64;
+        if saved <= 0.0 || (d(&f) - d(at)) / saved >= gain {
+            break;
+        }
+        best = Some(f);
+    }
+    if best.is_some() {
+        return Ok(best);
+    }
+    // Larger while the bytes taken save more than they cost elsewhere.
+    for _ in 0..MOVES {
+        let at = best.as_ref().unwrap_or(fit);
+        if at.bytes >= budget / 2 {
+            break;
+        }
+        let Some(f) = fit_at(&s, &reference, 2 * at.bytes)? else {
+            break;
+        };
+        let taken = (f.bytes - at.bytes.min(f.bytes)) as f64;
+        if taken <= 0.0 || (d(at) - d(&f)) / taken <= gain {
+            break;
+        }
+        best = Some(f);
+    }
+    Ok(best)
+}
+
+/// The simplified method's best file of one component at `bytes`: its
+/// mesh (before quantization), qp and absolute L2; `None` when nothing
+/// fits.
+fn simplified(piece: &Piece, bytes: u64, options: &EncodeOptions) -> Result<Option<Fit>, Error> {
+    let s = Simplifier::new(&piece.original, options.framing);
+    let reference = Surface::new(s.reference())?;
+    fit_at(&s, &reference, bytes)
+}
+
+/// [`simplified`] with the component's simplifier and surface made.
+fn fit_at(s: &Simplifier<'_>, reference: &Surface, bytes: u64) -> Result<Option<Fit>, Error> {
+    let diagonal = s.reference().bbox_diagonal();
+    let Some((fit, l2_relative)) = best_fit(s, bytes, reference, TRIAL_SAMPLES)? else {
+        return Ok(None);
+    };
+    // What its file codes: the simplification cleaned (as the lossless
+    // mode cleans it), so that REST's corner table takes it as it is.
+    let mesh = crate::clean(&fit.mesh, &crate::CleanOptions::default())?.mesh;
+    Ok(Some(Fit {
+        mesh,
+        qp: fit.qp,
+        l2: l2_relative * diagonal,
+        bytes: fit.bytes.len() as u64,
+    }))
+}
