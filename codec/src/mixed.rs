@@ -30,7 +30,9 @@
 //!
 //! Invariants: the choice depends only on the mesh and the request (each
 //! per-component encode is deterministic, the measures are seeded, and
-//! the parallel trials are collected in component order); a component
+//! the parallel trials are collected in component order); the trials
+//! split the encoder's work and time limits between them (a trial that
+//! runs out only loses its retiled candidate); a component
 //! neither method can code alone at its share is left to the file's own
 //! rule (retiled, or kept whole when too small for the edge length).
 
@@ -102,12 +104,24 @@ pub(crate) fn encode(
     let mut order: Vec<usize> = (0..pieces.len()).collect();
     order.sort_by(|&a, &b| areas[b].total_cmp(&areas[a]).then(a.cmp(&b)));
     let measured: Vec<usize> = order.iter().copied().take(MEASURED).collect();
+    // The trials share the encoder's work and time bounds with the final
+    // encode: each gets its part, so that all of them together stay
+    // within about twice what one encode may take.
+    let parts = measured.len() as u64 + 1;
+    let trial_options = EncodeOptions {
+        limits: crate::EncodeLimits {
+            max_work: options.limits.max_work / parts,
+            max_milliseconds: options.limits.max_milliseconds.map(|ms| ms / parts),
+            ..options.limits
+        },
+        ..options.clone()
+    };
     let verdicts: Vec<Result<Verdict, Error>> = order
         .par_iter()
         .map(|&i| {
             let piece = &pieces[i];
             if measured.contains(&i) {
-                trial(piece, share(i), options)
+                trial(piece, share(i), &trial_options)
             } else {
                 Ok(Verdict::Open)
             }

@@ -23,3 +23,27 @@ pub(crate) fn unit_cube() -> TriMesh {
         .collect();
     TriMesh::new(p, f)
 }
+
+/// A closed UV sphere of `nu` x `nv` quads (poles fanned).
+pub(crate) fn uv_sphere(nu: u32, nv: u32) -> TriMesh {
+    let mut positions = vec![[0.0, 0.0, 1.0f32], [0.0, 0.0, -1.0]];
+    for j in 1..nv {
+        let t = core::f32::consts::PI * j as f32 / nv as f32;
+        for i in 0..nu {
+            let p = core::f32::consts::TAU * i as f32 / nu as f32;
+            positions.push([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]);
+        }
+    }
+    let id = |i: u32, j: u32| 2 + (j - 1) * nu + i % nu;
+    let mut triangles = Vec::new();
+    for i in 0..nu {
+        triangles.push([0, id(i, 1), id(i + 1, 1)]);
+        triangles.push([1, id(i + 1, nv - 1), id(i, nv - 1)]);
+        for j in 1..nv - 1 {
+            let (a, b, c, d) = (id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    TriMesh::new(positions, triangles)
+}

@@ -36,10 +36,12 @@ use rayon::prelude::*;
 
 use crate::{Error, FormatError, Malformed, ParameterError, TopologyError, TriMesh};
 use bvh::{Bvh, Scratch};
-use sample::{area, carried_counts, edge_points, face_points, SplitMix};
 #[cfg(feature = "encoder")]
-pub(crate) use triangle::triangle_distance2_f64;
+pub(crate) use bvh::{Bvh as NearestTree, Scratch as NearestScratch};
+use sample::{area, carried_counts, edge_points, face_points, SplitMix};
 use triangle::Tri;
+#[cfg(feature = "encoder")]
+pub(crate) use triangle::{closest_point as closest_on_triangle, triangle_distance2_f64};
 
 /// What to sample. Defaults are Metro's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -7,7 +7,9 @@
 //! Sources: Garland & Heckbert, "Surface simplification using quadric
 //! error metrics" (1997): greedy edge collapse to the quadric's minimum,
 //! recorded once per input and replayed to each face count the search
-//! asks for ([`qem`]); thesis Table 7-3 (simplification, then Edgebreaker with
+//! asks for ([`qem`]), then each vertex moved along its normal toward
+//! the input (`refit`, after Hoppe et al.'s mesh optimization); thesis
+//! Table 7-3 (simplification, then Edgebreaker with
 //! quantized positions); the shared corpus's "quadric + Draco" figures,
 //! which keep the best pair of face count and quantization in 7..14 bits.
 //!
@@ -47,6 +49,7 @@ use core::ops::RangeInclusive;
 use std::sync::OnceLock;
 
 pub mod qem;
+mod refit;
 
 /// Quantizations considered: the lossless mode's coarsest (small meshes
 /// at low rates want it: spot and cow chose 7, the old floor, at 0.5-2
@@ -56,6 +59,9 @@ pub const QPS: RangeInclusive<u8> = 6..=16;
 const START_QP: u8 = 10;
 /// Fewer faces than a tetrahedron's make no surface worth coding.
 const MIN_FACES: u32 = 4;
+/// Refits of each simplification to the input ([`refit`]): one; three
+/// measured no better.
+const REFIT_SWEEPS: usize = 1;
 
 /// How much more error a file on size (within rate control's 3% of the
 /// request) may have than one short of it and still be preferred: the
@@ -130,7 +136,8 @@ impl<'a> Simplifier<'a> {
     }
 
     /// The input simplified to at most `target` faces (the input itself
-    /// when it has no more). Deterministic.
+    /// when it has no more), before its refit ([`refit`](Self::refit)):
+    /// what the size search probes. Deterministic.
     pub fn simplify(&self, target: u32) -> TriMesh {
         if target >= self.faces() {
             return self.mesh.clone();
@@ -140,6 +147,11 @@ impl<'a> Simplifier<'a> {
             .get_or_init(|| qem::Collapses::run(&self.work, MIN_FACES));
         let r = c.replay(&self.work, target);
         compact(&r.positions, &r.triangles)
+    }
+
+    /// `mesh` (a simplification) refitted to the input (`refit`).
+    pub fn refit(&self, mesh: &mut TriMesh) {
+        refit::refit(mesh, &self.work, REFIT_SWEEPS);
     }
 }
 
@@ -388,10 +400,11 @@ pub fn fit_faces(
     let mut last_fitted: Option<bool> = None;
     let mut slope_down = prev.map_or(1.0, |p| p.slope);
     let mut guess = aim(hi, slope_down, 0.98 * budget_f);
-    // The first probe is the previous qp's answer: its simplification is made.
+    // The first probe is the previous qp's face count (its replay is a
+    // linear pass; the answer's mesh is refitted, the probes are not).
     let mut made = prev
         .filter(|p| p.faces < full)
-        .map(|p| (p.faces, p.mesh.clone()));
+        .map(|p| (p.faces, s.simplify(p.faces)));
     for _ in 0..MAX_PROBES {
         let (faces, mesh) = match made.take() {
             Some(made) => made,
@@ -448,6 +461,20 @@ pub fn fit_faces(
             aim(*l, slope(*l, hi), (1.0 + FILL) / 2.0 * budget_f)
         };
     }
+    // The answer refitted to the input, when its file still fits (moving
+    // the vertices changes the residuals a little): once per qp, not per
+    // probe.
+    let lo = match lo {
+        Some((l, mesh, bytes)) => {
+            let mut fitted = mesh.clone();
+            s.refit(&mut fitted);
+            match coded(&fitted, qp, s.framing)? {
+                Some(b) if b.len() as u64 <= budget => Some((l, fitted, b)),
+                _ => Some((l, mesh, bytes)),
+            }
+        }
+        None => None,
+    };
     Ok(lo.map(|(l, mesh, bytes)| {
         // The widest pair gives the steadiest slope for the next qp.
         let far = probes

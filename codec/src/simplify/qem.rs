@@ -141,13 +141,13 @@ impl Quadric {
     }
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(super) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(super) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -625,30 +625,6 @@ mod tests {
     use super::*;
     use crate::mesh::CornerId;
 
-    /// A closed UV sphere of `nu` x `nv` quads (poles fanned).
-    fn sphere(nu: u32, nv: u32) -> TriMesh {
-        let mut positions = vec![[0.0, 0.0, 1.0f32], [0.0, 0.0, -1.0]];
-        for j in 1..nv {
-            let t = core::f32::consts::PI * j as f32 / nv as f32;
-            for i in 0..nu {
-                let p = core::f32::consts::TAU * i as f32 / nu as f32;
-                positions.push([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]);
-            }
-        }
-        let id = |i: u32, j: u32| 2 + (j - 1) * nu + i % nu;
-        let mut triangles = Vec::new();
-        for i in 0..nu {
-            triangles.push([0, id(i, 1), id(i + 1, 1)]);
-            triangles.push([1, id(i + 1, nv - 1), id(i, nv - 1)]);
-            for j in 1..nv - 1 {
-                let (a, b, c, d) = (id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
-                triangles.push([a, b, c]);
-                triangles.push([a, c, d]);
-            }
-        }
-        TriMesh::new(positions, triangles)
-    }
-
     #[test]
     fn regularised_minimum_of_one_plane_is_the_midpoint_projected() {
         let q = Quadric::plane([0.0, 0.0, 1.0], -1.0, 1.0);
@@ -659,7 +635,7 @@ mod tests {
 
     #[test]
     fn every_replay_is_a_closed_manifold_near_the_sphere() {
-        let m = sphere(24, 16);
+        let m = crate::mesh::test_shapes::uv_sphere(24, 16);
         let c = Collapses::run(&m, 4);
         let last = c.steps.last().unwrap().faces_after;
         assert!(last <= 8, "stopped at {last}");
