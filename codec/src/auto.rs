@@ -36,7 +36,7 @@ use crate::api::{
     encode_simplified, encode_swing, simplified_budget, Candidate, EncodeOptions, Encoded, Method,
     MethodChoice, SwingFailure, SwingTarget, AUTO_SAMPLES,
 };
-use crate::metrics::{DistanceOptions, Surface};
+use crate::metrics::Surface;
 use crate::simplify::{Simplifier, ON_SIZE_SLACK};
 use crate::{Error, TriMesh};
 
@@ -133,12 +133,7 @@ pub(crate) fn encode(
         other => other,
     };
     let measure = |e: &Encoded| -> Result<Candidate, Error> {
-        let decoded = crate::decode(&e.bytes, &Default::default())?;
-        let d = crate::metrics::distance_between(
-            &reference,
-            &Surface::new(&decoded)?,
-            &DistanceOptions::area_uniform(AUTO_SAMPLES),
-        )?;
+        let d = crate::simplify::file_distance(&e.bytes, &reference, AUTO_SAMPLES)?;
         Ok(Candidate {
             bytes: e.bytes.len() as u64,
             l2_relative: d.l2_relative(),

@@ -37,9 +37,9 @@
 //! rule (retiled, or kept whole when too small for the edge length).
 
 use crate::api::{encode_swing_pieces, EncodeOptions, Encoded, SwingTarget};
-use crate::metrics::{DistanceOptions, Surface};
+use crate::metrics::Surface;
 use crate::retile::fill::Piece;
-use crate::simplify::{best_fit, Simplifier};
+use crate::simplify::{best_fit, file_distance, Simplifier};
 use crate::{Cleaned, Error, TriMesh};
 use rayon::prelude::*;
 
@@ -78,6 +78,16 @@ struct Fit {
 /// Halvings and doublings tried on a simplified component's share.
 const MOVES: usize = 6;
 
+/// A measured component with what both of its phases use: its
+/// simplifier (whose collapse sequence, made once, serves every size
+/// tried) and the surface its candidates are measured against.
+struct Measured<'a> {
+    index: usize,
+    piece: &'a Piece,
+    simplifier: Simplifier<'a>,
+    surface: Surface,
+}
+
 /// The mixed file for `budget` bytes, or `None` when the mesh has one
 /// component or every measured component chose the same method.
 pub(crate) fn encode(
@@ -103,11 +113,11 @@ pub(crate) fn encode(
     // The largest components, ties to the lower index.
     let mut order: Vec<usize> = (0..pieces.len()).collect();
     order.sort_by(|&a, &b| areas[b].total_cmp(&areas[a]).then(a.cmp(&b)));
-    let measured: Vec<usize> = order.iter().copied().take(MEASURED).collect();
+    order.truncate(MEASURED);
     // The trials share the encoder's work and time bounds with the final
     // encode: each gets its part, so that all of them together stay
     // within about twice what one encode may take.
-    let parts = measured.len() as u64 + 1;
+    let parts = order.len() as u64 + 1;
     let trial_options = EncodeOptions {
         limits: crate::EncodeLimits {
             max_work: options.limits.max_work / parts,
@@ -116,36 +126,35 @@ pub(crate) fn encode(
         },
         ..options.clone()
     };
-    let verdicts: Vec<Result<Verdict, Error>> = order
+    let measured: Vec<Measured<'_>> = order
         .par_iter()
-        .map(|&i| {
-            let piece = &pieces[i];
-            if measured.contains(&i) {
-                trial(piece, share(i), &trial_options)
-            } else {
-                Ok(Verdict::Open)
-            }
+        .map(|&index| {
+            let piece = &pieces[index];
+            let simplifier = Simplifier::new(&piece.original, options.framing);
+            let surface = Surface::new(simplifier.reference())?;
+            Ok(Measured {
+                index,
+                piece,
+                simplifier,
+                surface,
+            })
         })
-        .collect();
-    let mut verdicts: Vec<(usize, Verdict)> = order
-        .iter()
-        .copied()
-        .zip(verdicts)
-        .map(|(i, v)| v.map(|v| (i, v)))
+        .collect::<Result<_, Error>>()?;
+    let mut verdicts: Vec<Verdict> = measured
+        .par_iter()
+        .map(|m| trial(m, share(m.index), &trial_options))
         .collect::<Result<_, _>>()?;
     // The retiled part's gain per byte: a retiling's L2 falls as 1/bytes
     // (bytes grow as the triangle count, 1/L^2, and the error as L^2), so
     // its area-weighted squared error D falls at 2 D / bytes.
     let (mut d_swing, mut b_swing) = (0.0, 0u64);
-    for (i, v) in &verdicts {
+    for (m, v) in measured.iter().zip(&verdicts) {
         if let Verdict::Swing(l2) = v {
-            d_swing += areas[*i] * l2 * l2;
-            b_swing += share(*i);
+            d_swing += areas[m.index] * l2 * l2;
+            b_swing += share(m.index);
         }
     }
-    let any_simplified = verdicts
-        .iter()
-        .any(|(_, v)| matches!(v, Verdict::Simplified(_)));
+    let any_simplified = verdicts.iter().any(|v| matches!(v, Verdict::Simplified(_)));
     if b_swing == 0 || !any_simplified {
         return Ok(None);
     }
@@ -154,23 +163,30 @@ pub(crate) fn encode(
     // while the error it adds per byte given up is below the retiled
     // part's gain per byte (or the error it saves per byte taken is
     // above it): a flat part exact at a few faces gives its share away.
-    let resized: Vec<Result<Option<Fit>, Error>> = verdicts
+    let resized: Vec<Option<Fit>> = measured
         .par_iter()
-        .map(|(i, v)| match v {
-            Verdict::Simplified(f) => resize(&pieces[*i], f, areas[*i], gain, budget, options),
+        .zip(&verdicts)
+        .map(|(m, v)| match v {
+            Verdict::Simplified(f) => resize(m, f, areas[m.index], gain, budget),
             _ => Ok(None),
         })
-        .collect();
-    for ((_, v), r) in verdicts.iter_mut().zip(resized) {
-        if let Some(f) = r? {
+        .collect::<Result<_, _>>()?;
+    for (v, r) in verdicts.iter_mut().zip(resized) {
+        if let Some(f) = r {
             *v = Verdict::Simplified(f);
         }
     }
-    for (i, v) in verdicts {
-        if let Verdict::Simplified(f) = v {
-            pieces[i].original = f.mesh;
-            pieces[i].keep = Some(f.qp);
-        }
+    let kept: Vec<(usize, Fit)> = measured
+        .iter()
+        .zip(verdicts)
+        .filter_map(|(m, v)| match v {
+            Verdict::Simplified(f) => Some((m.index, f)),
+            _ => None,
+        })
+        .collect();
+    drop(measured);
+    for (i, f) in kept {
+        pieces[i].keep = Some((f.mesh, f.qp));
     }
     let target = SwingTarget::Bytes(budget);
     let encoded = encode_swing_pieces(
@@ -186,11 +202,9 @@ pub(crate) fn encode(
 }
 
 /// Both methods on one component alone at `bytes`, measured against it.
-fn trial(piece: &Piece, bytes: u64, options: &EncodeOptions) -> Result<Verdict, Error> {
-    let reference = Surface::new(&piece.original)?;
-    let samples = DistanceOptions::area_uniform(TRIAL_SAMPLES);
-    let simplified = simplified(piece, bytes, options)?;
-    let alone = crate::clean(&piece.original, &options.clean)?;
+fn trial(m: &Measured<'_>, bytes: u64, options: &EncodeOptions) -> Result<Verdict, Error> {
+    let simplified = fit_at(m, bytes)?;
+    let alone = crate::clean(&m.piece.original, &options.clean)?;
     // A retiling that fails or misses the share is no candidate.
     let swing = match crate::api::encode_swing(
         &alone,
@@ -200,13 +214,7 @@ fn trial(piece: &Piece, bytes: u64, options: &EncodeOptions) -> Result<Verdict, 
         None,
         Some(bytes),
     ) {
-        Ok(e) => {
-            let decoded = crate::decode(&e.bytes, &Default::default())?;
-            Some(
-                crate::metrics::distance_between(&reference, &Surface::new(&decoded)?, &samples)?
-                    .l2(),
-            )
-        }
+        Ok(e) => Some(file_distance(&e.bytes, &m.surface, TRIAL_SAMPLES)?.l2()),
         Err(Error::Retile(_) | Error::LimitExceeded(_) | Error::Size(_)) => None,
         Err(e) => return Err(e),
     };
@@ -221,21 +229,18 @@ fn trial(piece: &Piece, bytes: u64, options: &EncodeOptions) -> Result<Verdict, 
 /// A better share for a simplified component than `fit`'s, by the
 /// marginal rule above; `None` when `fit` stands.
 fn resize(
-    piece: &Piece,
+    m: &Measured<'_>,
     fit: &Fit,
     area: f64,
     gain: f64,
     budget: u64,
-    options: &EncodeOptions,
 ) -> Result<Option<Fit>, Error> {
     let d = |f: &Fit| area * f.l2 * f.l2;
-    let s = Simplifier::new(&piece.original, options.framing);
-    let reference = Surface::new(s.reference())?;
     let mut best: Option<Fit> = None;
     // Smaller while giving bytes away costs less than they buy.
     for _ in 0..MOVES {
         let at = best.as_ref().unwrap_or(fit);
-        let Some(f) = fit_at(&s, &reference, at.bytes / 2)? else {
+        let Some(f) = fit_at(m, at.bytes / 2)? else {
             break;
         };
         let saved = (at.bytes - f.bytes) as f64;
@@ -253,7 +258,7 @@ fn resize(
         if at.bytes >= budget / 2 {
             break;
         }
-        let Some(f) = fit_at(&s, &reference, 2 * at.bytes)? else {
+        let Some(f) = fit_at(m, 2 * at.bytes)? else {
             break;
         };
         let taken = (f.bytes - at.bytes.min(f.bytes)) as f64;
@@ -268,16 +273,10 @@ fn resize(
 /// The simplified method's best file of one component at `bytes`: its
 /// mesh (before quantization), qp and absolute L2; `None` when nothing
 /// fits.
-fn simplified(piece: &Piece, bytes: u64, options: &EncodeOptions) -> Result<Option<Fit>, Error> {
-    let s = Simplifier::new(&piece.original, options.framing);
-    let reference = Surface::new(s.reference())?;
-    fit_at(&s, &reference, bytes)
-}
-
-/// [`simplified`] with the component's simplifier and surface made.
-fn fit_at(s: &Simplifier<'_>, reference: &Surface, bytes: u64) -> Result<Option<Fit>, Error> {
-    let diagonal = s.reference().bbox_diagonal();
-    let Some((fit, l2_relative)) = best_fit(s, bytes, reference, TRIAL_SAMPLES)? else {
+fn fit_at(m: &Measured<'_>, bytes: u64) -> Result<Option<Fit>, Error> {
+    let diagonal = m.simplifier.reference().bbox_diagonal();
+    let Some((fit, l2_relative)) = best_fit(&m.simplifier, bytes, &m.surface, TRIAL_SAMPLES)?
+    else {
         return Ok(None);
     };
     // What its file codes: the simplification cleaned (as the lossless

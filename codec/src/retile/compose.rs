@@ -99,16 +99,16 @@ pub fn retile_pieces(
         let l = fixed.unwrap_or(opt.edge_length);
         let tri_area = l * l * 3f64.sqrt() / 4.0;
         let mut outcome = PieceOutcome::Lossless;
-        if let Some(qp) = p.keep {
-            let step = extent(&p.original) / f64::from(1u32 << qp.min(31));
+        if let Some((kept, qp)) = &p.keep {
+            let step = extent(kept) / f64::from(1u32 << (*qp).min(31));
             kept_step = Some(kept_step.map_or(step, |s: f64| s.min(step)));
-            rest.push(&p.original);
+            rest.push(kept);
             report.push(PieceReport {
-                faces: p.faces,
+                faces: p.original.face_count() as u64,
                 holes: p.holes,
                 genus: p.genus,
                 outcome: PieceOutcome::Simplified {
-                    faces: p.original.face_count() as u64,
+                    faces: kept.face_count() as u64,
                 },
             });
             continue;
@@ -136,7 +136,7 @@ pub fn retile_pieces(
             tiny = true;
         }
         report.push(PieceReport {
-            faces: p.faces,
+            faces: p.original.face_count() as u64,
             holes: p.holes,
             genus: p.genus,
             outcome,

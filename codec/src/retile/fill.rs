@@ -67,13 +67,10 @@ pub struct Piece {
     /// Area of `mesh` (patches included).
     pub area: f64,
     /// Set by the automatic mode when the simplified method serves this
-    /// component better than retiling: `original` then holds its
-    /// simplification, which goes to `REST` unretiled with at least the
-    /// resolution of this quantization over its own bounding box.
-    pub keep: Option<u8>,
-    /// Faces of the component in the cleaned input (`original`'s, unless
-    /// `keep` replaced it).
-    pub faces: u64,
+    /// component better than retiling: its simplification, which goes to
+    /// `REST` unretiled, and the quantization whose resolution over the
+    /// simplification's own bounding box it keeps at least.
+    pub keep: Option<(TriMesh, u8)>,
 }
 
 /// Splits a clean mesh into its components and closes each one.
@@ -137,7 +134,6 @@ fn piece(mesh: &TriMesh, faces: &[u32]) -> Result<Piece, TopologyError> {
         patch,
         holes: loops.len() as u32,
         genus,
-        faces: original.face_count() as u64,
         original,
         area,
         keep: None,

@@ -155,6 +155,22 @@ impl<'a> Simplifier<'a> {
     }
 }
 
+/// The distance from `reference` to what the file `bytes` decodes to,
+/// with `samples` area-uniform face samples per direction: how every
+/// candidate file of the encoder is measured.
+pub(crate) fn file_distance(
+    bytes: &[u8],
+    reference: &Surface,
+    samples: u64,
+) -> Result<SurfaceDistance, Error> {
+    let decoded = crate::decode(bytes, &Default::default())?;
+    crate::metrics::distance_between(
+        reference,
+        &Surface::new(&decoded)?,
+        &DistanceOptions::area_uniform(samples),
+    )
+}
+
 /// The mode-0 file of `mesh` at `qp`, as [`encode`](crate::encode) writes
 /// it (cleaned first: a simplification may leave a degenerate face).
 pub fn lossless_bytes(mesh: &TriMesh, qp: u8, framing: Framing) -> Result<Vec<u8>, Error> {
@@ -228,12 +244,7 @@ pub fn best_fit(
             .find_map(|(_, r)| r.as_ref().map(|r| &r.0));
         let scored = match fit_faces(s, qp, budget, prev)? {
             Some(fit) => {
-                let decoded = crate::decode(&fit.bytes, &Default::default())?;
-                let d = crate::metrics::distance_between(
-                    reference,
-                    &Surface::new(&decoded)?,
-                    &DistanceOptions::area_uniform(samples),
-                )?;
+                let d = file_distance(&fit.bytes, reference, samples)?;
                 Some((fit, d))
             }
             None => None,
