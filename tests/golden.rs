@@ -282,6 +282,7 @@ fn golden_swing_options() -> EncodeOptions {
             fit_tips: false,
             adaptive_density: false,
             front_contexts: false,
+            loop_start: false,
         },
         // The golden files predate the compact framing (format 1.1).
         framing: swm::Framing::Fixed,
@@ -377,6 +378,7 @@ fn golden_adaptive_options() -> EncodeOptions {
             fit_tips: false,
             adaptive_density: true,
             front_contexts: false,
+            loop_start: false,
         },
         // The golden files predate the compact framing (format 1.1).
         framing: swm::Framing::Fixed,
@@ -494,5 +496,87 @@ fn swing_front_v1_1_reencodes_to_the_same_bytes() {
     assert_eq!(
         encoded.bytes, SWING_FRONT_V1_1,
         "re-encoding the golden ellipsoid no longer gives golden/swing-front-v1.1.swm"
+    );
+}
+
+// --- Format 1.1: SwingWrapper started on a boundary loop (LOOP) ---
+
+const SWING_LOOP_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-loop-v1.1.swm");
+
+/// The test vector of format-spec/05-swing.md ("Golden file", LOOP).
+const SWING_LOOP_V1_1_FNV1A64: u64 = 0x0994_2253_92D8_A1EF;
+
+/// The LOOP golden file's input: the golden sphere without the faces
+/// whose three vertices all lie above z = 0.5 (binary32 comparisons): a
+/// cap with one boundary loop.
+fn golden_cap() -> TriMesh {
+    let m = golden_sphere();
+    let high = |v: u32| m.positions[v as usize][2] > 0.5;
+    let kept = m
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| !t.iter().all(|&v| high(v)))
+        .collect();
+    TriMesh::new(m.positions.clone(), kept)
+}
+
+fn golden_loop_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: swm::SwingTarget::EdgeLength(0.2),
+            angle_bits: Some(8),
+            max_bytes: None,
+        },
+        swing: swm::SwingTuning {
+            approximate_tips: false,
+            fit_tips: false,
+            adaptive_density: false,
+            front_contexts: true,
+            loop_start: true,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+/// Writes the LOOP golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_swing_loop_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_swing_loop_v1_1_golden() {
+    write_golden("swing-loop-v1.1.swm", &golden_cap(), &golden_loop_options());
+}
+
+/// Must hold forever: a failure means the decoder no longer reads the
+/// LOOP section of format 1.1 as specified.
+#[test]
+fn swing_loop_v1_1_decodes_to_its_test_vector() {
+    let info = swm::inspect(SWING_LOOP_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    let swing = info.swing.expect("a SwingWrapper file");
+    let tags: Vec<&[u8; 4]> = swing.sections.iter().map(|(t, _)| t).collect();
+    assert!(
+        tags.contains(&b"LOOP") && tags.contains(&b"HOLE"),
+        "{tags:?}"
+    );
+    assert_eq!(swing.loops, 1);
+    assert_eq!(swing.holes_masked_triangles, 0);
+    let mesh = swm::decode(SWING_LOOP_V1_1, &DecodeOptions::default())
+        .expect("golden file swing-loop-v1.1.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        SWING_LOOP_V1_1_FNV1A64,
+        "decoded mesh differs from format-spec/05-swing.md's test vector"
+    );
+}
+
+/// The encoder still writes the LOOP golden bytes from the golden cap
+/// (pins the loop's resampling and residuals on this platform).
+#[test]
+fn swing_loop_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_cap(), &golden_loop_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_LOOP_V1_1,
+        "re-encoding the golden cap no longer gives golden/swing-loop-v1.1.swm"
     );
 }

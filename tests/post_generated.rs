@@ -25,6 +25,7 @@ fn retiled(mesh: &TriMesh, target: swm::SwingTarget) -> TriMesh {
             fit_tips: false,
             adaptive_density: false,
             front_contexts: true,
+            loop_start: true,
         },
         ..Default::default()
     };

@@ -258,6 +258,14 @@ pub struct SwingTuning {
     /// connectivity. `false` writes `CLRS` as format 1.0 does, for
     /// decoders older than 1.1. Default `true`.
     pub front_contexts: bool,
+    /// On a component with holes, start the retiling on its longest
+    /// boundary loop (a fan over the hole, its points coded in a `LOOP`
+    /// section, format 1.1) instead of inside, where the front crosses
+    /// every hole's patch with triangles the decoder then drops. Default
+    /// `true`: on open surfaces it keeps the boundary exact to the angle
+    /// precision and spends the file on the surface (BENCHMARKS.md,
+    /// "Starting on a boundary loop").
+    pub loop_start: bool,
 }
 
 #[cfg(feature = "encoder")]
@@ -268,6 +276,7 @@ impl Default for SwingTuning {
             fit_tips: true,
             adaptive_density: false,
             front_contexts: true,
+            loop_start: true,
         }
     }
 }
@@ -504,6 +513,7 @@ pub(crate) fn encode_swing_pieces(
         fit_tips: options.swing.fit_tips,
         adaptive_density: options.swing.adaptive_density,
         front_contexts: options.swing.front_contexts,
+        loop_start: options.swing.loop_start,
         framing: options.framing,
     };
     let at_size = |b: u64| match angle_bits {

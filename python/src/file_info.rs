@@ -76,12 +76,23 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
             d.set_item("valence6_share", s.valence6_share)?;
             let holes = PyDict::new(py);
             holes.set_item("masked_triangles", s.holes_masked_triangles)?;
-            let masked = s.holes_masked_triangles as f64 / s.triangles.max(1) as f64;
-            holes.set_item("masked_share", masked)?;
+            holes.set_item("masked_share", s.masked_share())?;
             holes.set_item("bytes", s.hole_bytes)?;
             let share = s.hole_bytes as f64 / s.file_bytes.max(1) as f64;
             holes.set_item("file_share", share)?;
             d.set_item("holes", holes)?;
+            if s.loops > 0 {
+                let loops = PyDict::new(py);
+                loops.set_item("count", s.loops)?;
+                loops.set_item("points", s.loop_points)?;
+                loops.set_item("fan_triangles", s.loop_fan_triangles)?;
+                loops.set_item("bytes", s.loop_bytes)?;
+                let share = s.loop_bytes as f64 / s.file_bytes.max(1) as f64;
+                loops.set_item("file_share", share)?;
+                d.set_item("loops", loops)?;
+            } else {
+                d.set_item("loops", py.None())?;
+            }
             let rest = PyDict::new(py);
             rest.set_item("triangles", s.rest_triangles)?;
             rest.set_item("components", s.rest_components)?;

@@ -183,8 +183,8 @@ pub fn samples() -> &'static [Sample] {
         let hole = encode(&capped_sphere(), swing(0.3));
         let rest = encode(&sphere_and_speck(), swing(0.3));
         assert!(
-            tag_present(&hole, b"HOLE"),
-            "the capped sphere has no HOLE section"
+            tag_present(&hole, b"HOLE") && tag_present(&hole, b"LOOP"),
+            "the capped sphere has no HOLE or no LOOP section"
         );
         assert!(
             tag_present(&rest, b"REST"),
@@ -208,7 +208,7 @@ pub fn samples() -> &'static [Sample] {
                 bytes: swing_file,
             },
             Sample {
-                name: "swing+HOLE",
+                name: "swing+HOLE+LOOP",
                 bytes: hole,
             },
             Sample {

@@ -79,6 +79,12 @@ pub struct Args {
     /// (`CLRF`), which takes about a fifth of the bits.
     #[arg(long)]
     plain_clers: bool,
+    /// Swing: start every retiling inside its component, as format 1.0
+    /// does, even on an open surface, instead of on its longest boundary
+    /// loop (`LOOP`, format 1.1), where the hole's patch costs one fan of
+    /// connectivity rather than a retiling the decoder drops.
+    #[arg(long)]
+    inside_start: bool,
     /// How the file's header and section table are laid out: `compact`
     /// (format 1.1: varints and one-byte tags, about 30 bytes fewer) or
     /// `fixed` (format 1.0's layout, for decoders older than 1.1).
@@ -171,6 +177,7 @@ impl Args {
                     (self.on_surface, "--on-surface"),
                     (self.adaptive, "--adaptive"),
                     (self.plain_clers, "--plain-clers"),
+                    (self.inside_start, "--inside-start"),
                     (self.max_work.is_some(), "--max-work"),
                     (self.max_memory.is_some(), "--max-memory"),
                     (self.time_limit.is_some(), "--time-limit"),
@@ -243,6 +250,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             fit_tips: !args.on_surface,
             adaptive_density: args.adaptive,
             front_contexts: !args.plain_clers,
+            loop_start: !args.inside_start,
         },
         framing: match args.framing {
             FramingArg::Compact => swm::Framing::Compact,
@@ -590,13 +598,21 @@ fn piece_line(p: &swm::PieceReport) -> String {
             triangles,
             masked,
             lost_holes,
+            loop_points,
         } => {
             let lost = if *lost_holes > 0 {
                 format!(", {lost_holes} holes smaller than a triangle closed")
             } else {
                 String::new()
             };
-            format!("{shape}: retiled into {triangles} triangles ({masked} masked as holes){lost}")
+            let start = if *loop_points > 0 {
+                format!(", started on a boundary loop of {loop_points} points")
+            } else {
+                String::new()
+            };
+            format!(
+                "{shape}: retiled into {triangles} triangles ({masked} masked as holes){lost}{start}"
+            )
         }
         swm::PieceOutcome::Lossless => {
             format!("{shape}: too small for this edge length, kept by lossless coding")
@@ -615,11 +631,13 @@ fn piece_json(p: &swm::PieceReport) -> serde_json::Value {
             triangles,
             masked,
             lost_holes,
+            loop_points,
         } => {
             v["outcome"] = "retiled".into();
             v["triangles"] = (*triangles).into();
             v["masked_triangles"] = (*masked).into();
             v["lost_holes"] = (*lost_holes).into();
+            v["loop_points"] = (*loop_points).into();
         }
         swm::PieceOutcome::Lossless => v["outcome"] = "lossless".into(),
         swm::PieceOutcome::Simplified { faces } => {

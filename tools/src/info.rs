@@ -225,9 +225,19 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
         say!(
             "  holes                 {} masked triangles ({:.1}% of the retiled ones), {} bytes ({:.1}% of the file)",
             s.holes_masked_triangles,
-            100.0 * s.holes_masked_triangles as f64 / s.triangles.max(1) as f64,
+            100.0 * s.masked_share(),
             s.hole_bytes,
             100.0 * s.hole_bytes as f64 / s.file_bytes.max(1) as f64
+        );
+    }
+    if s.loops > 0 {
+        say!(
+            "  boundary loops        {} coded as {} points, {} bytes ({:.1}% of the file); their fans ({} triangles) are dropped",
+            s.loops,
+            s.loop_points,
+            s.loop_bytes,
+            100.0 * s.loop_bytes as f64 / s.file_bytes.max(1) as f64,
+            s.loop_fan_triangles
         );
     }
     if let Some((lo, hi)) = s.density_levels {

@@ -87,10 +87,17 @@ pub fn swing_json(s: &swm::SwingStats) -> Value {
         "valence6_share": s.valence6_share,
         "holes": {
             "masked_triangles": s.holes_masked_triangles,
-            "masked_share": s.holes_masked_triangles as f64 / s.triangles.max(1) as f64,
+            "masked_share": s.masked_share(),
             "bytes": s.hole_bytes,
             "file_share": s.hole_bytes as f64 / s.file_bytes.max(1) as f64,
         },
+        "loops": (s.loops > 0).then(|| json!({
+            "count": s.loops,
+            "points": s.loop_points,
+            "fan_triangles": s.loop_fan_triangles,
+            "bytes": s.loop_bytes,
+            "file_share": s.loop_bytes as f64 / s.file_bytes.max(1) as f64,
+        })),
         "rest": { "triangles": s.rest_triangles, "components": s.rest_components, "bytes": s.rest_bytes },
         "density": s.density_levels.map(|(lo, hi)| json!({
             "min_level": lo,

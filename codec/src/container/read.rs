@@ -273,7 +273,7 @@ struct Frame {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct TableCheck {
     compact: bool,
-    seen_critical: u8,
+    seen_critical: u16,
     /// Sum of the lengths so far.
     pub(crate) payload: u64,
     /// Where the table ends, when known; otherwise the end of the entry

@@ -38,6 +38,10 @@ impl Tag {
     /// forward pass with the front's angles as context, in place of
     /// `CLRS` (format-spec/05-swing.md).
     pub const CLRF: Tag = Tag(*b"CLRF");
+    /// Critical (format 1.1). SwingWrapper boundary loops: components
+    /// whose retiling starts on a loop of the input, and the residuals
+    /// that place the loop's points (format-spec/05-swing.md).
+    pub const LOOP: Tag = Tag(*b"LOOP");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
 
@@ -76,8 +80,8 @@ impl Tag {
 /// Critical tags of format 1.0, then those 1.1 added. A decoder rejects
 /// any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
-/// (At most 8: the parser keeps them in a `u8`.)
-pub(crate) const KNOWN_CRITICAL: [Tag; 8] = [
+/// (At most 16: the parser keeps them in a `u16`.)
+pub(crate) const KNOWN_CRITICAL: [Tag; 9] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -86,6 +90,7 @@ pub(crate) const KNOWN_CRITICAL: [Tag; 8] = [
     Tag::REST,
     Tag::DENS,
     Tag::CLRF,
+    Tag::LOOP,
 ];
 
 /// Ancillary tags of format 1.0. Other ancillary tags are skipped.

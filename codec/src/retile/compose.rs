@@ -43,14 +43,19 @@ pub struct PieceReport {
 pub enum PieceOutcome {
     /// Retiled: `triangles` retiled triangles of which `masked` cover its
     /// holes; `lost_holes` holes were too small for any triangle and are
-    /// closed in the output.
+    /// closed in the output; a retiling started on a boundary loop
+    /// (`loop_points` > 0) also codes that loop's fan, one triangle per
+    /// point, which the decoder drops with its dummy centre.
     Retiled {
-        /// Retiled triangles, masked ones included.
+        /// Retiled triangles, masked ones included (the fan not).
         triangles: u64,
-        /// Triangles the decoder drops (hole mask).
+        /// Triangles over hole patches the decoder drops (hole mask).
         masked: u64,
         /// Holes that closed.
         lost_holes: u32,
+        /// Points of the boundary loop the retiling started on (0: it
+        /// started inside).
+        loop_points: u32,
     },
     /// Too small to retile at this L: kept by the lossless mode.
     Lossless,
@@ -87,6 +92,8 @@ pub fn retile_pieces(
         steps: Vec::new(),
         hole_mask: Vec::new(),
         rest: None,
+        loops: Default::default(),
+        loop_codes: Vec::new(),
     };
     let mut fixed: Option<f64> = None;
     let mut report = Vec::with_capacity(pieces.len());
@@ -117,10 +124,12 @@ pub fn retile_pieces(
             match retile_tries(p, opt, fixed, budget) {
                 Ok((r, cover)) => {
                     let (mask, lost) = piece_mask(&r, &cover, p.holes)?;
+                    let fan = r.loops.points(0);
                     outcome = PieceOutcome::Retiled {
-                        triangles: r.triangles.len() as u64,
-                        masked: mask.iter().filter(|&&m| m).count() as u64,
+                        triangles: r.triangles.len() as u64 - u64::from(fan),
+                        masked: mask.iter().filter(|&&m| m).count() as u64 - u64::from(fan),
                         lost_holes: lost,
+                        loop_points: fan,
                     };
                     fixed.get_or_insert(r.edge_length);
                     append(&mut out, r, mask);
@@ -237,12 +246,25 @@ fn piece_mask(r: &Retiled, cover: &[mask::Cover], holes: u32) -> Result<(Vec<boo
     }
     // The retiler closes every loop, so M′ is a closed manifold.
     let table = CornerTable::new(&r.triangles, r.positions.len()).map_err(|_| Failure::BadInput)?;
-    Ok(mask::grow(&table, cover, holes))
+    // A retiling started on a loop begins with that loop's fan: n
+    // triangles, all to be dropped with their dummy centre.
+    let fan = r.loops.points(0) as usize;
+    let first = (fan > 0).then(|| cover[0].0);
+    let (mask, lost) = mask::grow(&table, cover, holes, first);
+    if mask.iter().take(fan).any(|&m| !m) {
+        return Err(Failure::NoThirdVertex);
+    }
+    Ok((mask, lost))
 }
 
 /// Appends a one-component retiling to the file's.
 fn append(out: &mut Retiled, r: Retiled, mask: Vec<bool>) {
     let base = out.positions.len() as u32;
+    let component = out.first.len() as u32;
+    out.loops
+        .entries
+        .extend(r.loops.entries.iter().map(|&(c, n)| (c + component, n)));
+    out.loop_codes.extend(r.loop_codes);
     out.first.extend(r.first);
     out.triangles
         .extend(r.triangles.iter().map(|t| t.map(|v| v + base)));

@@ -34,14 +34,24 @@ const CANDIDATE_SHARE: f64 = 0.5;
 pub type Cover = (u32, f64);
 
 /// The mask of one closed component: per triangle, dropped or not; and
-/// how many of the `holes` got no region at all.
-pub fn grow(table: &CornerTable, cover: &[Cover], holes: u32) -> (Vec<bool>, u32) {
+/// how many of the `holes` got no region at all. Hole `first` (the one
+/// whose loop started the retiling, `boundary`) is grown before the
+/// others, so that its fan is never cut short by a neighbour's region.
+pub fn grow(
+    table: &CornerTable,
+    cover: &[Cover],
+    holes: u32,
+    first: Option<u32>,
+) -> (Vec<bool>, u32) {
     let nf = table.face_count();
     let mut region = vec![NONE; nf];
     let mut vertex_hole = vec![NONE; table.vertex_count()];
     let mut lost = 0;
     let mut queue = VecDeque::new();
-    for h in 0..holes {
+    let order = first
+        .into_iter()
+        .chain((0..holes).filter(|&h| Some(h) != first));
+    for h in order {
         let seed = (0..nf)
             .filter(|&t| cover[t].0 == h && cover[t].1 > 0.0)
             .filter(|&t| {
@@ -147,7 +157,7 @@ mod tests {
     fn a_full_cover_grows_one_disk_and_leaves_a_surface() {
         let table = octahedron();
         let cover = vec![(0, 1.0); 8];
-        let (mask, lost) = grow(&table, &cover, 1);
+        let (mask, lost) = grow(&table, &cover, 1, None);
         assert_eq!(lost, 0);
         assert!(mask.iter().any(|&m| !m), "{mask:?}");
         assert_eq!(euler(&table, &mask), 1, "{mask:?}");
@@ -160,7 +170,7 @@ mod tests {
         let table = octahedron();
         // Hole 0 covers the top four faces, hole 1 the bottom four.
         let cover: Vec<Cover> = (0..8).map(|t| (u32::from(t >= 4), 0.9)).collect();
-        let (mask, lost) = grow(&table, &cover, 2);
+        let (mask, lost) = grow(&table, &cover, 2, None);
         // Hole 0 takes the top fan, whose rim is every vertex but the
         // bottom one: no bottom face is free of it, and hole 1 is lost.
         assert_eq!(lost, 1);
@@ -170,7 +180,7 @@ mod tests {
     #[test]
     fn an_uncovered_hole_is_lost() {
         let table = octahedron();
-        let (mask, lost) = grow(&table, &[(NONE, 0.0); 8], 1);
+        let (mask, lost) = grow(&table, &[(NONE, 0.0); 8], 1, None);
         assert_eq!(lost, 1);
         assert!(mask.iter().all(|&m| !m));
     }

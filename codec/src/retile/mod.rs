@@ -32,6 +32,7 @@
 //! `region`); there is no spatial index, so self-intersecting input
 //! cannot confuse them.
 
+mod boundary;
 mod budget;
 pub mod compose;
 mod density;
@@ -51,6 +52,8 @@ mod surface;
 pub(crate) mod valence;
 mod walk;
 
+#[cfg(test)]
+mod boundary_tests;
 #[cfg(test)]
 mod pieces_tests;
 #[cfg(test)]
@@ -102,6 +105,12 @@ pub struct RetileOptions {
     /// instead of failing the run. Default `false`; the retries of
     /// `compose` set it on a piece's last start.
     pub last_resort: bool,
+    /// On a piece with holes, start on its longest boundary loop
+    /// (`boundary`; the file carries `LOOP`, format 1.1) instead of on
+    /// a first triangle inside, so that no triangle covers that hole's
+    /// patch but the fan over it. Runs with an odd `start_rank` start
+    /// inside, as an independent retry. Default `true`.
+    pub loop_start: bool,
 }
 
 pub use crate::error::RetileFailure as Failure;
@@ -196,11 +205,31 @@ fn retile_piece(
         run_bytes,
         budget,
         cap,
+        loop_codes: Vec::new(),
+        loop_points: 0,
     };
-    let start = opt
-        .start_vertex
-        .unwrap_or_else(|| start_vertex(&r.s, opt.start_rank, opt.start_by_shape, l));
-    let (first_gate, first) = r.first_triangle(start)?;
+    let on_loop = if opt.loop_start
+        && opt.start_vertex.is_none()
+        && !opt.start_by_shape
+        && opt.start_rank.is_multiple_of(2)
+    {
+        match boundary::longest_loop(&r.s) {
+            Some((hole, lp)) => r.first_loop(&lp)?.map(|(g, f, t)| (g, f, hole, t)),
+            None => None,
+        }
+    } else {
+        None
+    };
+    let (first_gate, first, fan) = match on_loop {
+        Some((g, f, hole, t)) => (g, f, Some((hole, t))),
+        None => {
+            let start = opt
+                .start_vertex
+                .unwrap_or_else(|| start_vertex(&r.s, opt.start_rank, opt.start_by_shape, l));
+            let (g, f) = r.first_triangle(start)?;
+            (g, f, None)
+        }
+    };
     r.grow(first_gate)?;
     let uncovered = r.s.owner.iter().filter(|&&o| o == NONE).count();
     if uncovered > 0 {
@@ -208,7 +237,20 @@ fn retile_piece(
             faces: uncovered as u32,
         });
     }
-    let cover = r.cover();
+    let mut cover = r.cover();
+    // The fan over the starting loop's patch is that hole's mask.
+    if let Some((hole, t)) = fan {
+        for c in cover.iter_mut().take(t as usize) {
+            *c = (hole, 1.0);
+        }
+    }
+    let loops = crate::swing::chain::Loops {
+        entries: if fan.is_some() {
+            vec![(0, r.loop_points)]
+        } else {
+            Vec::new()
+        },
+    };
     let retiled = Retiled {
         angle_bits: opt.angle_bits,
         first: vec![first],
@@ -220,6 +262,8 @@ fn retile_piece(
         steps: r.steps,
         hole_mask: Vec::new(),
         rest: None,
+        loops,
+        loop_codes: r.loop_codes,
     };
     Ok((retiled, cover))
 }
@@ -283,6 +327,10 @@ struct Retiler<'b> {
     /// Scratch of `fit`: the corners of the region just claimed.
     fit_region: Vec<[[f64; 3]; 3]>,
     cap: usize,
+    /// The residual of each loop point (`boundary`), in order.
+    loop_codes: Vec<[u32; 2]>,
+    /// Points of the starting loop (0: started inside).
+    loop_points: u32,
     /// Steps this run may still take before it counts as running away.
     run_steps: u64,
     /// Bytes this run may hold before it counts as running away.

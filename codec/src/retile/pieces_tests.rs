@@ -20,6 +20,7 @@ fn options(l: f64) -> RetileOptions {
         fit_tips: true,
         adaptive_density: false,
         last_resort: false,
+        loop_start: false,
     }
 }
 

@@ -72,6 +72,8 @@ pub struct Knobs {
     pub adaptive_density: bool,
     /// [`SwingTuning::front_contexts`](crate::SwingTuning).
     pub front_contexts: bool,
+    /// [`SwingTuning::loop_start`](crate::SwingTuning).
+    pub loop_start: bool,
     /// [`EncodeOptions::framing`](crate::EncodeOptions).
     pub framing: crate::container::Framing,
 }
@@ -106,6 +108,7 @@ fn run(
         fit_tips: knobs.fit_tips,
         adaptive_density: knobs.adaptive_density,
         last_resort: false,
+        loop_start: knobs.loop_start,
     };
     match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {

@@ -86,6 +86,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             fit_tips: true,
             adaptive_density: false,
             last_resort: false,
+            loop_start: false,
         },
     )
 }
@@ -218,6 +219,7 @@ fn probe() {
                 fit_tips: std::env::var_os("SWM_RETILE_ON_SURFACE").is_none(),
                 adaptive_density: std::env::var_os("SWM_RETILE_ADAPTIVE").is_some(),
                 last_resort: std::env::var_os("SWM_RETILE_LAST_RESORT").is_some(),
+                loop_start: std::env::var_os("SWM_RETILE_LOOP").is_some(),
             },
         );
         let dt = t0.elapsed().as_secs_f64();
@@ -296,6 +298,7 @@ const KNOBS: rate::Knobs = rate::Knobs {
     fit_tips: true,
     adaptive_density: false,
     front_contexts: true,
+    loop_start: true,
     framing: crate::container::Framing::Compact,
 };
 

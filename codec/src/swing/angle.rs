@@ -344,6 +344,7 @@ pub fn rebuild_positions(
     bits: u8,
     codes: &[u32],
     levels: Option<&[i8]>,
+    mut points: Option<&mut super::chain::Points<'_>>,
 ) -> Result<Vec<[f64; 3]>, Error> {
     if let Some(l) = levels {
         if l.len() != codes.len() || l.iter().any(|l| l.abs() > super::density::LEVEL_MAX) {
@@ -360,12 +361,17 @@ pub fn rebuild_positions(
         .map_or(0.0, |f| tip_radius(first_edge_length(f)));
     let mut x: Vec<[f64; 3]> = Vec::with_capacity(table.vertex_count());
     let (mut firsts, mut codes) = (first.iter(), codes.iter());
+    let mut component = 0u32;
     walk(table, |triangle| match triangle {
         // A component's first triangle: three new vertices in order.
         Coded::First => {
             let f = firsts
                 .next()
                 .ok_or(bad("more components than first triangles"))?;
+            if let Some(p) = points.as_deref_mut() {
+                p.start(component, f)?;
+            }
+            component += 1;
             f.iter().try_for_each(|p| push_point(&mut x, *p))
         }
         // A C triangle: its tip is new, the gate and previous tip are not.
@@ -380,6 +386,12 @@ pub fn rebuild_positions(
             };
             k += 1;
             let [b, c, prev] = [b, c, prev].map(|v| v as usize);
+            // A boundary loop's point (`chain`), else a swing tip.
+            if let Some(p) = points.as_deref_mut() {
+                if let Some(tip) = p.tip(q, x[b], x[c], x[prev])? {
+                    return push_point(&mut x, tip);
+                }
+            }
             let frame = Frame::new(x[b], x[c], x[prev], rk);
             push_point(&mut x, frame.point(&angles, q))
         }

@@ -273,6 +273,7 @@ mod tests {
                 fit_tips: true,
                 adaptive_density: true,
                 front_contexts: false,
+                loop_start: false,
             },
             ..EncodeOptions::default()
         };

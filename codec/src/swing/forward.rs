@@ -32,7 +32,7 @@ use crate::prelude::*;
 
 use super::angle::{first_edge_length, push_point, tip_radius, AngleTable, Frame};
 use super::front::{Loops, CONTEXTS};
-use super::{density, residual};
+use super::{chain, density, residual};
 use crate::edgebreaker::Symbol;
 #[cfg(feature = "encoder")]
 use crate::entropy::Encoder;
@@ -72,6 +72,7 @@ pub(super) fn run(
     bits: u8,
     vertices: usize,
     symbols: usize,
+    mut points: Option<&mut chain::Points<'_>>,
 ) -> Result<Vec<[f64; 3]>, Error> {
     let angles = AngleTable::new(bits);
     let r = first
@@ -88,6 +89,9 @@ pub(super) fn run(
         }
         for p in f {
             push_point(&mut x, *p)?;
+        }
+        if let Some(p) = points.as_deref_mut() {
+            p.start(k as u32, f)?;
         }
         let v = |i: usize| (base + i) as u32;
         let mut gate = Some(loops.start([v(0), v(1), v(2)]));
@@ -117,8 +121,18 @@ pub(super) fn run(
                         None => r,
                     };
                     let behind = loops.behind(gr) as usize;
-                    let frame = Frame::new(x[vl], x[vr], x[behind], rk);
-                    push_point(&mut x, frame.point(&angles, q))?;
+                    // A boundary loop's point (`chain`), else a swing tip.
+                    let point = match points.as_deref_mut() {
+                        Some(p) => p.tip(q, x[vl], x[vr], x[behind])?,
+                        None => None,
+                    };
+                    match point {
+                        Some(tip) => push_point(&mut x, tip)?,
+                        None => {
+                            let frame = Frame::new(x[vl], x[vr], x[behind], rk);
+                            push_point(&mut x, frame.point(&angles, q))?;
+                        }
+                    }
                     src.placed([vl as u32, vr as u32, behind as u32]);
                     Some(loops.c(gr, tip as u32))
                 }
@@ -256,6 +270,7 @@ pub(super) fn decode(
     predicted: u32,
     vertices: usize,
     symbols: usize,
+    mut points: Option<chain::Points<'_>>,
 ) -> Result<Decoded, Error> {
     let mut src = Reading {
         dec: Decoder::new(bytes)?,
@@ -272,7 +287,10 @@ pub(super) fn decode(
             gates: Vec::new(),
         },
     };
-    src.out.positions = run(&mut src, first, bits, vertices, symbols)?;
+    src.out.positions = run(&mut src, first, bits, vertices, symbols, points.as_mut())?;
+    if let Some(p) = points {
+        p.finish()?;
+    }
     src.dec.finish()?;
     src.geom.finish()?;
     if let Some(d) = src.dens {
@@ -380,6 +398,7 @@ pub(super) fn encode(
     first: &[[[f64; 3]; 3]],
     bits: u8,
     vertices: usize,
+    mut points: Option<chain::Points<'_>>,
 ) -> Result<Vec<u8>, Error> {
     let mut src = Replaying {
         symbols,
@@ -390,7 +409,17 @@ pub(super) fn encode(
         contexts: Vec::with_capacity(symbols.len()),
         splits: Vec::new(),
     };
-    run(&mut src, first, bits, vertices, symbols.len())?;
+    run(
+        &mut src,
+        first,
+        bits,
+        vertices,
+        symbols.len(),
+        points.as_mut(),
+    )?;
+    if let Some(p) = points {
+        p.finish()?;
+    }
     let mut enc = Encoder::new();
     let mut models = Models::new();
     let mut splits = src.splits.iter();

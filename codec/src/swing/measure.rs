@@ -144,6 +144,7 @@ fn measure_contexts() {
             head.bits,
             &codes,
             read::read_levels(&file, &table, count).unwrap().as_deref(),
+            None,
         )
         .unwrap();
         let bits = head.bits;

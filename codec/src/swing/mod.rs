@@ -31,6 +31,7 @@
 use crate::prelude::*;
 
 mod angle;
+pub(crate) mod chain;
 mod density;
 mod forward;
 mod front;
@@ -100,6 +101,13 @@ pub struct Retiled {
     /// Components too small to retile at this L, kept exactly by the
     /// lossless mode at `qp` bits and appended after the retiled mesh.
     pub rest: Option<(TriMesh, u8)>,
+    /// Components that start on a boundary loop (`chain`, `LOOP`): the
+    /// first `n − 2` C tips of each are loop points, whose `codes`
+    /// entries the writer sets to the predicted code.
+    pub loops: chain::Loops,
+    /// The two angle codes of each loop point, in order
+    /// ([`chain::place`]).
+    pub loop_codes: Vec<[u32; 2]>,
 }
 
 /// The figures of one SwingWrapper file (what `swm info` shows).
@@ -138,8 +146,20 @@ pub struct SwingStats {
     pub file_bytes: usize,
     /// Bytes of the hole mask (`HOLE`; 0 without holes).
     pub hole_bytes: u64,
-    /// Triangles of the retiled mesh that the hole mask drops.
+    /// Triangles retiled over the patch of a hole that the hole mask
+    /// drops (the fans of boundary loops are counted apart).
     pub holes_masked_triangles: u64,
+    /// Components that start on a boundary loop (`LOOP`, format 1.1).
+    pub loops: u64,
+    /// Points of those loops: the vertices of the decoded boundary they
+    /// code (each a residual in `LOOP`, not an angle).
+    pub loop_points: u64,
+    /// Triangles of the loops' fans (one per point): coded as
+    /// connectivity only, and dropped with the dummy vertex at their
+    /// centre.
+    pub loop_fan_triangles: u64,
+    /// Bytes of `LOOP` (0 without one).
+    pub loop_bytes: u64,
     /// Bytes of the lossless remainder (`REST`, a whole mode-0 file; 0
     /// without one).
     pub rest_bytes: u64,
@@ -164,9 +184,17 @@ pub(crate) fn level_range(levels: &[i8]) -> Option<(i8, i8)> {
 }
 
 impl SwingStats {
+    /// Share of the retiled triangles (the loops' fans left out) that
+    /// cover a hole's patch and are dropped (0 to 1).
+    pub fn masked_share(&self) -> f64 {
+        let retiled = self.triangles.saturating_sub(self.loop_fan_triangles);
+        self.holes_masked_triangles as f64 / retiled.max(1) as f64
+    }
+
     /// The figures of a file: its header fields, decoded corner table,
     /// symbols, sections, masked triangles and triangles of `REST`. The
     /// writer and `inspect` both build them here.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         head: &read::Head,
         table: &crate::CornerTable,
@@ -175,6 +203,7 @@ impl SwingStats {
         file_bytes: usize,
         masked: u64,
         (rest_triangles, rest_components): (u64, u64),
+        loops: &chain::Loops,
     ) -> Self {
         let mut clers = [0u64; 5];
         for &s in &conn.symbols {
@@ -199,6 +228,9 @@ impl SwingStats {
         let hole_bytes = bytes_of(&[&crate::container::Tag::HOLE.0]) as u64;
         let rest_bytes = bytes_of(&[&crate::container::Tag::REST.0]) as u64;
         let density_bytes = bytes_of(&[&crate::container::Tag::DENS.0]) as u64;
+        let loop_bytes = bytes_of(&[&crate::container::Tag::LOOP.0]) as u64;
+        // A fan over a loop of n points has n triangles.
+        let fans: u64 = loops.entries.iter().map(|e| u64::from(e.1)).sum();
         SwingStats {
             edge_length: head.first.first().map_or(0.0, first_edge_length),
             angle_bits: head.bits,
@@ -216,7 +248,11 @@ impl SwingStats {
             sections,
             file_bytes,
             hole_bytes,
-            holes_masked_triangles: masked,
+            holes_masked_triangles: masked.saturating_sub(fans),
+            loops: loops.entries.len() as u64,
+            loop_points: fans,
+            loop_fan_triangles: fans,
+            loop_bytes,
             rest_bytes,
             rest_triangles,
             rest_components,

@@ -6,6 +6,8 @@
 
 use crate::prelude::*;
 
+use super::chain::{self, Loops};
+
 use super::{angle, density, hole, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
 use crate::container::{check_count_fits, parse_container, Container, Mode, Section, Tag};
 use crate::edgebreaker::{self, Connectivity, Symbol};
@@ -146,6 +148,8 @@ pub(super) fn read_connectivity(
             limits.check_alloc(v.saturating_mul(28).saturating_add(s.saturating_mul(40)))?;
             let geom = file.require(Tag::GEOM)?;
             let dens = file.find(Tag::DENS).map(|s| s.bytes);
+            let (list, reader) = read_loops(file)?;
+            let points = reader.map(|r| points(&list, r, &head));
             let d = super::forward::decode(
                 clrf.bytes,
                 geom.bytes,
@@ -155,6 +159,7 @@ pub(super) fn read_connectivity(
                 head.predicted,
                 vertices,
                 count,
+                points,
             )
             .map_err(in_section(clrf.offset))?;
             conn.symbols = d.symbols;
@@ -180,6 +185,34 @@ pub(super) fn read_connectivity(
     }
     let table = edgebreaker::decode(&conn)?;
     Ok((head, conn, table, tips))
+}
+
+/// `LOOP`'s entries and residual stream; no entries and no stream
+/// without the section.
+fn read_loops<'a>(file: &Container<'a>) -> Result<(Loops, Option<chain::Reader<'a>>), Error> {
+    let Some(s) = file.find(Tag::LOOP) else {
+        return Ok((Loops::default(), None));
+    };
+    let h = &file.header;
+    let head = read_head(file.require(Tag::HEAD)?.bytes, h.component_count)?;
+    let (list, reader) = chain::read(
+        s.bytes,
+        u64::from(h.component_count),
+        u64::from(h.vertex_count),
+        head.bits,
+    )
+    .map_err(in_section(s.offset))?;
+    Ok((list, Some(reader)))
+}
+
+/// The loop points of a file with `LOOP`, at its angle bits.
+fn points<'a>(list: &'a Loops, reader: chain::Reader<'a>, head: &Head) -> chain::Points<'a> {
+    chain::Points::new(
+        list,
+        chain::Residuals::Stream(Box::new(reader)),
+        head.bits,
+        head.predicted,
+    )
 }
 
 /// Locates an error found inside a section whose payload starts at file
@@ -285,13 +318,22 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     };
     let x = match placed {
         Some(x) => x,
-        None => super::angle::rebuild_positions(
-            &table,
-            &head.first,
-            head.bits,
-            &codes,
-            levels.as_deref(),
-        )?,
+        None => {
+            let (list, reader) = read_loops(file)?;
+            let mut points = reader.map(|r| points(&list, r, &head));
+            let x = super::angle::rebuild_positions(
+                &table,
+                &head.first,
+                head.bits,
+                &codes,
+                levels.as_deref(),
+                points.as_mut(),
+            )?;
+            if let Some(p) = points {
+                p.finish()?;
+            }
+            x
+        }
     };
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
     let triangles = table.triangles();
@@ -387,6 +429,7 @@ pub(crate) fn inspect(
         Some(t) => t.levels,
         None => read_levels(file, &table, count)?,
     };
+    let (loops, _) = read_loops(file)?;
     let mut stats = SwingStats::new(
         &head,
         &table,
@@ -395,6 +438,7 @@ pub(crate) fn inspect(
         file_bytes,
         masked,
         rest_counts,
+        &loops,
     );
     stats.density_levels = levels.as_deref().and_then(super::level_range);
     Ok((conn, stats))

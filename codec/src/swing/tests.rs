@@ -78,6 +78,8 @@ pub(super) fn emulate(mesh: &TriMesh, bits: u8) -> Retiled {
         steps: Vec::new(),
         hole_mask: Vec::new(),
         rest: None,
+        loops: Default::default(),
+        loop_codes: Vec::new(),
     }
 }
 
@@ -389,6 +391,7 @@ fn the_pass_places_the_tips_where_the_rebuilding_pass_does() {
             head.bits,
             &tips.codes,
             tips.levels.as_deref(),
+            None,
         )
         .unwrap();
         let bits = |x: &[[f64; 3]]| x.iter().flatten().map(|c| c.to_bits()).collect::<Vec<_>>();
@@ -1184,6 +1187,8 @@ fn a_file_may_be_all_rest() {
         steps: Vec::new(),
         hole_mask: Vec::new(),
         rest: Some((rest_mesh(), 10)),
+        loops: Default::default(),
+        loop_codes: Vec::new(),
     };
     let (_, stats, out) = roundtrip(&r);
     assert_eq!(out.face_count(), rest_mesh().face_count());

@@ -8,10 +8,11 @@
 
 use super::read::{write_head, Head};
 use super::{
-    angle, density, forward, hole, residual, Retiled, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS,
+    angle, chain, density, forward, hole, residual, Retiled, SwingStats, MAX_ANGLE_BITS,
+    MIN_ANGLE_BITS,
 };
 use crate::container::{write_container, Framing, Header, Mode, Tag};
-use crate::edgebreaker;
+use crate::edgebreaker::{self, Symbol};
 use crate::lossless::{write_clers, write_topo};
 use crate::{CornerTable, Error, FormatError, Malformed, ParameterError};
 
@@ -61,24 +62,35 @@ pub(crate) enum Clers {
 
 /// `CLRF` for `retiled`, if the forward pass follows it and its bytes
 /// decode back to the same symbols, codes and levels.
+#[allow(clippy::too_many_arguments)]
 fn front_coded(
     retiled: &Retiled,
+    codes: &[u32],
     head: &Head,
     levels: Option<&[i8]>,
     geom: &[u8],
     dens: Option<&[u8]>,
+    loop_bytes: Option<&[u8]>,
+    bits: u8,
 ) -> Option<Vec<u8>> {
     let nv = retiled.positions.len();
+    let list = &retiled.loops;
+    let points = |res| chain::Points::new(list, res, bits, head.predicted);
     let bytes = forward::encode(
         &retiled.symbols,
         &retiled.triangles,
-        &retiled.codes,
+        codes,
         levels,
         &retiled.first,
         retiled.angle_bits,
         nv,
+        loop_bytes.map(|_| points(chain::Residuals::List(retiled.loop_codes.iter()))),
     )
     .ok()?;
+    let stream = match loop_bytes {
+        Some(b) => Some(chain::read(b, retiled.first.len() as u64, nv as u64, bits).ok()?),
+        None => None,
+    };
     let back = forward::decode(
         &bytes,
         geom,
@@ -88,12 +100,36 @@ fn front_coded(
         head.predicted,
         nv,
         retiled.symbols.len(),
+        stream.map(|(_, r)| points(chain::Residuals::Stream(Box::new(r)))),
     )
     .ok()?;
     let same = back.symbols == retiled.symbols
-        && back.codes == retiled.codes
-        && back.levels.as_deref() == levels;
+        && back.codes == codes
+        && back.levels.as_deref() == levels
+        && same_bits(&back.positions, &retiled.positions);
     same.then_some(bytes)
+}
+
+/// Per C tip in order: whether it is a loop point (the first `n − 2` C
+/// tips of a component with a loop of `n` points).
+fn loop_tips(retiled: &Retiled) -> Vec<bool> {
+    let starts = component_starts(&retiled.triangles);
+    let mut out = Vec::with_capacity(retiled.codes.len());
+    let mut symbols = retiled.symbols.iter();
+    for (c, &t) in starts.iter().enumerate() {
+        let end = starts
+            .get(c + 1)
+            .copied()
+            .unwrap_or(retiled.triangles.len());
+        let mut left = retiled.loops.points(c as u32).saturating_sub(2);
+        for _ in t + 1..end {
+            if symbols.next() == Some(&Symbol::C) {
+                out.push(left > 0);
+                left = left.saturating_sub(1);
+            }
+        }
+    }
+    out
 }
 
 /// Encodes a retiled mesh as a SwingWrapper (mode 1) file.
@@ -215,27 +251,69 @@ pub(crate) fn write(
         ),
         None => None,
     };
-    let rebuilt =
-        angle::rebuild_positions(&decoded, first, bits, &retiled.codes, levels.as_deref())
-            .map_err(|_| internal("the angle codes do not rebuild the vertices"))?;
+    // Loop points carry the predicted code, which only the other tips
+    // decide.
+    let angles = angle::AngleTable::new(bits);
+    let on_loop = loop_tips(retiled);
+    if on_loop.len() != retiled.codes.len()
+        || on_loop.iter().filter(|&&b| b).count() != retiled.loop_codes.len()
+    {
+        return Err(internal("loop points are not C tips of their components"));
+    }
+    let swung: Vec<u32> = (retiled.codes.iter().zip(&on_loop))
+        .filter(|(_, &l)| !l)
+        .map(|(&q, _)| q)
+        .collect();
+    let head = Head {
+        bits,
+        predicted: residual::predict(&swung, &angles),
+        first: first.clone(),
+    };
+    let codes: Vec<u32> = (retiled.codes.iter().zip(&on_loop))
+        .map(|(&q, &l)| if l { head.predicted } else { q })
+        .collect();
+    let loop_bytes = if retiled.loops.entries.is_empty() {
+        None
+    } else {
+        Some(chain::encode(&retiled.loops, &retiled.loop_codes, bits)?)
+    };
+    let mut points = loop_bytes.as_ref().map(|_| {
+        chain::Points::new(
+            &retiled.loops,
+            chain::Residuals::List(retiled.loop_codes.iter()),
+            bits,
+            head.predicted,
+        )
+    });
+    let rebuilt = angle::rebuild_positions(
+        &decoded,
+        first,
+        bits,
+        &codes,
+        levels.as_deref(),
+        points.as_mut(),
+    )
+    .and_then(|x| points.map_or(Ok(()), |p| p.finish()).map(|_| x))
+    .map_err(|_| internal("the angle codes do not rebuild the vertices"))?;
     if !same_bits(&rebuilt, positions) {
         return Err(internal("positions differ from the decoder's"));
     }
 
-    let angles = angle::AngleTable::new(bits);
-    let head = Head {
-        bits,
-        predicted: residual::predict(&retiled.codes, &angles),
-        first: first.clone(),
-    };
     let head_bytes = write_head(&head);
     let topo = write_topo(&conn, &[]);
-    let geom = residual::encode(&decoded, &retiled.codes, bits, head.predicted)?;
+    let geom = residual::encode(&decoded, &codes, bits, head.predicted)?;
     let clrf = match clers {
         Clers::Plain => None,
-        Clers::Front | Clers::Smaller => {
-            front_coded(retiled, &head, levels.as_deref(), &geom, dens.as_deref())
-        }
+        Clers::Front | Clers::Smaller => front_coded(
+            retiled,
+            &codes,
+            &head,
+            levels.as_deref(),
+            &geom,
+            dens.as_deref(),
+            loop_bytes.as_deref(),
+            bits,
+        ),
     };
     let clrs = (clers != Clers::Front || clrf.is_none()).then(|| write_clers(&conn.symbols));
     let (clers_tag, clers) = match (clrf, clrs) {
@@ -259,8 +337,8 @@ pub(crate) fn write(
         triangles.len() as u32,
         first.len() as u32,
     );
-    if dens.is_some() || clers_tag == Tag::CLRF {
-        // DENS and CLRF are format 1.1 sections.
+    if dens.is_some() || clers_tag == Tag::CLRF || loop_bytes.is_some() {
+        // DENS, CLRF and LOOP are format 1.1 sections.
         header.minor = 1;
     }
     let header = header.with_framing(framing);
@@ -272,6 +350,9 @@ pub(crate) fn write(
     ];
     if let Some(b) = &dens {
         sections.push((Tag::DENS, b));
+    }
+    if let Some(b) = &loop_bytes {
+        sections.push((Tag::LOOP, b));
     }
     if let Some(b) = &hole_bytes {
         sections.push((Tag::HOLE, b));
@@ -289,6 +370,7 @@ pub(crate) fn write(
         bytes.len(),
         masked,
         rest_counts,
+        &retiled.loops,
     );
     stats.density_levels = levels.as_deref().and_then(super::level_range);
     Ok((bytes, stats))

@@ -101,6 +101,7 @@ impl Config {
             fit_tips: self != Config::SwingOnSurface,
             adaptive_density: self == Config::SwingAdaptive,
             front_contexts: true,
+            loop_start: true,
         }
     }
 
