@@ -61,6 +61,7 @@ fn bad(why: &'static str) -> Error {
 }
 
 use super::angle::AngleTable;
+use crate::math::sqrt;
 
 /// Binary64 dot product in the order the spec fixes.
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -71,7 +72,7 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// D, `w = t × u`; `None` when GL = P.
 fn frame(gl: [f64; 3], p: [f64; 3], d: [f64; 3]) -> Option<[[f64; 3]; 3]> {
     let t = [gl[0] - p[0], gl[1] - p[1], gl[2] - p[2]];
-    let tl = dot(t, t).sqrt();
+    let tl = sqrt(dot(t, t));
     if !(tl > 0.0 && tl.is_finite()) {
         return None;
     }
@@ -79,7 +80,7 @@ fn frame(gl: [f64; 3], p: [f64; 3], d: [f64; 3]) -> Option<[[f64; 3]; 3]> {
     let across = |e: [f64; 3]| {
         let k = dot(e, t);
         let e = [e[0] - (k * t[0]), e[1] - (k * t[1]), e[2] - (k * t[2])];
-        let el = dot(e, e).sqrt();
+        let el = sqrt(dot(e, e));
         (el > 0.0 && el.is_finite()).then(|| e.map(|c| c / el))
     };
     let u = across([d[0] - gl[0], d[1] - gl[1], d[2] - gl[2]]).or_else(|| {
@@ -168,7 +169,7 @@ pub fn step_of(first: &[[f64; 3]; 3]) -> f64 {
         first[0][1] - first[1][1],
         first[0][2] - first[1][2],
     ];
-    dot(d, d).sqrt()
+    sqrt(dot(d, d))
 }
 
 /// The loops of a file: which components start on one, and its length.
@@ -257,6 +258,11 @@ pub fn read(
     let m = r.varu().map_err(Error::Format)?;
     if m == 0 || m > components {
         return Err(bad("LOOP names no component, or more than there are"));
+    }
+    // Two bytes at least per entry: a hostile count cannot size the
+    // allocation beyond the section's own length.
+    if m > (r.remaining() / 2) as u64 {
+        return Err(bad("LOOP is shorter than its entries"));
     }
     let mut entries = Vec::with_capacity(m as usize);
     let mut tips = 0u64;
@@ -459,6 +465,7 @@ mod tests {
             "points of all loops over the vertices"
         );
         assert!(bad(&[1, 0], 3, 100), "truncated");
+        assert!(bad(&[3, 0, 3], 1 << 30, 100), "a count beyond the section");
     }
 
     #[test]
