@@ -105,15 +105,21 @@ pub struct Sample {
 }
 
 /// A sphere of radius 1 without the faces whose centroid lies above
-/// z = 0.6: one boundary loop, which the swing encoder closes with a patch
-/// and masks out again with a `HOLE` section.
+/// z = 0.6 or below z = −0.8: two boundary loops; the swing encoder
+/// starts on the larger (`LOOP`, its fan dropped without a bit) and
+/// closes the other with a patch it masks out again (`HOLE`).
 pub fn capped_sphere() -> TriMesh {
     let m = swm_corpus::icosphere(1.0, 3);
     let keep = m
         .triangles
         .iter()
         .copied()
-        .filter(|t| t.iter().map(|&v| m.positions[v as usize][2]).sum::<f32>() / 3.0 < 0.6)
+        .filter(|t| {
+            let z = t.iter().map(|&v| m.positions[v as usize][2]).sum::<f32>() / 3.0;
+            // Two caps: the larger hole starts the retiling (LOOP), the
+            // smaller is masked over its patch (HOLE).
+            z < 0.6 && z > -0.8
+        })
         .collect();
     TriMesh::new(m.positions.clone(), keep)
 }

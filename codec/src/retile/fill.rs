@@ -8,7 +8,9 @@
 //! discrete harmonic surface with the loop held fixed, so the retiler
 //! meets a smooth cap rather than a cone. Patch faces carry their hole's
 //! number; the retiled triangles that land mostly on a patch become the
-//! hole mask (`mask`), and the decoder drops them again.
+//! hole mask (`mask`), and the decoder drops them again. The patch of
+//! the longest loop is claimed at once by the fan a retiling starts
+//! with (`boundary`), whose triangles are that hole's mask.
 //!
 //! ```text
 //!   loop a_0 … a_{n−1} (edges a_i → a_{i+1} belong to the input)

@@ -3,7 +3,9 @@
 //! compression", ACM TOG 2003; thesis chapter 7; design notes §6).
 //!
 //! M′ grows from a first triangle in Edgebreaker order, right branch
-//! first. For every gate (GL, GR) with previous tip T the candidate tip V
+//! first; on a piece with holes, from a fan over its longest boundary
+//! loop instead (`boundary`, beyond the thesis), so that the front starts
+//! on the loop and never covers that hole. For every gate (GL, GR) with previous tip T the candidate tip V
 //! is where the circle of radius L√3/2 in the gate's bisecting plane
 //! meets M, on the side farther from T. V snaps to a border vertex W
 //! within L/2 along the surface (always, if V fell in a claimed
@@ -120,7 +122,8 @@ pub use crate::error::RetileFailure as Failure;
 /// which this one must use as it is (the decoder has one radius per
 /// file); `handles`: M has genus > 0; the run's work is charged to
 /// `budget`. Returns the piece as a one-component [`Retiled`] without mask,
-/// and per triangle the hole patch that covers most of its triangloid.
+/// and per triangle the hole patch that covers most of its triangloid (a
+/// loop's fan wholly its hole's).
 fn retile_piece(
     mesh: &TriMesh,
     table: &CornerTable,

@@ -322,6 +322,32 @@ impl Reader<'_> {
     }
 }
 
+/// Per triangle of the decoded `table`: it belongs to a loop's fan (the
+/// first `n` triangles of a loop component, in triangle order; fewer if
+/// the component has fewer), which the decoder drops with its dummy
+/// vertex.
+pub fn fans(table: &crate::CornerTable, loops: &Loops) -> Vec<bool> {
+    let v = table.vertices();
+    let mut out = vec![false; table.face_count()];
+    let (mut next, mut component, mut left) = (0usize, 0u32, 0u32);
+    for (t, tri) in v.chunks_exact(3).enumerate() {
+        if tri[1].idx() >= next {
+            // A component's first triangle (the numbering was checked
+            // when the positions were rebuilt).
+            left = loops.points(component);
+            component += 1;
+            next += 3;
+        } else if tri[0].idx() == next {
+            next += 1;
+        }
+        if left > 0 {
+            out[t] = true;
+            left -= 1;
+        }
+    }
+    out
+}
+
 /// Where the loop points' codes come from: the `LOOP` stream, or
 /// (encoder) the retiler's list.
 pub enum Residuals<'a> {

@@ -231,6 +231,7 @@ impl SwingStats {
         let loop_bytes = bytes_of(&[&crate::container::Tag::LOOP.0]) as u64;
         // A fan over a loop of n points has n triangles.
         let fans: u64 = loops.entries.iter().map(|e| u64::from(e.1)).sum();
+        // `masked` counts the patches' triangles only.
         SwingStats {
             edge_length: head.first.first().map_or(0.0, first_edge_length),
             angle_bits: head.bits,
@@ -248,7 +249,7 @@ impl SwingStats {
             sections,
             file_bytes,
             hole_bytes,
-            holes_masked_triangles: masked.saturating_sub(fans),
+            holes_masked_triangles: masked,
             loops: loops.entries.len() as u64,
             loop_points: fans,
             loop_fan_triangles: fans,

@@ -349,8 +349,20 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
         positions,
         triangles,
     };
-    if let Some(s) = file.find(Tag::HOLE) {
-        let mask = hole::decode(&table, s.bytes).map_err(in_section(s.offset))?;
+    // Dropped: the triangles HOLE masks, and the fans of the loops.
+    let mut mask = match file.find(Tag::HOLE) {
+        Some(s) => Some(hole::decode(&table, s.bytes).map_err(in_section(s.offset))?),
+        None => None,
+    };
+    let (list, _) = read_loops(file)?;
+    if !list.entries.is_empty() {
+        let fans = chain::fans(&table, &list);
+        let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
+        for (m, f) in m.iter_mut().zip(fans) {
+            *m |= f;
+        }
+    }
+    if let Some(mask) = mask {
         mesh = hole::drop_masked(mesh, &mask)?;
     }
     if let Some((rest, offset)) = &rest {
@@ -400,11 +412,15 @@ pub(crate) fn inspect(
     file_bytes: usize,
 ) -> Result<(Connectivity, SwingStats), Error> {
     let (head, conn, table, tips) = read_connectivity(file, limits)?;
+    let (loops, _) = read_loops(file)?;
+    let fans = chain::fans(&table, &loops);
+    // Masked over patches: HOLE's bits outside the loops' fans.
     let masked = match file.find(Tag::HOLE) {
         Some(s) => hole::decode(&table, s.bytes)
             .map_err(in_section(s.offset))?
             .iter()
-            .filter(|&&m| m)
+            .zip(&fans)
+            .filter(|(&m, &f)| m && !f)
             .count() as u64,
         None => 0,
     };
@@ -429,7 +445,6 @@ pub(crate) fn inspect(
         Some(t) => t.levels,
         None => read_levels(file, &table, count)?,
     };
-    let (loops, _) = read_loops(file)?;
     let mut stats = SwingStats::new(
         &head,
         &table,

@@ -321,7 +321,16 @@ pub(crate) fn write(
         (Some(f), _) => (Tag::CLRF, f),
         (None, s) => (Tag::CLRS, s.unwrap_or_default()),
     };
-    let masked = mask.iter().filter(|&&m| m).count() as u64;
+    // The loops' fans are dropped without a bit (`chain::fans`); HOLE
+    // only when some patch triangle is masked too.
+    let fans = chain::fans(&decoded, &retiled.loops);
+    let masked_at = |t: usize| mask.get(t).copied().unwrap_or(false);
+    if fans.iter().enumerate().any(|(t, &f)| f && !masked_at(t)) {
+        return Err(internal("a loop's fan is not masked"));
+    }
+    let masked = (0..fans.len())
+        .filter(|&t| masked_at(t) && !fans[t])
+        .count() as u64;
     let hole_bytes = (masked > 0).then(|| hole::encode(&decoded, mask));
     let (rest_bytes, rest_counts) = match &retiled.rest {
         Some((mesh, qp)) if mesh.face_count() > 0 => {
