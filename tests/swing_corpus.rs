@@ -151,7 +151,7 @@ fn open_surfaces_mask_under_a_tenth_of_their_triangles_at_2_bpv() {
         println!(
             "{name}: {} of {} retiled triangles masked, {} loop(s) of {} points, {} bytes of LOOP",
             stats.holes_masked_triangles,
-            stats.triangles - stats.loop_fan_triangles,
+            stats.triangles - stats.loop_points,
             stats.loops,
             stats.loop_points,
             stats.loop_bytes

@@ -85,7 +85,8 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
                 let loops = PyDict::new(py);
                 loops.set_item("count", s.loops)?;
                 loops.set_item("points", s.loop_points)?;
-                loops.set_item("fan_triangles", s.loop_fan_triangles)?;
+                // One fan triangle per loop point.
+                loops.set_item("fan_triangles", s.loop_points)?;
                 loops.set_item("bytes", s.loop_bytes)?;
                 let share = s.loop_bytes as f64 / s.file_bytes.max(1) as f64;
                 loops.set_item("file_share", share)?;

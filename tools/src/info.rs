@@ -237,7 +237,7 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
             s.loop_points,
             s.loop_bytes,
             100.0 * s.loop_bytes as f64 / s.file_bytes.max(1) as f64,
-            s.loop_fan_triangles
+            s.loop_points
         );
     }
     if let Some((lo, hi)) = s.density_levels {

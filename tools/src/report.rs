@@ -94,7 +94,8 @@ pub fn swing_json(s: &swm::SwingStats) -> Value {
         "loops": (s.loops > 0).then(|| json!({
             "count": s.loops,
             "points": s.loop_points,
-            "fan_triangles": s.loop_fan_triangles,
+            // One fan triangle per loop point.
+            "fan_triangles": s.loop_points,
             "bytes": s.loop_bytes,
             "file_share": s.loop_bytes as f64 / s.file_bytes.max(1) as f64,
         })),

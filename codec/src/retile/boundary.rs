@@ -43,10 +43,18 @@ use std::collections::HashMap;
 /// an end of the edge takes that end instead of splitting it.
 const END_SHARE: f64 = 0.05;
 
-/// The longest hole loop of M (by perimeter), as M vertices in chain
-/// order starting at its lowest id, with its hole number; `None` without
-/// a usable one. One pass over M's faces for all holes.
-pub(super) fn longest_loop(s: &Surface) -> Option<(u32, Vec<u32>)> {
+/// A hole's loop: its M vertices in chain order from the lowest id, and
+/// the lengths along it (`arc[i]` from `vertices[0]` to `vertices[i]`,
+/// `arc[n]` the perimeter).
+pub(super) struct Rim {
+    pub hole: u32,
+    vertices: Vec<u32>,
+    arc: Vec<f64>,
+}
+
+/// The longest hole loop of M (by perimeter); `None` without a usable
+/// one. One pass over M's faces for all holes.
+pub(super) fn longest_loop(s: &Surface) -> Option<Rim> {
     // Per hole, its rim edges: patch edges u → w with the input's
     // surface across, so that the chain runs w → u; `None` once a vertex
     // starts two of them (a pinched loop).
@@ -72,17 +80,21 @@ pub(super) fn longest_loop(s: &Surface) -> Option<(u32, Vec<u32>)> {
     }
     let mut holes: Vec<u32> = rims.keys().copied().collect();
     holes.sort_unstable();
-    let mut best: Option<(f64, u32, Vec<u32>)> = None;
-    for h in holes {
-        let Some(lp) = rims[&h].as_ref().and_then(chain) else {
+    let mut best: Option<Rim> = None;
+    for hole in holes {
+        let Some(vertices) = rims[&hole].as_ref().and_then(chain) else {
             continue;
         };
-        let length = perimeter(s, &lp);
-        if best.as_ref().is_none_or(|b| length > b.0) {
-            best = Some((length, h, lp));
+        let arc = arc_lengths(s, &vertices);
+        if best.as_ref().is_none_or(|b| arc.last() > b.arc.last()) {
+            best = Some(Rim {
+                hole,
+                vertices,
+                arc,
+            });
         }
     }
-    best.map(|(_, h, lp)| (h, lp))
+    best
 }
 
 /// The rim edges `chain_next` as one loop from its lowest vertex id;
@@ -101,10 +113,16 @@ fn chain(chain_next: &HashMap<u32, u32>) -> Option<Vec<u32>> {
     (lp.len() == chain_next.len()).then_some(lp)
 }
 
-fn perimeter(s: &Surface, lp: &[u32]) -> f64 {
-    (0..lp.len())
-        .map(|i| s.pos[lp[i] as usize].distance(s.pos[lp[(i + 1) % lp.len()] as usize]))
-        .sum()
+/// 0, then the length along closed loop `lp` to each next vertex, back
+/// to `lp[0]`.
+fn arc_lengths(s: &Surface, lp: &[u32]) -> Vec<f64> {
+    let mut arc = Vec::with_capacity(lp.len() + 1);
+    arc.push(0.0);
+    for i in 0..lp.len() {
+        let (a, b) = (lp[i], lp[(i + 1) % lp.len()]);
+        arc.push(arc[i] + s.pos[a as usize].distance(s.pos[b as usize]));
+    }
+    arc
 }
 
 /// A place on the loop: segment `seg` (from `lp[seg]` to the next
@@ -198,18 +216,13 @@ fn vertex_at(
 pub(super) type Fan = (Gate, [[f64; 3]; 3], u32);
 
 impl Retiler<'_> {
-    /// Lays the fan over hole `hole`'s patch, whose loop is `lp` (chain
-    /// order); returns the first gate, the explicit vertices (b0, b1, D)
-    /// and the fan's triangle count. `None` when the loop takes fewer
-    /// than three points at this L or a loop edge cannot carry a path.
-    pub(super) fn first_loop(&mut self, lp: &[u32]) -> Result<Option<Fan>, Failure> {
+    /// Lays the fan over the patch of `rim`'s hole; returns the first
+    /// gate, the explicit vertices (b0, b1, D) and the fan's triangle
+    /// count. `None` when the loop takes fewer than three points at this
+    /// L or two points fall on one vertex of M.
+    pub(super) fn first_loop(&mut self, rim: &Rim) -> Result<Option<Fan>, Failure> {
+        let (lp, arc) = (&rim.vertices[..], &rim.arc[..]);
         let l = self.l;
-        let mut arc = Vec::with_capacity(lp.len() + 1);
-        arc.push(0.0);
-        for i in 0..lp.len() {
-            let (a, b) = (lp[i], lp[(i + 1) % lp.len()]);
-            arc.push(arc[i] + self.s.pos[a as usize].distance(self.s.pos[b as usize]));
-        }
         if arc[lp.len()] < 3.0 * l {
             return Ok(None);
         }
@@ -218,7 +231,7 @@ impl Retiler<'_> {
         let table = crate::swing::AngleTable::new(self.table.bits());
         let p1 = self.s.pos[lp[0] as usize];
         let start = OnLoop { seg: 0, at: 0.0 };
-        let Some((at0, p0, _)) = leave(&self.s, lp, &arc, start, p1, l) else {
+        let Some((at0, p0, _)) = leave(&self.s, lp, arc, start, p1, l) else {
             return Ok(None);
         };
         let (xb1, xb0) = (f32_exact(p1), f32_exact(p0));
@@ -241,7 +254,7 @@ impl Retiler<'_> {
         loop {
             let k = xs.len();
             let (gl, p) = (xs[k - 1], xs[k - 2]);
-            let Some((at, target, ahead)) = leave(&self.s, lp, &arc, from, gl, rho) else {
+            let Some((at, target, ahead)) = leave(&self.s, lp, arc, from, gl, rho) else {
                 break;
             };
             if ahead < 0.5 * rho {
@@ -355,7 +368,6 @@ impl Retiler<'_> {
         let boundary: Vec<u32> = full.iter().rev().copied().collect();
         region::claim(&mut self.s, &boundary, 0, f64::INFINITY, &mut self.flood)
             .map_err(|_| Failure::NoThirdVertex)?;
-        self.loop_points = n as u32;
         let first = [xb0, xb1, xd].map(|p| p.to_array());
         Ok(Some((
             (next_gate.ok_or(Failure::NoThirdVertex)?, d),

@@ -209,7 +209,6 @@ fn retile_piece(
         budget,
         cap,
         loop_codes: Vec::new(),
-        loop_points: 0,
     };
     let on_loop = if opt.loop_start
         && opt.start_vertex.is_none()
@@ -217,14 +216,16 @@ fn retile_piece(
         && opt.start_rank.is_multiple_of(2)
     {
         match boundary::longest_loop(&r.s) {
-            Some((hole, lp)) => r.first_loop(&lp)?.map(|(g, f, t)| (g, f, hole, t)),
+            Some(rim) => r
+                .first_loop(&rim)?
+                .map(|(g, f, t)| (g, f, Some((rim.hole, t)))),
             None => None,
         }
     } else {
         None
     };
     let (first_gate, first, fan) = match on_loop {
-        Some((g, f, hole, t)) => (g, f, Some((hole, t))),
+        Some(started) => started,
         None => {
             let start = opt
                 .start_vertex
@@ -247,12 +248,9 @@ fn retile_piece(
             *c = (hole, 1.0);
         }
     }
+    // A fan has one triangle per loop point.
     let loops = crate::swing::chain::Loops {
-        entries: if fan.is_some() {
-            vec![(0, r.loop_points)]
-        } else {
-            Vec::new()
-        },
+        entries: fan.map(|(_, t)| (0, t)).into_iter().collect(),
     };
     let retiled = Retiled {
         angle_bits: opt.angle_bits,
@@ -330,10 +328,8 @@ struct Retiler<'b> {
     /// Scratch of `fit`: the corners of the region just claimed.
     fit_region: Vec<[[f64; 3]; 3]>,
     cap: usize,
-    /// The residual of each loop point (`boundary`), in order.
+    /// The two angle codes of each loop point (`boundary`), in order.
     loop_codes: Vec<[u32; 2]>,
-    /// Points of the starting loop (0: started inside).
-    loop_points: u32,
     /// Steps this run may still take before it counts as running away.
     run_steps: u64,
     /// Bytes this run may hold before it counts as running away.

@@ -217,6 +217,16 @@ pub(super) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
+/// a × b, as `(a1·b2 − a2·b1, a2·b0 − a0·b2, a0·b1 − a1·b0)`.
+#[inline]
+pub(super) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
 /// v / sqrt(v·v), one division per component.
 #[inline]
 fn normalize(v: [f64; 3]) -> [f64; 3] {

@@ -60,18 +60,13 @@ fn bad(why: &'static str) -> Error {
     Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
 }
 
-use super::angle::AngleTable;
+use super::angle::{cross, dot, sub, AngleTable};
 use crate::math::sqrt;
-
-/// Binary64 dot product in the order the spec fixes.
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] * b[0]) + (a[1] * b[1])) + (a[2] * b[2])
-}
 
 /// The frame of a loop point: `t` along P → GL, `u` across it towards
 /// D, `w = t × u`; `None` when GL = P.
 fn frame(gl: [f64; 3], p: [f64; 3], d: [f64; 3]) -> Option<[[f64; 3]; 3]> {
-    let t = [gl[0] - p[0], gl[1] - p[1], gl[2] - p[2]];
+    let t = sub(gl, p);
     let tl = sqrt(dot(t, t));
     if !(tl > 0.0 && tl.is_finite()) {
         return None;
@@ -83,7 +78,7 @@ fn frame(gl: [f64; 3], p: [f64; 3], d: [f64; 3]) -> Option<[[f64; 3]; 3]> {
         let el = sqrt(dot(e, e));
         (el > 0.0 && el.is_finite()).then(|| e.map(|c| c / el))
     };
-    let u = across([d[0] - gl[0], d[1] - gl[1], d[2] - gl[2]]).or_else(|| {
+    let u = across(sub(d, gl)).or_else(|| {
         // D on the line of P and GL: the coordinate axis least parallel
         // to t (lowest index on ties) instead.
         let m = t.map(f64::abs);
@@ -98,12 +93,7 @@ fn frame(gl: [f64; 3], p: [f64; 3], d: [f64; 3]) -> Option<[[f64; 3]; 3]> {
         e[k] = 1.0;
         across(e)
     })?;
-    let w = [
-        t[1] * u[2] - t[2] * u[1],
-        t[2] * u[0] - t[0] * u[2],
-        t[0] * u[1] - t[1] * u[0],
-    ];
-    Some([t, u, w])
+    Some([t, u, cross(t, u)])
 }
 
 /// A loop point: at `rho` from GL, turned by codes `q = [a, b]`; `None`
@@ -140,7 +130,7 @@ pub fn aim(
     target: [f64; 3],
 ) -> Option<[u32; 2]> {
     let [t, u, w] = frame(gl, p, d)?;
-    let v = [target[0] - gl[0], target[1] - gl[1], target[2] - gl[2]];
+    let v = sub(target, gl);
     let (vt, vu, vw) = (dot(v, t), dot(v, u), dot(v, w));
     let n = table.codes() as i64;
     let step = core::f64::consts::TAU / n as f64;
@@ -164,11 +154,7 @@ pub fn aim(
 /// The loop's step: |b0 − b1|, the first two vertices of its
 /// component's first triangle.
 pub fn step_of(first: &[[f64; 3]; 3]) -> f64 {
-    let d = [
-        first[0][0] - first[1][0],
-        first[0][1] - first[1][1],
-        first[0][2] - first[1][2],
-    ];
+    let d = sub(first[0], first[1]);
     sqrt(dot(d, d))
 }
 
@@ -322,29 +308,48 @@ impl Reader<'_> {
     }
 }
 
-/// Per triangle of the decoded `table`: it belongs to a loop's fan (the
-/// first `n` triangles of a loop component, in triangle order; fewer if
-/// the component has fewer), which the decoder drops with its dummy
-/// vertex.
-pub fn fans(table: &crate::CornerTable, loops: &Loops) -> Vec<bool> {
-    let v = table.vertices();
-    let mut out = vec![false; table.face_count()];
-    let (mut next, mut component, mut left) = (0usize, 0u32, 0u32);
-    for (t, tri) in v.chunks_exact(3).enumerate() {
-        if tri[1].idx() >= next {
-            // A component's first triangle (the numbering was checked
-            // when the positions were rebuilt).
-            left = loops.points(component);
+/// The loop rule over the triangles of the decoded `table`, in order:
+/// `f(fan, tip)` with `fan` set for a loop's fan (the first `n`
+/// triangles of a loop component; fewer if it has fewer) and, for a C
+/// triangle, `tip = Some(loop tip)` (one of its component's first
+/// `n − 2` C tips, the rule [`Points`] places by). The numbering was
+/// checked when the positions were rebuilt.
+fn walk(table: &crate::CornerTable, loops: &Loops, mut f: impl FnMut(bool, Option<bool>)) {
+    let (mut next, mut component) = (0usize, 0u32);
+    let (mut fan, mut tips) = (0u32, 0u32);
+    for tri in table.vertices().chunks_exact(3) {
+        let tip = if tri[1].idx() >= next {
+            fan = loops.points(component);
+            tips = fan.saturating_sub(2);
             component += 1;
             next += 3;
+            None
         } else if tri[0].idx() == next {
             next += 1;
-        }
-        if left > 0 {
-            out[t] = true;
-            left -= 1;
-        }
+            let on_loop = tips > 0;
+            tips = tips.saturating_sub(1);
+            Some(on_loop)
+        } else {
+            None
+        };
+        f(fan > 0, tip);
+        fan = fan.saturating_sub(1);
     }
+}
+
+/// Per triangle of the decoded `table`: it belongs to a loop's fan, which
+/// the decoder drops with its dummy vertex.
+pub fn fans(table: &crate::CornerTable, loops: &Loops) -> Vec<bool> {
+    let mut out = Vec::with_capacity(table.face_count());
+    walk(table, loops, |fan, _| out.push(fan));
+    out
+}
+
+/// Per C tip of the decoded `table`, in order: it is a loop point.
+#[cfg(feature = "encoder")]
+pub fn loop_tips(table: &crate::CornerTable, loops: &Loops) -> Vec<bool> {
+    let mut out = Vec::new();
+    walk(table, loops, |_, tip| out.extend(tip));
     out
 }
 

@@ -35,7 +35,7 @@
 
 use crate::prelude::*;
 
-use super::angle::{dot, sub};
+use super::angle::{cross, dot, sub};
 use crate::{Error, FormatError, Malformed};
 
 fn bad(why: &'static str) -> Error {
@@ -220,14 +220,6 @@ impl Loops {
 
 /// Contexts of the symbol model: [`Loops::context`]'s range.
 pub(super) const CONTEXTS: usize = 16;
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 
 /// The quadrant 0…3 of the angle θ ∈ (−180°, 180°] from `u` to `w`
 /// around `n`: 0 for θ < −90°, 1 for −90° ≤ θ < 0, 2 for 0 ≤ θ < 90°,

@@ -152,12 +152,10 @@ pub struct SwingStats {
     /// Components that start on a boundary loop (`LOOP`, format 1.1).
     pub loops: u64,
     /// Points of those loops: the vertices of the decoded boundary they
-    /// code (each a residual in `LOOP`, not an angle).
+    /// code (each two angle codes in `LOOP`). Each loop's fan has one
+    /// triangle per point: coded as connectivity only, and dropped with
+    /// the dummy vertex at its centre.
     pub loop_points: u64,
-    /// Triangles of the loops' fans (one per point): coded as
-    /// connectivity only, and dropped with the dummy vertex at their
-    /// centre.
-    pub loop_fan_triangles: u64,
     /// Bytes of `LOOP` (0 without one).
     pub loop_bytes: u64,
     /// Bytes of the lossless remainder (`REST`, a whole mode-0 file; 0
@@ -187,7 +185,8 @@ impl SwingStats {
     /// Share of the retiled triangles (the loops' fans left out) that
     /// cover a hole's patch and are dropped (0 to 1).
     pub fn masked_share(&self) -> f64 {
-        let retiled = self.triangles.saturating_sub(self.loop_fan_triangles);
+        // A fan has one triangle per loop point.
+        let retiled = self.triangles.saturating_sub(self.loop_points);
         self.holes_masked_triangles as f64 / retiled.max(1) as f64
     }
 
@@ -229,8 +228,6 @@ impl SwingStats {
         let rest_bytes = bytes_of(&[&crate::container::Tag::REST.0]) as u64;
         let density_bytes = bytes_of(&[&crate::container::Tag::DENS.0]) as u64;
         let loop_bytes = bytes_of(&[&crate::container::Tag::LOOP.0]) as u64;
-        // A fan over a loop of n points has n triangles.
-        let fans: u64 = loops.entries.iter().map(|e| u64::from(e.1)).sum();
         // `masked` counts the patches' triangles only.
         SwingStats {
             edge_length: head.first.first().map_or(0.0, first_edge_length),
@@ -251,8 +248,7 @@ impl SwingStats {
             hole_bytes,
             holes_masked_triangles: masked,
             loops: loops.entries.len() as u64,
-            loop_points: fans,
-            loop_fan_triangles: fans,
+            loop_points: loops.entries.iter().map(|e| u64::from(e.1)).sum(),
             loop_bytes,
             rest_bytes,
             rest_triangles,

@@ -148,7 +148,7 @@ pub(super) fn read_connectivity(
             limits.check_alloc(v.saturating_mul(28).saturating_add(s.saturating_mul(40)))?;
             let geom = file.require(Tag::GEOM)?;
             let dens = file.find(Tag::DENS).map(|s| s.bytes);
-            let (list, reader) = read_loops(file)?;
+            let (list, reader) = read_loops(file, head.bits)?;
             let points = reader.map(|r| points(&list, r, &head));
             let d = super::forward::decode(
                 clrf.bytes,
@@ -187,19 +187,21 @@ pub(super) fn read_connectivity(
     Ok((head, conn, table, tips))
 }
 
-/// `LOOP`'s entries and residual stream; no entries and no stream
-/// without the section.
-fn read_loops<'a>(file: &Container<'a>) -> Result<(Loops, Option<chain::Reader<'a>>), Error> {
+/// `LOOP`'s entries and code stream in a file of `bits` angle bits; no
+/// entries and no stream without the section.
+fn read_loops<'a>(
+    file: &Container<'a>,
+    bits: u8,
+) -> Result<(Loops, Option<chain::Reader<'a>>), Error> {
     let Some(s) = file.find(Tag::LOOP) else {
         return Ok((Loops::default(), None));
     };
     let h = &file.header;
-    let head = read_head(file.require(Tag::HEAD)?.bytes, h.component_count)?;
     let (list, reader) = chain::read(
         s.bytes,
         u64::from(h.component_count),
         u64::from(h.vertex_count),
-        head.bits,
+        bits,
     )
     .map_err(in_section(s.offset))?;
     Ok((list, Some(reader)))
@@ -319,7 +321,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let x = match placed {
         Some(x) => x,
         None => {
-            let (list, reader) = read_loops(file)?;
+            let (list, reader) = read_loops(file, head.bits)?;
             let mut points = reader.map(|r| points(&list, r, &head));
             let x = super::angle::rebuild_positions(
                 &table,
@@ -354,7 +356,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
         Some(s) => Some(hole::decode(&table, s.bytes).map_err(in_section(s.offset))?),
         None => None,
     };
-    let (list, _) = read_loops(file)?;
+    let (list, _) = read_loops(file, head.bits)?;
     if !list.entries.is_empty() {
         let fans = chain::fans(&table, &list);
         let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
@@ -412,7 +414,7 @@ pub(crate) fn inspect(
     file_bytes: usize,
 ) -> Result<(Connectivity, SwingStats), Error> {
     let (head, conn, table, tips) = read_connectivity(file, limits)?;
-    let (loops, _) = read_loops(file)?;
+    let (loops, _) = read_loops(file, head.bits)?;
     let fans = chain::fans(&table, &loops);
     // Masked over patches: HOLE's bits outside the loops' fans.
     let masked = match file.find(Tag::HOLE) {

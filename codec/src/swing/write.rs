@@ -12,7 +12,7 @@ use super::{
     MIN_ANGLE_BITS,
 };
 use crate::container::{write_container, Framing, Header, Mode, Tag};
-use crate::edgebreaker::{self, Symbol};
+use crate::edgebreaker;
 use crate::lossless::{write_clers, write_topo};
 use crate::{CornerTable, Error, FormatError, Malformed, ParameterError};
 
@@ -108,28 +108,6 @@ fn front_coded(
         && back.levels.as_deref() == levels
         && same_bits(&back.positions, &retiled.positions);
     same.then_some(bytes)
-}
-
-/// Per C tip in order: whether it is a loop point (the first `n − 2` C
-/// tips of a component with a loop of `n` points).
-fn loop_tips(retiled: &Retiled) -> Vec<bool> {
-    let starts = component_starts(&retiled.triangles);
-    let mut out = Vec::with_capacity(retiled.codes.len());
-    let mut symbols = retiled.symbols.iter();
-    for (c, &t) in starts.iter().enumerate() {
-        let end = starts
-            .get(c + 1)
-            .copied()
-            .unwrap_or(retiled.triangles.len());
-        let mut left = retiled.loops.points(c as u32).saturating_sub(2);
-        for _ in t + 1..end {
-            if symbols.next() == Some(&Symbol::C) {
-                out.push(left > 0);
-                left = left.saturating_sub(1);
-            }
-        }
-    }
-    out
 }
 
 /// Encodes a retiled mesh as a SwingWrapper (mode 1) file.
@@ -254,7 +232,7 @@ pub(crate) fn write(
     // Loop points carry the predicted code, which only the other tips
     // decide.
     let angles = angle::AngleTable::new(bits);
-    let on_loop = loop_tips(retiled);
+    let on_loop = chain::loop_tips(&decoded, &retiled.loops);
     if on_loop.len() != retiled.codes.len()
         || on_loop.iter().filter(|&&b| b).count() != retiled.loop_codes.len()
     {
