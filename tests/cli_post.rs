@@ -98,8 +98,8 @@ fn decode_sharpen_and_bend_restore_the_cube() {
     let sharp = dir.join("sharp.obj");
     let bent = dir.join("bent.obj");
     for (out, extra) in [
-        (&plain, &[][..]),
-        (&sharp, &["--sharpen"][..]),
+        (&plain, &["--no-sharpen", "--bend", "0"][..]),
+        (&sharp, &["--sharpen", "--bend", "0"][..]),
         (&bent, &["--sharpen", "--bend", "1"][..]),
     ] {
         let mut args = vec!["decode", s(&file), "-o", s(out)];
@@ -122,9 +122,17 @@ fn decode_sharpen_and_bend_restore_the_cube() {
 fn sharpen_command_takes_any_mesh() {
     let (dir, file) = encoded_cube("post_sharpen");
     let decoded = dir.join("decoded.ply");
-    assert!(swm(&["decode", s(&file), "-o", s(&decoded)])
-        .status
-        .success());
+    assert!(swm(&[
+        "decode",
+        s(&file),
+        "-o",
+        s(&decoded),
+        "--no-sharpen",
+        "--bend",
+        "0"
+    ])
+    .status
+    .success());
     let out = dir.join("sharp.obj");
     let v = json(&swm(&[
         "sharpen",

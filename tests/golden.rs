@@ -283,6 +283,7 @@ fn golden_swing_options() -> EncodeOptions {
             adaptive_density: false,
             front_contexts: false,
             loop_start: false,
+            post_hint: false,
         },
         // The golden files predate the compact framing (format 1.1).
         framing: swm::Framing::Fixed,
@@ -379,6 +380,7 @@ fn golden_adaptive_options() -> EncodeOptions {
             adaptive_density: true,
             front_contexts: false,
             loop_start: false,
+            post_hint: false,
         },
         // The golden files predate the compact framing (format 1.1).
         framing: swm::Framing::Fixed,
@@ -534,6 +536,7 @@ fn golden_loop_options() -> EncodeOptions {
             adaptive_density: false,
             front_contexts: true,
             loop_start: true,
+            post_hint: false,
         },
         ..EncodeOptions::default()
     }
@@ -579,5 +582,131 @@ fn swing_loop_v1_1_reencodes_to_the_same_bytes() {
     assert_eq!(
         encoded.bytes, SWING_LOOP_V1_1,
         "re-encoding the golden cap no longer gives golden/swing-loop-v1.1.swm"
+    );
+}
+
+// --- Format 1.1: the post-processing hint (post) ---
+
+const SWING_POST_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-post-v1.1.swm");
+
+/// The test vector of format-spec/06-post.md ("Golden file"): the plain
+/// decode's hash (post-processing itself is floating-point geometry that
+/// decoders need not agree on bit for bit).
+const SWING_POST_V1_1_PLAIN_FNV1A64: u64 = 0x8D73_D847_7D16_0DA4;
+
+/// The hint golden file's input: the box [-1, 1]³, each face a grid of
+/// 8 × 8 squares cut along one diagonal (every coordinate a multiple of
+/// 1/4: exact in binary32 on every platform).
+fn golden_box() -> TriMesh {
+    const N: i32 = 8;
+    let mut index = std::collections::HashMap::new();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let mut vertex = |p: [i32; 3]| -> u32 {
+        *index.entry(p).or_insert_with(|| {
+            positions.push(p.map(|c| c as f32 / (N / 2) as f32 - 1.0));
+            (positions.len() - 1) as u32
+        })
+    };
+    // Each face: a fixed axis at 0 or N, the other two (u, v) in the order
+    // that makes (u × v) point outwards.
+    for axis in 0..3 {
+        for side in [0, N] {
+            let (mut u, mut v) = ((axis + 1) % 3, (axis + 2) % 3);
+            if side == 0 {
+                std::mem::swap(&mut u, &mut v);
+            }
+            let at = |i: i32, j: i32| {
+                let mut p = [0; 3];
+                p[axis] = side;
+                p[u] = i;
+                p[v] = j;
+                p
+            };
+            for i in 0..N {
+                for j in 0..N {
+                    let a = vertex(at(i, j));
+                    let b = vertex(at(i + 1, j));
+                    let c = vertex(at(i + 1, j + 1));
+                    let d = vertex(at(i, j + 1));
+                    triangles.push([a, b, c]);
+                    triangles.push([a, c, d]);
+                }
+            }
+        }
+    }
+    TriMesh::new(positions, triangles)
+}
+
+fn golden_post_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: swm::SwingTarget::EdgeLength(0.3),
+            angle_bits: Some(8),
+            max_bytes: None,
+        },
+        swing: swm::SwingTuning {
+            approximate_tips: false,
+            fit_tips: false,
+            adaptive_density: false,
+            front_contexts: true,
+            loop_start: true,
+            post_hint: true,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+/// Writes the hint golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_swing_post_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_swing_post_v1_1_golden() {
+    let options = golden_post_options();
+    write_golden("swing-post-v1.1.swm", &golden_box(), &options);
+    let encoded = swm::encode(&golden_box(), &options).unwrap();
+    let plain = swm::decode(&encoded.bytes, &DecodeOptions::plain()).unwrap();
+    println!(
+        "plain: {} vertices, {} triangles, hash {:#018X}; hint {:?}",
+        plain.positions.len(),
+        plain.triangles.len(),
+        mesh_hash(&plain),
+        encoded.stats.hint
+    );
+}
+
+/// Must hold forever: the hint golden file says "EdgeSharpener", its
+/// default decode follows it, and explicit options override it.
+#[test]
+fn swing_post_v1_1_decodes_to_its_test_vector() {
+    let info = swm::inspect(SWING_POST_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    assert_eq!(
+        info.post,
+        Some(swm::PostProcessing {
+            sharpen: true,
+            bend_steps: 0
+        })
+    );
+    let plain = swm::decode(SWING_POST_V1_1, &DecodeOptions::plain())
+        .expect("golden file swing-post-v1.1.swm must decode");
+    assert_eq!(
+        mesh_hash(&plain),
+        SWING_POST_V1_1_PLAIN_FNV1A64,
+        "decoded mesh differs from format-spec/06-post.md's test vector"
+    );
+    let default = swm::decode(SWING_POST_V1_1, &DecodeOptions::default()).unwrap();
+    let sharpened = swm::sharpen(&plain, &Default::default()).unwrap().mesh;
+    assert_eq!(default, sharpened, "the default decode follows the hint");
+    assert_ne!(default, plain);
+}
+
+/// The encoder still writes the hint golden bytes from the golden box.
+#[test]
+fn swing_post_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_box(), &golden_post_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_POST_V1_1,
+        "re-encoding the golden box no longer gives golden/swing-post-v1.1.swm"
     );
 }

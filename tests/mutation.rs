@@ -65,8 +65,8 @@ fn refused_or_valid(bytes: &[u8], what: &str) {
         // Whatever mesh a mutated file gives goes through Sharpen&Bend
         // too; it may refuse it, but not panic.
         let post = DecodeOptions {
-            sharpen: true,
-            bend_steps: 1,
+            sharpen: Some(true),
+            bend_steps: Some(1),
             ..Default::default()
         };
         if let Ok(mesh) = try_decode(bytes, &post, what) {
@@ -107,14 +107,14 @@ fn samples_decode_and_are_small() {
 #[test]
 fn sharpen_and_bend_on_valid_files() {
     let options = DecodeOptions {
-        sharpen: true,
-        bend_steps: 1,
+        sharpen: Some(true),
+        bend_steps: Some(1),
         ..Default::default()
     };
     for s in samples() {
         // EdgeSharpener may add triangles; each Bender step quadruples.
         let sharpened = DecodeOptions {
-            sharpen: true,
+            sharpen: Some(true),
             ..Default::default()
         };
         let plain = swm::decode(&s.bytes, &sharpened).unwrap();
@@ -441,8 +441,8 @@ fn tight_limits_refuse_a_valid_file() {
         // Bender quadruples the faces: the limits cover its output too.
         let bent = DecodeOptions {
             limits: exact,
-            sharpen: true,
-            bend_steps: 1,
+            sharpen: Some(true),
+            bend_steps: Some(1),
         };
         let what = format!("{} bent within limits of its own size", s.name);
         let e = try_decode(&s.bytes, &bent, &what).expect_err(&what);
@@ -505,8 +505,8 @@ fn too_many_bender_steps_are_refused_by_the_limits() {
     for s in samples() {
         for steps in [20, 40, u32::MAX] {
             let options = DecodeOptions {
-                sharpen: true,
-                bend_steps: steps,
+                sharpen: Some(true),
+                bend_steps: Some(steps),
                 ..Default::default()
             };
             let what = format!("{} with {steps} Bender steps", s.name);

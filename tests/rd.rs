@@ -146,6 +146,7 @@ fn writes_csv_markdown_and_plots() {
                     "baseline",
                     "auto",
                     "swing",
+                    "swing-plain",
                     "swing+sharpen",
                     "swing+sharpen+bend",
                 ]
@@ -316,7 +317,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
         .lines()
         .filter(|l| !l.contains("rows checked"))
         .collect();
-    assert_eq!(verdicts.len(), 24, "{text}");
+    assert_eq!(verdicts.len(), 28, "{text}");
     assert!(verdicts.iter().all(|l| l.starts_with("same ")), "{text}");
 
     // Halve the L2 of the torus's 8 bpv lossless row.
@@ -372,7 +373,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     let out = swm(&["rd", "--check", s(&csv), "--only", "cube", "--json"]);
     let v = json(&out);
     let rows = v.as_array().unwrap();
-    assert_eq!(rows.len(), 12);
+    assert_eq!(rows.len(), 14);
     assert!(rows
         .iter()
         .all(|r| r["mesh"] == "generated:cube" && r["verdict"] == "pass"));

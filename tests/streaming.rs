@@ -37,8 +37,8 @@ fn every_cut_decodes_to_the_whole_file_mesh() {
         for options in [
             DecodeOptions::default(),
             DecodeOptions {
-                sharpen: true,
-                bend_steps: 1,
+                sharpen: Some(true),
+                bend_steps: Some(1),
                 ..Default::default()
             },
         ] {

@@ -7,8 +7,8 @@ use swm::{decode_into_with, decoded_len, DecodeOptions, Error, ParameterError};
 
 fn options(sharpen: bool, bend_steps: u32) -> DecodeOptions {
     DecodeOptions {
-        sharpen,
-        bend_steps,
+        sharpen: Some(sharpen),
+        bend_steps: Some(bend_steps),
         ..Default::default()
     }
 }

@@ -266,6 +266,14 @@ pub struct SwingTuning {
     /// precision and spends the file on the surface (BENCHMARKS.md,
     /// "Starting on a boundary loop").
     pub loop_start: bool,
+    /// Decode the file plain, sharpened, and sharpened and bent once,
+    /// measure each against the input, and record the best in the file
+    /// (the ancillary `post` section, written only when it is not plain)
+    /// for decoders to follow ([`crate::post::hint`]); where
+    /// EdgeSharpener helps, also retile with every tip on the surface
+    /// (as `approximate_tips` and `fit_tips` off) and keep the file
+    /// closer to the input after its hint. Default `true`.
+    pub post_hint: bool,
 }
 
 #[cfg(feature = "encoder")]
@@ -277,24 +285,42 @@ impl Default for SwingTuning {
             adaptive_density: false,
             front_contexts: true,
             loop_start: true,
+            post_hint: true,
         }
     }
 }
 
 /// Options for [`decode`].
+///
+/// Post-processing follows the file's hint (the encoder's measured
+/// choice, [`crate::post::hint`]) in every field left `None`; a file
+/// without a hint decodes plain.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DecodeOptions {
     /// Caps on what the file may make the decoder allocate (Bender's
     /// output included).
     pub limits: Limits,
     /// Run EdgeSharpener on the decoded mesh: restore the sharp edges and
-    /// corners that retiling chamfered (thesis §8.3; no bits in the
-    /// file). Default `false`.
-    pub sharpen: bool,
+    /// corners that retiling chamfered (thesis §8.3). Default `None`:
+    /// as the file's hint says (off without one).
+    pub sharpen: Option<bool>,
     /// Bender steps after that (crease-preserving butterfly subdivision,
     /// thesis §8.4); each multiplies the triangles by four. Without
-    /// `sharpen`, no edge is kept sharp. Default 0.
-    pub bend_steps: u32,
+    /// sharpening, no edge is kept sharp. Default `None`: as the file's
+    /// hint says (0 without one).
+    pub bend_steps: Option<u32>,
+}
+
+impl DecodeOptions {
+    /// Plain decoding whatever the file's hint: neither EdgeSharpener
+    /// nor Bender.
+    pub fn plain() -> Self {
+        DecodeOptions {
+            sharpen: Some(false),
+            bend_steps: Some(0),
+            ..Default::default()
+        }
+    }
 }
 
 #[cfg(feature = "encoder")]
@@ -317,6 +343,9 @@ pub struct EncodeStats {
     pub simplified: Option<SimplifiedStats>,
     /// How the automatic mode chose the method.
     pub choice: Option<MethodChoice>,
+    /// What the encoder measured for the post-processing hint of a
+    /// SwingWrapper file, and what it recommends.
+    pub hint: Option<crate::post::hint::HintReport>,
 }
 
 #[cfg(feature = "encoder")]
@@ -357,6 +386,7 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
                     pieces: Vec::new(),
                     simplified: None,
                     choice: None,
+                    hint: None,
                 },
             })
         }
@@ -457,6 +487,7 @@ pub(crate) fn encode_simplified(
                 l2_relative,
             }),
             choice: None,
+            hint: None,
         },
     })
 }
@@ -481,30 +512,46 @@ pub(crate) fn encode_swing(
         }
         .into());
     }
+    let request = swing_request(target, input_vertices, angle_bits, max_bytes)?;
     let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
-    encode_swing_pieces(
-        &pieces,
-        &cleaned.report,
-        input_vertices,
-        options,
-        target,
-        angle_bits,
+    encode_swing_pieces(&pieces, &cleaned.mesh, &cleaned.report, options, request)
+}
+
+#[cfg(feature = "encoder")]
+/// What a SwingWrapper encode must answer, its numbers checked: bytes
+/// from a size or a rate over `input_vertices` vertices, or an edge
+/// length.
+pub(crate) fn swing_request(
+    target: SwingTarget,
+    input_vertices: usize,
+    angle_bits: Option<u8>,
+    max_bytes: Option<u64>,
+) -> Result<crate::hinted::Request, Error> {
+    Ok(crate::hinted::Request {
+        target: match target {
+            SwingTarget::EdgeLength(l) => Err(positive("edge length", l)?),
+            SwingTarget::Bytes(b) => Ok(positive("size", b as f64)? as u64),
+            SwingTarget::BitsPerVertex(bpv) => {
+                Ok(bytes_for(positive("bits per vertex", bpv)?, input_vertices))
+            }
+        },
         max_bytes,
-    )
+        angle_bits,
+    })
 }
 
 #[cfg(feature = "encoder")]
 /// [`encode_swing`] of the components `pieces` (some of them perhaps
-/// marked to be kept simplified, `Piece::keep`).
+/// marked to be kept simplified, `Piece::keep`) of `input`, the cleaned
+/// mesh the post-processing hint is measured against.
 pub(crate) fn encode_swing_pieces(
     pieces: &[crate::retile::fill::Piece],
+    input: &TriMesh,
     clean: &CleanReport,
-    input_vertices: usize,
     options: &EncodeOptions,
-    target: SwingTarget,
-    angle_bits: Option<u8>,
-    max_bytes: Option<u64>,
+    request: crate::hinted::Request,
 ) -> Result<Encoded, Error> {
+    let (angle_bits, max_bytes) = (request.angle_bits, request.max_bytes);
     use crate::retile::rate;
     let budget = crate::retile::Budget::new(options.limits);
     let knobs = rate::Knobs {
@@ -516,23 +563,13 @@ pub(crate) fn encode_swing_pieces(
         loop_start: options.swing.loop_start,
         framing: options.framing,
     };
-    let at_size = |b: u64| match angle_bits {
-        Some(_) => rate::at_size(pieces, b, max_bytes, knobs, &budget),
-        None => rate::at_size_auto(pieces, b, max_bytes, knobs, &budget),
-    };
-    let chosen = match target {
-        SwingTarget::EdgeLength(l) => {
-            rate::at_length(pieces, positive("edge length", l)?, knobs, &budget)?
-        }
-        SwingTarget::Bytes(b) => {
-            let b = positive("size", b as f64)? as u64;
-            at_size(b)?
-        }
-        SwingTarget::BitsPerVertex(bpv) => {
-            let b = bytes_for(positive("bits per vertex", bpv)?, input_vertices);
-            at_size(b)?
-        }
-    };
+    let mut chosen = request.run(pieces, knobs, &budget)?;
+    let mut hint = None;
+    if options.swing.post_hint {
+        let (c, h) = crate::hinted::finish(pieces, input, chosen, knobs, request, &budget)?;
+        chosen = c;
+        hint = Some(h);
+    }
     if let Some(cap) = max_bytes {
         if chosen.bytes.len() as u64 > cap {
             return Err(crate::RetileError {
@@ -559,6 +596,7 @@ pub(crate) fn encode_swing_pieces(
             pieces: chosen.pieces,
             simplified: None,
             choice: None,
+            hint,
         },
     })
 }
@@ -580,25 +618,30 @@ pub(crate) fn decode_container(
         Mode::Lossless => crate::lossless::decode(file, &options.limits)?,
         Mode::Swing => crate::swing::decode(file, &options.limits)?,
     };
-    sharpen_and_bend(mesh, options)
+    let post = crate::post::hint::resolve(file, options.sharpen, options.bend_steps);
+    sharpen_and_bend(mesh, post, &options.limits)
 }
 
 /// The decoder's optional post-processing: EdgeSharpener, then Bender
 /// with the edges it tagged.
-fn sharpen_and_bend(mesh: TriMesh, options: &DecodeOptions) -> Result<TriMesh, Error> {
-    if !options.sharpen && options.bend_steps == 0 {
+fn sharpen_and_bend(
+    mesh: TriMesh,
+    post: crate::post::hint::PostProcessing,
+    limits: &Limits,
+) -> Result<TriMesh, Error> {
+    if post.is_plain() {
         return Ok(mesh);
     }
-    let (mesh, sharp) = if options.sharpen {
+    let (mesh, sharp) = if post.sharpen {
         let s = crate::post::sharpen::sharpen(&mesh, &Default::default())?;
         (s.mesh, s.sharp)
     } else {
         (mesh, crate::post::SharpEdges::default())
     };
-    let mesh = if options.bend_steps == 0 {
+    let mesh = if post.bend_steps == 0 {
         mesh
     } else {
-        crate::post::bend::bend(&mesh, &sharp, options.bend_steps, &options.limits)?.mesh
+        crate::post::bend::bend(&mesh, &sharp, post.bend_steps, limits)?.mesh
     };
     // A hostile file can place vertices near f32's limit (L about 1e38);
     // snaps and stencils there overflow to infinity. The caller gets an
@@ -628,6 +671,9 @@ pub struct FileInfo {
     /// bits per triangle of connectivity and geometry); `None` for other
     /// modes.
     pub swing: Option<SwingStats>,
+    /// The encoder's post-processing hint (what a default decode runs),
+    /// when the file has one this version understands.
+    pub post: Option<crate::post::hint::PostProcessing>,
 }
 
 /// Reads a file's header and connectivity (CLERS histogram included),
@@ -661,5 +707,6 @@ pub fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> {
         qp,
         stats,
         swing,
+        post: crate::post::hint::read(&file),
     })
 }

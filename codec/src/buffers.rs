@@ -78,12 +78,13 @@ fn bounds(file: &Container<'_>, options: &DecodeOptions) -> Result<DecodedLen, E
         t += rt;
         exact = file.find(Tag::HOLE).is_none();
     }
-    if options.sharpen {
+    let post = crate::post::hint::resolve(file, options.sharpen, options.bend_steps);
+    if post.sharpen {
         v = v.saturating_add(t.saturating_mul(4));
         t = t.saturating_mul(6);
         exact = false;
     }
-    for _ in 0..options.bend_steps {
+    for _ in 0..post.bend_steps {
         if t == u64::MAX {
             break;
         }

@@ -35,6 +35,8 @@ pub mod edgebreaker;
 pub mod entropy;
 mod error;
 pub mod geometry;
+#[cfg(feature = "encoder")]
+mod hinted;
 mod limits;
 mod lossless;
 mod math;
@@ -76,6 +78,9 @@ pub use mesh::{
     VertexId,
 };
 pub use post::bend::{bend, Bent};
+#[cfg(feature = "encoder")]
+pub use post::hint::HintReport;
+pub use post::hint::PostProcessing;
 pub use post::sharpen::{sharpen, SharpenOptions, SharpenReport, Sharpened, Unmoved};
 pub use post::SharpEdges;
 pub use stream::StreamDecoder;

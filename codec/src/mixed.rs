@@ -188,16 +188,13 @@ pub(crate) fn encode(
     for (i, f) in kept {
         pieces[i].keep = Some((f.mesh, f.qp));
     }
-    let target = SwingTarget::Bytes(budget);
-    let encoded = encode_swing_pieces(
-        &pieces,
-        &cleaned.report,
+    let request = crate::api::swing_request(
+        SwingTarget::Bytes(budget),
         input_vertices,
-        options,
-        target,
         None,
         max_bytes.or(Some(budget)),
     )?;
+    let encoded = encode_swing_pieces(&pieces, &cleaned.mesh, &cleaned.report, options, request)?;
     Ok(Some(encoded))
 }
 

@@ -28,8 +28,8 @@ fuzz_target!(|data: &[u8]| {
     } else {
         DecodeOptions {
             limits: TIGHT,
-            sharpen: true,
-            bend_steps: 1,
+            sharpen: Some(true),
+            bend_steps: Some(1),
         }
     };
     if let Ok(mesh) = swm::decode(file, &options) {

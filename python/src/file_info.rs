@@ -121,5 +121,15 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
     };
     d.set_item("framing", framing)?;
     d.set_item("frame_bytes", info.frame_bytes)?;
+    // The encoder's post-processing hint (what a default decode runs).
+    match info.post {
+        Some(p) => {
+            let post = PyDict::new(py);
+            post.set_item("sharpen", p.sharpen)?;
+            post.set_item("bend_steps", p.bend_steps)?;
+            d.set_item("post", post)?;
+        }
+        None => d.set_item("post", py.None())?,
+    }
     Ok(d)
 }

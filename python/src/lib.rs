@@ -312,8 +312,9 @@ fn decode<'py>(
 ) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
     let options = swm::DecodeOptions {
         limits: Limits::to_swm(limits.as_deref()),
-        sharpen: sharpen.unwrap_or(false),
-        bend_steps: bend.unwrap_or(0),
+        // None: as the file's post-processing hint says.
+        sharpen,
+        bend_steps: bend,
     };
     let (mesh, n) = py
         .detach(|| {

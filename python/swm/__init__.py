@@ -211,7 +211,9 @@ def decode(
 
     ``sharpen=True`` restores the sharp edges and corners retiling
     chamfered (EdgeSharpener); ``bend=N`` subdivides N times after that
-    (Bender, four times the triangles per step). ``normals=True`` adds a
+    (Bender, four times the triangles per step). Left ``None``, each
+    follows the file's post-processing hint (``info(data)["post"]``), the
+    encoder's measured choice; a file without one decodes plain. ``normals=True`` adds a
     third array of unit vertex normals. Every byte is treated as hostile:
     a bad file raises :class:`FormatError` (or another :class:`SwmError`)
     and nothing beyond ``limits`` is allocated.

@@ -1,5 +1,5 @@
-//! `swm decode IN.swm -o OUT.(obj|ply|off|stl|glb) [--format F] [--sharpen]
-//! [--bend N] [--max-vertices N] [--max-faces N] [--max-alloc BYTES]
+//! `swm decode IN.swm -o OUT.(obj|ply|off|stl|glb) [--format F]
+//! [--sharpen | --no-sharpen] [--bend N] [--max-vertices N] [--max-faces N] [--max-alloc BYTES]
 //! [--max-input BYTES] [--json]`. IN and OUT may be `-` (standard input
 //! and output, see `pipe`).
 
@@ -22,13 +22,19 @@ pub struct Args {
     /// no extension): obj, ply, off, stl or glb.
     #[arg(long, value_parser = crate::pipe::parse_format)]
     format: Option<swm::io::MeshFormat>,
-    /// Restore sharp edges and corners after decoding (EdgeSharpener).
-    #[arg(long)]
+    /// Restore sharp edges and corners after decoding (EdgeSharpener),
+    /// whatever the file's hint says. Without --sharpen or --no-sharpen,
+    /// the hint decides (`swm info` shows it; plain without one).
+    #[arg(long, conflicts_with = "no_sharpen")]
     sharpen: bool,
+    /// Do not run EdgeSharpener, whatever the file's hint says.
+    #[arg(long)]
+    no_sharpen: bool,
     /// Bender steps after that: crease-preserving butterfly subdivision,
-    /// four times the triangles per step.
-    #[arg(long, value_name = "N", default_value_t = 0)]
-    bend: u32,
+    /// four times the triangles per step [default: the file's hint, 0
+    /// without one].
+    #[arg(long, value_name = "N")]
+    bend: Option<u32>,
     /// Refuse files whose mesh (after Bender) has more vertices than this.
     #[arg(long, value_name = "N")]
     max_vertices: Option<u64>,
@@ -67,8 +73,13 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         swm::io::read_file_with(&args.input, &limits).map(|b| Box::new(b) as Box<_>)
     }
     .map_err(|e| CliError::new(&args.input, e))?;
+    let sharpen = match (args.sharpen, args.no_sharpen) {
+        (true, _) => Some(true),
+        (_, true) => Some(false),
+        _ => None,
+    };
     let options = swm::DecodeOptions {
-        sharpen: args.sharpen,
+        sharpen,
         bend_steps: args.bend,
         limits,
     };

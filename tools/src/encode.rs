@@ -85,6 +85,13 @@ pub struct Args {
     /// connectivity rather than a retiling the decoder drops.
     #[arg(long)]
     inside_start: bool,
+    /// Swing: do not measure EdgeSharpener and Bender on the file nor
+    /// record their best use in it (the `post` hint that `swm decode`
+    /// follows by default), and do not try tips on the surface where
+    /// EdgeSharpener helps; saves three decodes and measures (and, on
+    /// sharp-edged parts, a second rate control).
+    #[arg(long)]
+    no_hint: bool,
     /// How the file's header and section table are laid out: `compact`
     /// (format 1.1: varints and one-byte tags, about 30 bytes fewer) or
     /// `fixed` (format 1.0's layout, for decoders older than 1.1).
@@ -178,6 +185,7 @@ impl Args {
                     (self.adaptive, "--adaptive"),
                     (self.plain_clers, "--plain-clers"),
                     (self.inside_start, "--inside-start"),
+                    (self.no_hint, "--no-hint"),
                     (self.max_work.is_some(), "--max-work"),
                     (self.max_memory.is_some(), "--max-memory"),
                     (self.time_limit.is_some(), "--time-limit"),
@@ -251,6 +259,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             adaptive_density: args.adaptive,
             front_contexts: !args.plain_clers,
             loop_start: !args.inside_start,
+            post_hint: !args.no_hint,
         },
         framing: match args.framing {
             FramingArg::Compact => swm::Framing::Compact,
@@ -348,6 +357,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         if let Some(c) = &stats.choice {
             json["method"] = crate::report::choice_json(c);
         }
+        if let Some(h) = &stats.hint {
+            json["hint"] = serde_json::json!({
+                "sharpen": h.chosen.sharpen,
+                "bend_steps": h.chosen.bend_steps,
+                "plain_l2_relative": h.plain_l2,
+                "sharpen_l2_relative": h.sharpen_l2,
+                "sharpen_bend_l2_relative": h.bend_l2,
+                "tips_on_surface": h.tips_on_surface,
+            });
+        }
         json["check"] = fidelity.map_or(serde_json::Value::Null, |f| f.to_json());
         crate::report::print_json(&json);
         return Ok(());
@@ -391,6 +410,24 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     }
     if let Some(c) = &stats.choice {
         say!("{}", crate::report::choice_line(c));
+    }
+    if let Some(h) = &stats.hint {
+        let chosen = match (h.chosen.sharpen, h.chosen.bend_steps) {
+            (false, 0) => "plain decoding (no hint written)",
+            (true, 0) => "EdgeSharpener",
+            _ => "EdgeSharpener + 1 Bender step",
+        };
+        let tips = if h.tips_on_surface {
+            "; tips aimed on the surface, where EdgeSharpener restores more"
+        } else {
+            ""
+        };
+        say!(
+            "post-processing hint: {chosen} (L2 x 1e-4 of the diagonal: plain {:.3}, sharpened {:.3}, sharpened and bent {:.3}){tips}",
+            1e4 * h.plain_l2,
+            1e4 * h.sharpen_l2,
+            1e4 * h.bend_l2
+        );
     }
     if let Some(s) = &stats.simplified {
         say!(

@@ -99,6 +99,7 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     v["version"] = version(&info).into();
     v["framing"] = framing(&info).into();
     v["frame_bytes"] = info.frame_bytes.into();
+    v["post"] = post_json(&info);
     if args.json {
         crate::report::print_json(&v);
         return Ok(());
@@ -119,8 +120,40 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
         s.file_bytes,
         v["bits_per_triangle"].as_f64().unwrap_or(0.0)
     );
+    print_post(&info);
     print_sections_and_clers(&s.sections, s.triangles, s.clers);
     Ok(())
+}
+
+/// The post-processing hint as JSON: `{"sharpen", "bend_steps"}`, or
+/// null when the file has none (a default decode is then plain).
+fn post_json(info: &swm::FileInfo) -> serde_json::Value {
+    match info.post {
+        Some(p) => serde_json::json!({"sharpen": p.sharpen, "bend_steps": p.bend_steps}),
+        None => serde_json::Value::Null,
+    }
+}
+
+/// The line saying what a default decode runs after decoding.
+fn print_post(info: &swm::FileInfo) {
+    let what = match info.post {
+        None => "none (no hint: swm decode runs neither step unless told)".to_string(),
+        Some(p) if p.is_plain() => "none (the encoder's hint)".to_string(),
+        Some(p) => {
+            let bend = match p.bend_steps {
+                0 => String::new(),
+                1 => " + 1 Bender step".to_string(),
+                n => format!(" + {n} Bender steps"),
+            };
+            let sharpen = if p.sharpen {
+                "EdgeSharpener"
+            } else {
+                "no EdgeSharpener"
+            };
+            format!("{sharpen}{bend} (the encoder's hint; swm decode follows it unless told)")
+        }
+    };
+    say!("  post-processing       {what}");
 }
 
 /// `", x bits/triangle"` for `bits` over `triangles`, or nothing when
@@ -158,6 +191,7 @@ pub fn swing_json(info: &swm::FileInfo, s: &swm::SwingStats) -> serde_json::Valu
     v["version"] = version(info).into();
     v["framing"] = framing(info).into();
     v["frame_bytes"] = info.frame_bytes.into();
+    v["post"] = post_json(info);
     v
 }
 
@@ -262,6 +296,7 @@ fn print_swing(args: &Args, info: &swm::FileInfo, s: &swm::SwingStats) -> Result
             s.rest_bytes
         );
     }
+    print_post(info);
     print_sections_and_clers(&s.sections, s.triangles, s.clers);
     say!("  C or R labels         {:.1}%", 100.0 * s.cr_share);
     say!("  valence-6 vertices    {:.1}%", 100.0 * s.valence6_share);

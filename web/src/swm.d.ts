@@ -11,9 +11,9 @@ export interface Limits {
 }
 
 export interface DecodeOptions {
-  /** Run EdgeSharpener (restores sharp edges and corners). Default false. */
+  /** Run EdgeSharpener (restores sharp edges and corners). Default: as the file's post-processing hint says (false without one). */
   sharpen?: boolean;
-  /** Bender subdivision steps after that; each multiplies the triangles by four. Default 0. */
+  /** Bender subdivision steps after that; each multiplies the triangles by four. Default: the file's hint (0 without one). */
   bendSteps?: number;
   /** Also compute unit angle-weighted vertex normals. Default false. */
   normals?: boolean;

@@ -110,8 +110,8 @@ function asBytes(bytes) {
 
 /**
  * Decodes a `.swm` file. Synchronous; call `await init()` first. Options:
- * `sharpen` (EdgeSharpener, default false), `bendSteps` (Bender steps,
- * default 0), `normals` (unit vertex normals, default false) and
+ * `sharpen` (EdgeSharpener) and `bendSteps` (Bender steps), each by default
+ * as the file's post-processing hint says (off and 0 without one), `normals` (unit vertex normals, default false) and
  * `limits` ({maxVertices, maxFaces, maxAllocBytes}, DEFAULT_LIMITS).
  * Throws an SWMError with the decoder's message on a bad file.
  */
@@ -119,10 +119,11 @@ export function decode(bytes, options = {}) {
   if (!wasm) throw new SWMError('swm: call `await init()` before decode()', 'init');
   bytes = asBytes(bytes);
   const limits = options.limits ?? {};
-  const bend = count('bendSteps', options.bendSteps, 0);
-  if (bend > 0xffffffff) throw new SWMError(`option bendSteps is too large: ${bend}`, 'argument');
+  // -1: the file's hint decides.
+  const bend = count('bendSteps', options.bendSteps, -1);
+  if (bend > 0x7fffffff) throw new SWMError(`option bendSteps is too large: ${bend}`, 'argument');
   const args = [
-    options.sharpen ? 1 : 0,
+    options.sharpen === undefined ? -1 : options.sharpen ? 1 : 0,
     bend,
     options.normals ? 1 : 0,
     count('limits.maxVertices', limits.maxVertices, DEFAULT_LIMITS.maxVertices),

@@ -2,7 +2,10 @@
  * both ways (library-owned arrays, then caller-owned buffers sized by
  * swm_decoded_len), and print the counts.
  *
- *     decode FILE.swm [--sharpen] [--bend N] [--normals]
+ *     decode FILE.swm [--sharpen | --no-sharpen] [--bend N] [--normals]
+ *
+ * Without --sharpen, --no-sharpen or --bend, the file's post-processing
+ * hint decides (the options' default, -1).
  *
  * Prints "vertices V triangles T" and exits 0, or prints
  * "decode: error N: MESSAGE" and exits 1. */
@@ -40,14 +43,15 @@ static int fail(int code) {
 
 int main(int argc, char **argv) {
     if (argc < 2) {
-        fprintf(stderr, "usage: decode FILE.swm [--sharpen] [--bend N] [--normals]\n");
+        fprintf(stderr, "usage: decode FILE.swm [--sharpen | --no-sharpen] [--bend N] [--normals]\n");
         return 2;
     }
     swm_decode_options opts = swm_decode_options_default();
     for (int i = 2; i < argc; i++) {
-        if (!strcmp(argv[i], "--sharpen")) opts.sharpen = true;
+        if (!strcmp(argv[i], "--sharpen")) opts.sharpen = 1;
+        else if (!strcmp(argv[i], "--no-sharpen")) opts.sharpen = 0;
         else if (!strcmp(argv[i], "--normals")) opts.normals = true;
-        else if (!strcmp(argv[i], "--bend") && i + 1 < argc) opts.bend_steps = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--bend") && i + 1 < argc) opts.bend_steps = (int32_t)atoi(argv[++i]);
     }
     size_t len = 0;
     unsigned char *data = read_file(argv[1], &len);

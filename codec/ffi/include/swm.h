@@ -62,14 +62,17 @@
  */
 typedef struct {
   /**
-   * Run EdgeSharpener (restores sharp edges and corners). Default false.
+   * Run EdgeSharpener (restores sharp edges and corners): 1 on, 0 off,
+   * negative as the file's post-processing hint says (off without
+   * one). Default -1.
    */
-  bool sharpen;
+  int32_t sharpen;
   /**
    * Bender subdivision steps after that; each multiplies the triangles
-   * by four. Default 0.
+   * by four. Negative: as the file's hint says (0 without one).
+   * Default -1.
    */
-  uint32_t bend_steps;
+  int32_t bend_steps;
   /**
    * Also compute vertex normals into `swm_mesh.normals` (only
    * `swm_decode_with`). Default false.

@@ -67,11 +67,14 @@ pub struct swm_mesh {
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct swm_decode_options {
-    /// Run EdgeSharpener (restores sharp edges and corners). Default false.
-    pub sharpen: bool,
+    /// Run EdgeSharpener (restores sharp edges and corners): 1 on, 0 off,
+    /// negative as the file's post-processing hint says (off without
+    /// one). Default -1.
+    pub sharpen: i32,
     /// Bender subdivision steps after that; each multiplies the triangles
-    /// by four. Default 0.
-    pub bend_steps: u32,
+    /// by four. Negative: as the file's hint says (0 without one).
+    /// Default -1.
+    pub bend_steps: i32,
     /// Also compute vertex normals into `swm_mesh.normals` (only
     /// `swm_decode_with`). Default false.
     pub normals: bool,
@@ -104,8 +107,8 @@ thread_local! {
 pub extern "C" fn swm_decode_options_default() -> swm_decode_options {
     let limits = Limits::default();
     swm_decode_options {
-        sharpen: false,
-        bend_steps: 0,
+        sharpen: -1,
+        bend_steps: -1,
         normals: false,
         max_vertices: limits.max_vertices,
         max_faces: limits.max_faces,
@@ -339,8 +342,8 @@ fn decode_options(o: &swm_decode_options) -> DecodeOptions {
             // Only file readers use it; the C interface decodes buffers.
             ..Limits::default()
         },
-        sharpen: o.sharpen,
-        bend_steps: o.bend_steps,
+        sharpen: (o.sharpen >= 0).then_some(o.sharpen > 0),
+        bend_steps: u32::try_from(o.bend_steps).ok(),
     }
 }
 

@@ -44,6 +44,10 @@ impl Tag {
     pub const LOOP: Tag = Tag(*b"LOOP");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
+    /// Ancillary (format 1.1). The encoder's post-processing hint:
+    /// whether the decoder should run EdgeSharpener and how many Bender
+    /// steps (format-spec/06-post.md; [`crate::post::hint`]).
+    pub const POST: Tag = Tag(*b"post");
 
     /// Four ASCII letters (`A-Z`, `a-z`)?
     pub const fn is_valid(self) -> bool {
@@ -93,8 +97,9 @@ pub(crate) const KNOWN_CRITICAL: [Tag; 9] = [
     Tag::LOOP,
 ];
 
-/// Ancillary tags of format 1.0. Other ancillary tags are skipped.
-pub(crate) const KNOWN_ANCILLARY: [Tag; 1] = [Tag::META];
+/// Ancillary tags of format 1.0, then those 1.1 added. Other ancillary
+/// tags are skipped.
+pub(crate) const KNOWN_ANCILLARY: [Tag; 2] = [Tag::META, Tag::POST];
 
 impl fmt::Display for Tag {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

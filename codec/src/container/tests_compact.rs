@@ -137,13 +137,13 @@ fn every_registered_tag_has_one_code_and_others_are_literal() {
 
 #[test]
 fn reserved_codes_are_unsupported_and_bad_literals_malformed() {
-    // mode 1, V 4, T 4, C 1, one section with code 11 (the first
-    // reserved one; 10 is LOOP).
-    let b = forge(&[1, 4, 4, 1, 1, 11, 0], &[]);
+    // mode 1, V 4, T 4, C 1, one section with code 12 (the first
+    // reserved one; 11 is `post`).
+    let b = forge(&[1, 4, 4, 1, 1, 12, 0], &[]);
     match parse(&b) {
         Err(Error::Unsupported(e)) => {
-            assert_eq!(e.feature, UnsupportedFeature::SectionCode(11));
-            assert!(e.to_string().contains("tag code 11"), "{e}");
+            assert_eq!(e.feature, UnsupportedFeature::SectionCode(12));
+            assert!(e.to_string().contains("tag code 12"), "{e}");
         }
         other => panic!("{other:?}"),
     }

@@ -10,10 +10,15 @@
 //! edges sharp. Neither costs a bit in the file.
 //!
 //! The tags are the only thing the two steps share: [`SharpEdges`].
+//!
+//! Whether to run them is the caller's choice or, by default, the file's
+//! [`hint`]: the encoder measures both on its own file and records the
+//! better (format 1.1's ancillary `post` section).
 
 use crate::prelude::*;
 
 pub mod bend;
+pub mod hint;
 pub mod sharpen;
 
 /// Undirected edges tagged sharp, as vertex pairs `[lo, hi]` (`lo < hi`),
@@ -72,8 +77,8 @@ mod tests {
         let plain = crate::decode(bytes, &Default::default()).unwrap();
         plain.validate().unwrap();
         let options = crate::DecodeOptions {
-            sharpen: true,
-            bend_steps: 1,
+            sharpen: Some(true),
+            bend_steps: Some(1),
             ..Default::default()
         };
         match crate::decode(bytes, &options) {

@@ -27,8 +27,12 @@ pub enum Config {
     /// encoder measures closer (`--mode auto`).
     Auto,
     /// SwingWrapper as `swm encode` runs it by default, asked for the
-    /// budget and capped at it.
+    /// budget and capped at it, decoded as `swm decode` does by default
+    /// (following the file's post-processing hint).
     Swing,
+    /// The `swing` file decoded plain, whatever its hint says.
+    #[value(name = "swing-plain")]
+    SwingPlain,
     /// `swing` with every tip on the input surface, as the thesis places
     /// them (the ablation of approximating tips).
     #[value(name = "swing-on-surface")]
@@ -47,11 +51,12 @@ pub enum Config {
 
 impl Config {
     /// Every configuration, in table order.
-    pub const ALL: [Config; 8] = [
+    pub const ALL: [Config; 9] = [
         Config::Lossless,
         Config::Baseline,
         Config::Auto,
         Config::Swing,
+        Config::SwingPlain,
         Config::SwingOnSurface,
         Config::SwingAdaptive,
         Config::SwingSharpen,
@@ -73,6 +78,7 @@ impl Config {
             Config::Baseline => "baseline",
             Config::Auto => "auto",
             Config::Swing => "swing",
+            Config::SwingPlain => "swing-plain",
             Config::SwingOnSurface => "swing-on-surface",
             Config::SwingAdaptive => "swing-adaptive",
             Config::SwingSharpen => "swing+sharpen",
@@ -83,9 +89,11 @@ impl Config {
     /// How the decoder post-processes this configuration's files.
     fn decode_options(self) -> swm::DecodeOptions {
         let (sharpen, bend_steps) = match self {
-            Config::SwingSharpen => (true, 0),
-            Config::SwingSharpenBend => (true, 1),
-            _ => (false, 0),
+            Config::SwingPlain => (Some(false), Some(0)),
+            Config::SwingSharpen => (Some(true), Some(0)),
+            Config::SwingSharpenBend => (Some(true), Some(1)),
+            // The file's hint (the decoder's default).
+            _ => (None, None),
         };
         swm::DecodeOptions {
             sharpen,
@@ -102,6 +110,7 @@ impl Config {
             adaptive_density: self == Config::SwingAdaptive,
             front_contexts: true,
             loop_start: true,
+            post_hint: true,
         }
     }
 
@@ -118,6 +127,7 @@ impl Config {
             Config::Baseline => crate::rd::baseline::run(case, budget, samples)?,
             Config::Auto => crate::rd::baseline::run_auto(case, budget, samples)?,
             Config::Swing
+            | Config::SwingPlain
             | Config::SwingOnSurface
             | Config::SwingAdaptive
             | Config::SwingSharpen

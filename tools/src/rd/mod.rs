@@ -100,7 +100,9 @@ Configurations:
             measures closer to the input
   swing     SwingWrapper as swm encode --mode swing runs it (angle bits
             chosen by rate control, approximating tips), asked for the
-            budget and capped at it
+            budget and capped at it, decoded as swm decode does by
+            default (following the file's post-processing hint)
+  swing-plain  the swing file decoded plain, whatever its hint says
   swing+sharpen, swing+sharpen+bend  the swing file decoded with
             EdgeSharpener (and one Bender step)
   swing-on-surface, swing-adaptive  swing with every tip on the input
@@ -362,6 +364,7 @@ fn summary(r: &Row) -> String {
             c.faces,
             match r.config {
                 Config::Swing
+                | Config::SwingPlain
                 | Config::SwingOnSurface
                 | Config::SwingAdaptive
                 | Config::SwingSharpen

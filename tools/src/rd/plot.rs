@@ -26,6 +26,7 @@ fn color(config: Config) -> RGBColor {
         Config::Baseline => RGBColor(60, 180, 75),
         Config::Auto => RGBColor(0, 0, 0),
         Config::Swing => RGBColor(67, 99, 216),
+        Config::SwingPlain => RGBColor(70, 153, 144),
         Config::SwingSharpen => RGBColor(245, 130, 49),
         Config::SwingSharpenBend => RGBColor(145, 30, 180),
         Config::SwingOnSurface => RGBColor(66, 212, 244),

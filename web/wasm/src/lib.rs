@@ -123,8 +123,11 @@ pub unsafe extern "C" fn swm_free(p: *mut u8, len: usize) {
     }
 }
 
-/// Decodes `len` bytes at `data`. `sharpen` and `normals` are booleans
-/// (non-zero: on); `bend_steps` as `swm::DecodeOptions`. The limits are
+/// Decodes `len` bytes at `data`. `sharpen`: negative follows the file's
+/// post-processing hint, 0 off, positive on; `bend_steps`: negative
+/// follows the hint, otherwise the steps (`swm::DecodeOptions`, whose
+/// `None` is the negative value here); `normals` is a boolean (non-zero:
+/// on). The limits are
 /// `swm::Limits` as numbers, the host's native type (a JavaScript number
 /// holds every integer up to 2^53; larger values saturate). Never NULL:
 /// memory exhausted inside the decoder aborts, which traps on wasm32 and
@@ -137,8 +140,8 @@ pub unsafe extern "C" fn swm_free(p: *mut u8, len: usize) {
 pub unsafe extern "C" fn swm_decode(
     data: *const u8,
     len: usize,
-    sharpen: u32,
-    bend_steps: u32,
+    sharpen: i32,
+    bend_steps: i32,
     normals: u32,
     max_vertices: f64,
     max_faces: f64,
@@ -154,8 +157,8 @@ pub unsafe extern "C" fn swm_decode(
         Some(limits) => {
             let options = DecodeOptions {
                 limits,
-                sharpen: sharpen != 0,
-                bend_steps,
+                sharpen: (sharpen >= 0).then_some(sharpen > 0),
+                bend_steps: u32::try_from(bend_steps).ok(),
             };
             decode(bytes, &options, normals != 0)
         }

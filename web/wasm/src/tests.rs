@@ -11,7 +11,8 @@ fn golden(name: &str) -> Vec<u8> {
 
 /// Copies `bytes` into a block from `swm_alloc`, as the glue does, and
 /// decodes them.
-fn call(bytes: &[u8], sharpen: bool, bend: u32, normals: bool, limits: [f64; 3]) -> *mut Output {
+/// `sharpen`, `bend`: negative follows the file's hint, as in the glue.
+fn call(bytes: &[u8], sharpen: i32, bend: i32, normals: bool, limits: [f64; 3]) -> *mut Output {
     let p = swm_alloc(bytes.len());
     assert!(!p.is_null());
     // SAFETY: the block holds `bytes.len()` bytes.
@@ -20,7 +21,7 @@ fn call(bytes: &[u8], sharpen: bool, bend: u32, normals: bool, limits: [f64; 3])
         let out = swm_decode(
             p,
             bytes.len(),
-            sharpen.into(),
+            sharpen,
             bend,
             normals.into(),
             limits[0],
@@ -66,12 +67,12 @@ fn golden_files_decode_as_the_library_does() {
         ("lossless-compact-v1.1.swm", 0, 1),
     ] {
         let bytes = golden(name);
-        for (sharpen, bend, normals) in [(false, 0, false), (true, 1, true)] {
+        for (sharpen, bend, normals) in [(-1, -1, false), (0, 0, false), (1, 1, true)] {
             let expected = swm::decode(
                 &bytes,
                 &DecodeOptions {
-                    sharpen,
-                    bend_steps: bend,
+                    sharpen: (sharpen >= 0).then_some(sharpen > 0),
+                    bend_steps: u32::try_from(bend).ok(),
                     ..Default::default()
                 },
             )
@@ -125,7 +126,7 @@ fn errors_carry_the_status_and_the_library_message() {
         ),
     ];
     for (input, limits, status, text) in cases {
-        let out = call(input, false, 0, false, limits);
+        let out = call(input, 0, 0, false, limits);
         // SAFETY: `swm_decode` returns a valid Output.
         let o = unsafe { &*out };
         assert_eq!(o.status, status, "{}", message(o));
