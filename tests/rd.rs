@@ -33,7 +33,8 @@ fn notes(out: &Output, what: &str) -> Vec<String> {
 
 /// On a closed genus-0 mesh a swing row is `ok` (a file within the
 /// budget, at the angle bits rate control chose: 6 or 5, or 7 when 6
-/// fell short of the size), `infeasible` (no file fits) or `failed` (the
+/// fell short of the size; up to two more for a file whose tips were
+/// aimed on the surface for EdgeSharpener, `hinted`), `infeasible` (no file fits) or `failed` (the
 /// retiler gave up, which `swm rd` says on stderr), never `n/a`. Which
 /// of the three is the retiler's business, not the harness's: the
 /// committed tables ratchet it.
@@ -44,7 +45,10 @@ fn check_swing_row(out: &Output, key: &str, status: &str, bytes: &str, budget: &
                 bytes.parse::<u64>().unwrap() <= budget.parse::<u64>().unwrap(),
                 "{key}: {bytes} bytes over {budget}"
             );
-            assert!(["5", "6", "7"].contains(&qp), "{key}: angle bits {qp}");
+            assert!(
+                ["5", "6", "7", "8", "9"].contains(&qp),
+                "{key}: angle bits {qp}"
+            );
         }
         "infeasible" => {}
         "failed" => {

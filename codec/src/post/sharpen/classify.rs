@@ -6,6 +6,15 @@
 //! 2. a triangle with a red vertex is red;
 //! 3. red floods across brown edges;
 //!
+//!    (swm's rule, not the thesis's: only into triangles whose normal
+//!    is within the smooth threshold 2ε of the normal of the triangle
+//!    the flood started from. Consecutive triangles of a chamfer strip
+//!    are alike, so the edges between them are brown; where one strip
+//!    triangle is nearly flat the thesis's flood enters the strip and
+//!    paints all of it red, and the crease is never restored. On the
+//!    generated cube at L = 0.08: centroid RMS error after sharpening
+//!    0.00180 → 0.00111, largest 0.0229 → 0.0159; fandisk 0.91-0.98x L2.)
+//!
 //!    3bis. the endpoints of a non-brown edge between two red triangles
 //!    are tagged, and so is a vertex whose red triangles form two or more
 //!    separate runs around it (a non-manifold red neighbourhood);
@@ -135,7 +144,13 @@ pub(super) fn classify(table: &CornerTable, normals: &[Vec3], smooth_factor: f64
         })
         .collect();
 
-    // Filter 3: depth-first flood across brown edges from each core face.
+    // Filter 3: depth-first flood across brown edges from each core
+    // face, into faces whose normal is within the smooth threshold of
+    // the core face's (swm's rule, module docs: a chamfer strip's faces
+    // are alike, so the edges between them are brown, and an unbounded
+    // flood that reaches one paints the whole strip red). With t = 0
+    // nothing is brown and nothing floods.
+    let cos_flood = cos_threshold.min(1.0);
     let mut stack: Vec<u32> = Vec::new();
     for f0 in 0..nf {
         if red[f0] != 1 {
@@ -143,6 +158,7 @@ pub(super) fn classify(table: &CornerTable, normals: &[Vec3], smooth_factor: f64
         }
         red[f0] = 2;
         stack.push(f0 as u32);
+        let seed = normals[f0];
         while let Some(f) = stack.pop() {
             for c in 3 * f as usize..3 * f as usize + 3 {
                 // The face across a brown edge with a red endpoint is red
@@ -155,7 +171,7 @@ pub(super) fn classify(table: &CornerTable, normals: &[Vec3], smooth_factor: f64
                 }
                 // A brown edge is interior.
                 let g = face(os[c].idx());
-                if red[g] == 0 {
+                if red[g] == 0 && normals[g].dot(seed) > cos_flood {
                     red[g] = 2;
                     stack.push(g as u32);
                 }

@@ -14,7 +14,9 @@
 //!    that snapping makes where four or more sharp edges meet, and any the
 //!    input had) are removed by edge collapses.
 //!
-//! One rule is not in the thesis nor the notes: a new vertex also stays
+//! Two rules are not in the thesis nor the notes. The colouring's flood
+//! is bounded by the normal of the face it starts from (`classify`: the
+//! thesis's flood paints whole chamfer strips smooth). And a new vertex also stays
 //! unmoved when snapping would move it farther than
 //! [`SharpenOptions::max_snap_ratio`] times its chamfer edge. Thin wedges
 //! (the fandisk's slab, narrower than three samples) and blends smaller
