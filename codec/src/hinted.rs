@@ -127,21 +127,20 @@ pub(crate) fn finish(
     // Rate control's angle bits first; then, when the caller left them
     // to it, one more at a time while that lowers the error, up to
     // MORE_ANGLE_BITS more.
-    let mut tries = vec![request];
-    let mut k0 = None;
+    let mut k0: Option<u8> = None;
     for k in 0..=MORE_ANGLE_BITS {
-        if k > 0 {
-            let Some(k0) = k0 else { break };
-            let bits = k0 + k;
-            if request.angle_bits.is_some() || bits > crate::swing::MAX_ANGLE_BITS {
-                break;
+        let attempt = match (k, k0) {
+            (0, _) => request,
+            (_, Some(k0))
+                if request.angle_bits.is_none() && k0 + k <= crate::swing::MAX_ANGLE_BITS =>
+            {
+                Request {
+                    angle_bits: Some(k0 + k),
+                    ..request
+                }
             }
-            tries.push(Request {
-                angle_bits: Some(bits),
-                ..request
-            });
-        }
-        let attempt = tries[k as usize];
+            _ => break,
+        };
         let knobs = Knobs {
             angle_bits: attempt.angle_bits.unwrap_or(on_surface.angle_bits),
             ..on_surface
