@@ -71,7 +71,7 @@ fn bunny_1m(c: &mut Criterion) {
     let mesh = swm::io::read_mesh(&dir.join("bunny-1m.ply")).expect("read bunny-1m");
     let triangles = mesh.face_count() as u64;
     let bytes = swm::encode(&mesh, &options()).unwrap().bytes;
-    let decode_options = DecodeOptions::default();
+    let decode_options = DecodeOptions::plain();
 
     let mut g = c.benchmark_group("lossless/bunny-1m");
     g.sample_size(10);
@@ -181,7 +181,7 @@ fn smaller_meshes(c: &mut Criterion) {
         g.throughput(Throughput::Elements(mesh.face_count() as u64));
         g.bench_function(name, |b| {
             b.iter(|| {
-                let m = swm::decode(black_box(&bytes), &DecodeOptions::default()).unwrap();
+                let m = swm::decode(black_box(&bytes), &DecodeOptions::plain()).unwrap();
                 black_box(m.face_count())
             })
         });

@@ -128,7 +128,7 @@ fn run(c: &mut Criterion, name: &str, mesh: &TriMesh) {
     let encoded = swm::encode(mesh, &options(1.0)).expect("encode at 1 b/v");
     let l = encoded.stats.rate.as_ref().unwrap().edge_length;
     let out = encoded.stats.swing.as_ref().unwrap().triangles;
-    let decode_options = DecodeOptions::default();
+    let decode_options = DecodeOptions::plain();
 
     let mut g = c.benchmark_group("swing-encode");
     g.sample_size(10);

@@ -52,7 +52,7 @@ fn viewer(c: &mut Criterion) {
             encoded(&dir, "bunny-1m.ply", swing(4.0)),
         ),
     ];
-    let options = DecodeOptions::default();
+    let options = DecodeOptions::plain();
     let mut g = c.benchmark_group("viewer-decode");
     g.sample_size(10);
     for (name, bytes) in &inputs {
