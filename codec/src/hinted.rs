@@ -230,8 +230,7 @@ fn noted(mut chosen: Chosen, post: PostProcessing, request: Request) -> Chosen {
             .push((crate::container::Tag::POST.0, payload));
         chosen.stats.file_bytes = chosen.bytes.len();
         if let Ok(b) = request.target {
-            let miss = (chosen.bytes.len() as f64 - b as f64).abs();
-            chosen.report.within_tolerance = miss <= rate::TOLERANCE * b as f64;
+            chosen.report.within_tolerance = rate::within_tolerance(chosen.bytes.len() as u64, b);
         }
     }
     chosen

@@ -24,6 +24,12 @@ use crate::Error;
 
 /// Relative size error accepted without further runs.
 pub const TOLERANCE: f64 = 0.03;
+
+/// Whether a file of `size` bytes answers a request for `target`: within
+/// [`TOLERANCE`] of it either way.
+pub fn within_tolerance(size: u64, target: u64) -> bool {
+    (size as f64 - target as f64).abs() <= TOLERANCE * target as f64
+}
 /// Runs at most (each is a full retiling).
 const MAX_RUNS: usize = 16;
 
@@ -336,7 +342,7 @@ fn search(
                 if better {
                     best = Some((l, done));
                 }
-                if (size as f64 - target as f64).abs() <= TOLERANCE * target as f64 && size <= cap {
+                if within_tolerance(size, target) && size <= cap {
                     break;
                 }
                 if (size as f64) < aim {
@@ -377,14 +383,13 @@ fn search(
     let (edge_length, (bytes, stats, pieces)) = best
         .filter(|(_, b)| b.0.len() as u64 <= cap)
         .ok_or_else(|| infeasible(&attempts))?;
-    let size = bytes.len() as f64;
     let first_failed = attempts.first().is_some_and(|a| a.outcome.is_err());
     Ok(Chosen {
         report: RateReport {
             requested_bytes: Some(target),
             edge_length,
             reduced: first_failed,
-            within_tolerance: (size - target as f64).abs() <= TOLERANCE * target as f64,
+            within_tolerance: within_tolerance(bytes.len() as u64, target),
             work: budget.used(),
             peak_memory_bytes: budget.peak_memory(),
             attempts,
