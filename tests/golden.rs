@@ -283,6 +283,7 @@ fn golden_swing_options() -> EncodeOptions {
             adaptive_density: false,
             front_contexts: false,
             loop_start: false,
+            crease_tips: false,
             post_hint: false,
         },
         // The golden files predate the compact framing (format 1.1).
@@ -380,6 +381,7 @@ fn golden_adaptive_options() -> EncodeOptions {
             adaptive_density: true,
             front_contexts: false,
             loop_start: false,
+            crease_tips: false,
             post_hint: false,
         },
         // The golden files predate the compact framing (format 1.1).
@@ -536,6 +538,7 @@ fn golden_loop_options() -> EncodeOptions {
             adaptive_density: false,
             front_contexts: true,
             loop_start: true,
+            crease_tips: false,
             post_hint: false,
         },
         ..EncodeOptions::default()
@@ -651,6 +654,7 @@ fn golden_post_options() -> EncodeOptions {
             adaptive_density: false,
             front_contexts: true,
             loop_start: true,
+            crease_tips: false,
             post_hint: true,
         },
         ..EncodeOptions::default()
@@ -708,5 +712,82 @@ fn swing_post_v1_1_reencodes_to_the_same_bytes() {
     assert_eq!(
         encoded.bytes, SWING_POST_V1_1,
         "re-encoding the golden box no longer gives golden/swing-post-v1.1.swm"
+    );
+}
+
+// --- Format 1.1: tips on creases (RADS) ---
+
+const SWING_CREASE_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-crease-v1.1.swm");
+
+/// The test vector of format-spec/05-swing.md ("Golden file", RADS).
+const SWING_CREASE_V1_1_FNV1A64: u64 = 0x14FE_1EB9_1EB8_A9CC;
+
+fn golden_crease_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: swm::SwingTarget::EdgeLength(0.3),
+            angle_bits: Some(8),
+            max_bytes: None,
+        },
+        swing: swm::SwingTuning {
+            approximate_tips: false,
+            fit_tips: false,
+            adaptive_density: false,
+            front_contexts: true,
+            loop_start: true,
+            crease_tips: true,
+            post_hint: false,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+/// Writes the RADS golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_swing_crease_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_swing_crease_v1_1_golden() {
+    let options = golden_crease_options();
+    write_golden("swing-crease-v1.1.swm", &golden_box(), &options);
+    let encoded = swm::encode(&golden_box(), &options).unwrap();
+    let mesh = swm::decode(&encoded.bytes, &DecodeOptions::plain()).unwrap();
+    println!(
+        "{} bytes: {} vertices, {} triangles, hash {:#018X}; sections {:?}",
+        encoded.bytes.len(),
+        mesh.positions.len(),
+        mesh.triangles.len(),
+        mesh_hash(&mesh),
+        encoded.stats.swing.map(|s| s.sections)
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads the
+/// RADS section of format 1.1 as specified.
+#[test]
+fn swing_crease_v1_1_decodes_to_its_test_vector() {
+    let info = swm::inspect(SWING_CREASE_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    let swing = info.swing.expect("a SwingWrapper file");
+    let tags: Vec<&[u8; 4]> = swing.sections.iter().map(|(t, _)| t).collect();
+    assert!(
+        tags.contains(&b"RADS") && tags.contains(&b"CLRF"),
+        "{tags:?}"
+    );
+    let mesh = swm::decode(SWING_CREASE_V1_1, &DecodeOptions::default())
+        .expect("golden file swing-crease-v1.1.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        SWING_CREASE_V1_1_FNV1A64,
+        "decoded mesh differs from format-spec/05-swing.md's test vector"
+    );
+}
+
+/// The encoder still writes the RADS golden bytes from the golden box.
+#[test]
+fn swing_crease_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_box(), &golden_crease_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_CREASE_V1_1,
+        "re-encoding the golden box no longer gives golden/swing-crease-v1.1.swm"
     );
 }

@@ -26,6 +26,7 @@ fn retiled(mesh: &TriMesh, target: swm::SwingTarget) -> TriMesh {
             adaptive_density: false,
             front_contexts: true,
             loop_start: true,
+            crease_tips: false,
             post_hint: false,
         },
         ..Default::default()

@@ -274,6 +274,17 @@ pub struct SwingTuning {
     /// (as `approximate_tips` and `fit_tips` off) and keep the file
     /// closer to the input after its hint. Default `true`.
     pub post_hint: bool,
+    /// Where the input has sharp edges, also try tips on them: a tip
+    /// whose gate's bisecting plane crosses a crease near its circle sits
+    /// on the crossing, off the circle by a radius code (`RADS`, format
+    /// 1.1; `retile::crease`), so the retiled mesh has edges along the
+    /// crease instead of chamfering it. Only where the input's creases
+    /// (edges turning by more than 45°) total at least its bounding-box
+    /// diagonal: then a size or rate request with `post_hint` on is
+    /// encoded both ways and the file that decodes closer after its hint
+    /// is kept (`crate::hinted`); an edge-length request, or one without
+    /// the hint, uses them. Default `true`.
+    pub crease_tips: bool,
 }
 
 #[cfg(feature = "encoder")]
@@ -285,6 +296,7 @@ impl Default for SwingTuning {
             adaptive_density: false,
             front_contexts: true,
             loop_start: true,
+            crease_tips: true,
             post_hint: true,
         }
     }
@@ -553,6 +565,12 @@ pub(crate) fn encode_swing_pieces(
 ) -> Result<Encoded, Error> {
     let (angle_bits, max_bytes) = (request.angle_bits, request.max_bytes);
     use crate::retile::rate;
+    // Tips on creases where the input has enough of them: tried against
+    // the plain retiling for a size request whose hint is measured (the
+    // measure decides), used outright otherwise.
+    let creased =
+        options.swing.crease_tips && crate::retile::crease_length(input) >= input.bbox_diagonal();
+    let measured = options.swing.post_hint && request.target.is_ok();
     let budget = crate::retile::Budget::new(options.limits);
     let knobs = rate::Knobs {
         angle_bits: angle_bits.unwrap_or(DEFAULT_ANGLE_BITS),
@@ -561,12 +579,21 @@ pub(crate) fn encode_swing_pieces(
         adaptive_density: options.swing.adaptive_density,
         front_contexts: options.swing.front_contexts,
         loop_start: options.swing.loop_start,
+        crease_tips: creased && !measured,
         framing: options.framing,
     };
     let mut chosen = request.run(pieces, knobs, &budget)?;
     let mut hint = None;
     if options.swing.post_hint {
-        let (c, h) = crate::hinted::finish(pieces, input, chosen, knobs, request, &budget)?;
+        let (c, h) = crate::hinted::finish(
+            pieces,
+            input,
+            chosen,
+            knobs,
+            request,
+            creased && measured,
+            &budget,
+        )?;
         chosen = c;
         hint = Some(h);
     }

@@ -15,12 +15,23 @@
 //! and EdgeSharpener does not help. So:
 //!
 //! ```text
-//!  file A (the options' tips) ──► hint A ── EdgeSharpener helps? ──no──► A
+//!  file A (the options' tips) ──► hint A
+//!  file A′ (A's tips, and tips on creases) ──► hint A′     input creased?
+//!         the lower L2 after its hint is A (A on a tie) ◄──┘
+//!                                  │
+//!                                  └─ EdgeSharpener helps? ──no──► A
 //!                                                 │ yes
-//!  file B (tips on the surface, same request) ──► hint B
+//!  file B (tips on the surface, A's crease choice, same request) ──► hint B
 //!                                                 ▼
 //!               the lower L2 after each one's hint (A on a tie)
 //! ```
+//!
+//! Tips on creases (`retile::crease`, `RADS`) are tried only where the
+//! caller allows them and the input's creases total at least its
+//! bounding-box diagonal (`api::encode_swing_pieces`); they cost bytes
+//! (a radius code per crease tip) and on coarse retilings of rounded
+//! parts can place tips on creases too small to matter, so the measure
+//! decides, as for the aim.
 //!
 //! File B is tried at rate control's angle bits and then, while that
 //! lowers the error, with one more ([`MORE_ANGLE_BITS`] at most): rate
@@ -99,31 +110,52 @@ impl Request {
 /// a size or rate request where EdgeSharpener helps and tips were aimed
 /// off the surface, also the file with tips on the surface, keeping the
 /// better (module docs).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn finish(
     pieces: &[Piece],
     input: &TriMesh,
     first: Chosen,
     knobs: Knobs,
     request: Request,
+    creases: bool,
     budget: &Budget,
 ) -> Result<(Chosen, HintReport), Error> {
     let reference = Surface::new(input)?;
     let (a, hint_a) = hinted(pieces, first, knobs, request, budget, &reference)?;
-    let fitted = knobs.approximate_tips || knobs.fit_tips;
-    if !hint_a.chosen.sharpen || !fitted || request.target.is_err() {
-        return Ok((a, hint_a));
-    }
-    let on_surface = Knobs {
-        approximate_tips: false,
-        fit_tips: false,
-        ..knobs
-    };
     let first_len = a.bytes.len() as u64;
     let fits = |c: &Chosen| match request.target {
         Ok(t) => c.bytes.len() as u64 <= request.limit(t).max(first_len),
         Err(_) => true,
     };
     let mut best = (a, hint_a);
+    // Tips on creases (`creases`: the input has enough of them to matter):
+    // the same request once more, kept if it decodes closer after its
+    // hint.
+    let knobs = if creases && request.target.is_ok() {
+        let with = Knobs {
+            crease_tips: true,
+            ..knobs
+        };
+        match try_file(pieces, with, request, budget, &reference)? {
+            Some((b, mut h)) if fits(&b) && h.l2_after() < best.1.l2_after() => {
+                h.crease_tips = true;
+                best = (b, h);
+                with
+            }
+            _ => knobs,
+        }
+    } else {
+        knobs
+    };
+    let fitted = knobs.approximate_tips || knobs.fit_tips;
+    if !best.1.chosen.sharpen || !fitted || request.target.is_err() {
+        return Ok(best);
+    }
+    let on_surface = Knobs {
+        approximate_tips: false,
+        fit_tips: false,
+        ..knobs
+    };
     // Rate control's angle bits first; then, when the caller left them
     // to it, one more at a time while that lowers the error, up to
     // MORE_ANGLE_BITS more.
@@ -155,6 +187,7 @@ pub(crate) fn finish(
         let (b, mut hint_b) = hinted(pieces, b, knobs, attempt, budget, &reference)?;
         if fits(&b) && hint_b.l2_after() < best.1.l2_after() {
             hint_b.tips_on_surface = true;
+            hint_b.crease_tips = knobs.crease_tips;
             best = (b, hint_b);
         } else if k > 0 {
             // Finer angles stopped paying: coarser sampling costs more
@@ -163,6 +196,22 @@ pub(crate) fn finish(
         }
     }
     Ok(best)
+}
+
+/// Rate control's file for `request` with `knobs`, hinted; `None` when
+/// no retiling answers it.
+fn try_file(
+    pieces: &[Piece],
+    knobs: Knobs,
+    request: Request,
+    budget: &Budget,
+    reference: &Surface,
+) -> Result<Option<(Chosen, HintReport)>, Error> {
+    match request.run(pieces, knobs, budget) {
+        Ok(b) => hinted(pieces, b, knobs, request, budget, reference).map(Some),
+        Err(Error::Retile(_) | Error::Size(_)) => Ok(None),
+        Err(e) => Err(e),
+    }
 }
 
 /// `chosen` with its hint measured and written. The hint's few bytes

@@ -92,6 +92,11 @@ pub struct Args {
     /// sharp-edged parts, a second rate control).
     #[arg(long)]
     no_hint: bool,
+    /// Swing: do not try tips on the input's sharp edges (radius codes,
+    /// format 1.1; tried where the creases total at least the bounding
+    /// box's diagonal, and kept when that file decodes closer).
+    #[arg(long)]
+    no_creases: bool,
     /// How the file's header and section table are laid out: `compact`
     /// (format 1.1: varints and one-byte tags, about 30 bytes fewer) or
     /// `fixed` (format 1.0's layout, for decoders older than 1.1).
@@ -186,6 +191,7 @@ impl Args {
                     (self.plain_clers, "--plain-clers"),
                     (self.inside_start, "--inside-start"),
                     (self.no_hint, "--no-hint"),
+                    (self.no_creases, "--no-creases"),
                     (self.max_work.is_some(), "--max-work"),
                     (self.max_memory.is_some(), "--max-memory"),
                     (self.time_limit.is_some(), "--time-limit"),
@@ -259,6 +265,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             adaptive_density: args.adaptive,
             front_contexts: !args.plain_clers,
             loop_start: !args.inside_start,
+            crease_tips: !args.no_creases,
             post_hint: !args.no_hint,
         },
         framing: match args.framing {
@@ -365,6 +372,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 "sharpen_l2_relative": h.sharpen_l2,
                 "sharpen_bend_l2_relative": h.bend_l2,
                 "tips_on_surface": h.tips_on_surface,
+                "crease_tips": h.crease_tips,
             });
         }
         json["check"] = fidelity.map_or(serde_json::Value::Null, |f| f.to_json());
@@ -417,11 +425,15 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             (true, 0) => "EdgeSharpener",
             _ => "EdgeSharpener + 1 Bender step",
         };
-        let tips = if h.tips_on_surface {
+        let mut tips = if h.tips_on_surface {
             "; tips aimed on the surface, where EdgeSharpener restores more"
         } else {
             ""
-        };
+        }
+        .to_string();
+        if h.crease_tips {
+            tips.push_str("; tips on the input's creases");
+        }
         say!(
             "post-processing hint: {chosen} (L2 x 1e-4 of the diagonal: plain {:.3}, sharpened {:.3}, sharpened and bent {:.3}){tips}",
             1e4 * h.plain_l2,

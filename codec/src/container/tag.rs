@@ -42,6 +42,10 @@ impl Tag {
     /// whose retiling starts on a loop of the input, and the residuals
     /// that place the loop's points (format-spec/05-swing.md).
     pub const LOOP: Tag = Tag(*b"LOOP");
+    /// Critical (format 1.1). SwingWrapper radius codes: one per C tip,
+    /// moving it along its gate's bisecting plane, off the circle, onto a
+    /// crease of the input (format-spec/05-swing.md).
+    pub const RADS: Tag = Tag(*b"RADS");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
     /// Ancillary (format 1.1). The encoder's post-processing hint:
@@ -85,7 +89,7 @@ impl Tag {
 /// any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
 /// (At most 16: the parser keeps them in a `u16`.)
-pub(crate) const KNOWN_CRITICAL: [Tag; 9] = [
+pub(crate) const KNOWN_CRITICAL: [Tag; 10] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -95,6 +99,7 @@ pub(crate) const KNOWN_CRITICAL: [Tag; 9] = [
     Tag::DENS,
     Tag::CLRF,
     Tag::LOOP,
+    Tag::RADS,
 ];
 
 /// Ancillary tags of format 1.0, then those 1.1 added. Other ancillary

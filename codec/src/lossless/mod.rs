@@ -303,12 +303,19 @@ pub(crate) fn read_connectivity(
     limits: &Limits,
 ) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
     // Critical sections of the SwingWrapper mode mean nothing here.
-    for tag in [Tag::HOLE, Tag::REST, Tag::DENS, Tag::CLRF] {
+    for tag in [
+        Tag::HOLE,
+        Tag::REST,
+        Tag::DENS,
+        Tag::CLRF,
+        Tag::LOOP,
+        Tag::RADS,
+    ] {
         if file.find(tag).is_some() {
             return Err(crate::FormatError::new(
                 "SWM",
                 crate::Malformed::BadSyntax(
-                    "a lossless file has a HOLE, REST, DENS or CLRF section",
+                    "a lossless file has a HOLE, REST, DENS, CLRF, LOOP or RADS section",
                 ),
             )
             .into());

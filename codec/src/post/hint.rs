@@ -138,6 +138,10 @@ mod encoder {
         /// offset and fit: EdgeSharpener restored more from them
         /// (`crate::hinted`).
         pub tips_on_surface: bool,
+        /// The file's tips sit on the input's creases where a gate's
+        /// plane crosses one (`retile::crease`): that file decoded closer
+        /// after its hint (`crate::hinted`).
+        pub crease_tips: bool,
     }
 
     impl HintReport {
@@ -196,6 +200,7 @@ mod encoder {
             sharpen_l2,
             bend_l2,
             tips_on_surface: false,
+            crease_tips: false,
         })
     }
 

@@ -328,6 +328,7 @@ impl Retiler<'_> {
             self.symbols.push(Symbol::C);
             self.codes.push(0);
             self.steps.push(0);
+            self.stretch.push(0);
             self.loop_codes.push(codes[k - 2]);
             self.front.apply_c(gr, id);
         }

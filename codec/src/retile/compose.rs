@@ -90,6 +90,7 @@ pub fn retile_pieces(
         codes: Vec::new(),
         edge_length: opt.edge_length,
         steps: Vec::new(),
+        stretch: Vec::new(),
         hole_mask: Vec::new(),
         rest: None,
         loops: Default::default(),
@@ -272,6 +273,7 @@ fn append(out: &mut Retiled, r: Retiled, mask: Vec<bool>) {
     out.symbols.extend(r.symbols);
     out.codes.extend(r.codes);
     out.steps.extend(r.steps);
+    out.stretch.extend(r.stretch);
     out.hole_mask.extend(mask);
 }
 

@@ -27,7 +27,7 @@ use super::surface::NONE;
 use super::walk::Plane;
 use super::{Failure, Gate, Retiler};
 use crate::edgebreaker::Symbol;
-use crate::swing::{gate_level, level_ratio, quantize, Frame};
+use crate::swing::{gate_level, level_ratio, quantize, stretch_apply, stretch_code, Frame};
 use glam::DVec3;
 
 /// The thesis's snap radius, in L (surface distance from the candidate).
@@ -74,6 +74,7 @@ impl Retiler<'_> {
         };
         let t = self.xhat[tip as usize];
         let (hits, crossing) = self.circle(vl, vr, plane, centre);
+        let crossing_face = crossing.map(|(c, p)| (super::surface::face(c), p));
         // The thesis keeps the hit farther from the previous tip T. After
         // snaps T can sit beside the gate rather than behind it, so the
         // side is first judged by the surface itself: the free side of
@@ -90,7 +91,14 @@ impl Retiler<'_> {
                 .flatten()
                 .max_by(|a, b| a.0.distance_squared(t).total_cmp(&b.0.distance_squared(t))),
         };
-        if let Some((v, f)) = tip_point {
+        // A crease crossing the plane near the circle takes the tip
+        // (`crease`): it is then on the crease, off the circle.
+        let on_crease = match (tip_point, crossing) {
+            (Some((v, _)), Some(c)) if self.creases => self.crease_tip(plane, centre, c, v),
+            _ => None,
+        };
+        let crease = on_crease.is_some();
+        if let Some((v, f)) = on_crease.or(tip_point) {
             // Ears: a loop neighbour of the gate that makes a sharp angle
             // with it on the free side is closed at once (an R or an L).
             // The thesis's L/2 snap alone leaves such spikes, and the
@@ -107,7 +115,7 @@ impl Retiler<'_> {
                     if let Some(out) = self.try_snap((gr, tip), w, id, true) {
                         return Ok(out);
                     }
-                } else if let Some(gate) = self.try_c(gr, gl, tip, v, f, id) {
+                } else if let Some(gate) = self.try_c(gr, gl, tip, (v, f), crease, id) {
                     return Ok((Some(gate), None));
                 }
             }
@@ -126,7 +134,7 @@ impl Retiler<'_> {
         // with the border vertices nearest to the gate itself, and last
         // with the gate's loop neighbours (an L or an R always shortens
         // the loop where it is).
-        if let Some((f, p)) = crossing {
+        if let Some((f, p)) = crossing_face {
             for w in self.snap(gr, f, p, FORCED_SNAP * self.l, SNAP_TRIES) {
                 if let Some(out) = self.try_snap((gr, tip), w, id, true) {
                     return Ok(out);
@@ -330,9 +338,19 @@ impl Retiler<'_> {
     }
 
     /// A C: quantize the dihedral angle of V (moved by its curvature
-    /// offset when tips approximate) and continue from X̂. `None` when V
-    /// cannot anchor a triangloid of this gate.
-    fn try_c(&mut self, gr: u32, gl: u32, tip: u32, v: DVec3, f: u32, id: u32) -> Option<Gate> {
+    /// offset when tips approximate) and continue from X̂. A tip on a
+    /// `crease` keeps V itself: its radius code puts it at V's distance
+    /// from the gate, and neither offset nor fit moves it off the crease.
+    /// `None` when V cannot anchor a triangloid of this gate.
+    fn try_c(
+        &mut self,
+        gr: u32,
+        gl: u32,
+        tip: u32,
+        (v, f): (DVec3, u32),
+        crease: bool,
+        id: u32,
+    ) -> Option<Gate> {
         let (vl, vr) = (self.front.vertex(gl), self.front.vertex(gr));
         // Splitting M at V changes no triangloid, so it needs no undo.
         let m = self.s.insert_point(f, v, 1e-9 * self.l)?;
@@ -345,12 +363,33 @@ impl Retiler<'_> {
             self.xhat[tip as usize].to_array(),
             self.radius,
         );
-        let aim = if self.approximate {
+        let aim = if self.approximate && !crease {
             v + super::offset::offset(&self.s, f, v, self.l, &mut self.offsets)
         } else {
             v
         };
-        let q = quantize(self.table.bits(), frame.angle(aim.to_array()));
+        let bits = self.table.bits();
+        let q = quantize(bits, frame.angle(aim.to_array()));
+        // The radius code of a crease tip (V lies in the gate's plane:
+        // its distance from m, in steps of 2^(3−K)·r), and the frame the
+        // decoder builds with it (the radius enters `Frame::new`'s
+        // degenerate-gate test).
+        let j = if crease {
+            let m = DVec3::from_array(frame.m);
+            stretch_code(bits, v.distance(m) / self.radius - 1.0)
+        } else {
+            0
+        };
+        let frame = if j == 0 {
+            frame
+        } else {
+            Frame::new(
+                self.xhat[vl as usize].to_array(),
+                self.xhat[vr as usize].to_array(),
+                self.xhat[tip as usize].to_array(),
+                stretch_apply(bits, self.radius, j),
+            )
+        };
         let xhat = DVec3::from_array(frame.point(&self.table, q));
         let x = self.add_vertex(xhat, m);
         if !self.attempt([x, vl, vr], &[(x, vl), (vr, x)], id) {
@@ -359,7 +398,7 @@ impl Retiler<'_> {
         }
         // The region is claimed: the code can now be chosen by how well
         // the triangle covers it (`fit`).
-        let q = if self.fit {
+        let q = if self.fit && !crease {
             let fitted = self.fit_code(&frame, q, vl, vr);
             self.xhat[x as usize] = DVec3::from_array(frame.point(&self.table, fitted));
             fitted
@@ -370,6 +409,7 @@ impl Retiler<'_> {
         self.symbols.push(Symbol::C);
         self.codes.push(q);
         self.steps.push(self.tip_step.0);
+        self.stretch.push(j);
         Some((self.front.apply_c(gr, x), vl))
     }
 }

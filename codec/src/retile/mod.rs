@@ -37,6 +37,8 @@
 mod boundary;
 mod budget;
 pub mod compose;
+pub(crate) mod crease;
+pub(crate) use crease::crease_length;
 mod density;
 pub mod fill;
 mod fit;
@@ -113,6 +115,10 @@ pub struct RetileOptions {
     /// patch but the fan over it. Runs with an odd `start_rank` start
     /// inside, as an independent retry. Default `true`.
     pub loop_start: bool,
+    /// Put C tips on the input's creases where the gate's bisecting plane
+    /// crosses one near the circle (`crease`; radius codes, `RADS`,
+    /// format 1.1). Default `false`.
+    pub crease_tips: bool,
 }
 
 pub use crate::error::RetileFailure as Failure;
@@ -185,6 +191,8 @@ fn retile_piece(
         radius0: tip_radius(l),
         level: Vec::new(),
         steps: Vec::new(),
+        stretch: Vec::new(),
+        creases: opt.crease_tips,
         tip_step: (0, 0),
         density,
         xhat: Vec::new(),
@@ -261,6 +269,7 @@ fn retile_piece(
         codes: r.codes,
         edge_length: r.l0,
         steps: r.steps,
+        stretch: r.stretch,
         hole_mask: Vec::new(),
         rest: None,
         loops,
@@ -295,6 +304,10 @@ struct Retiler<'b> {
     level: Vec<i8>,
     /// Per C tip: its level step.
     steps: Vec<i8>,
+    /// Per C tip: its radius code (`crease`).
+    stretch: Vec<i32>,
+    /// Put tips on creases ([`RetileOptions::crease_tips`]).
+    creases: bool,
     /// The step and level a C at the gate at hand takes.
     tip_step: (i8, i8),
     /// The target levels, when the density adapts.
@@ -593,6 +606,7 @@ impl Retiler<'_> {
         plane: Plane,
         centre: DVec3,
     ) -> ([Option<(DVec3, u32)>; 2], Option<(u32, DVec3)>) {
+        // (The crossing is returned as the corner facing its edge.)
         let s = &self.s;
         // The path may cross the bisecting plane more than once; start
         // from the crossing nearest the circle's centre.
@@ -616,7 +630,7 @@ impl Retiler<'_> {
             let mut walker = Walker::across(s, plane, side, budget);
             walk_to_radius(&mut walker, start, centre, self.radius, max_len)
         });
-        (hits, Some((surface::face(c), start)))
+        (hits, Some((c, start)))
     }
 
     /// Processes gates in Edgebreaker order until every loop closed.

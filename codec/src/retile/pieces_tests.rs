@@ -21,6 +21,7 @@ fn options(l: f64) -> RetileOptions {
         adaptive_density: false,
         last_resort: false,
         loop_start: false,
+        crease_tips: false,
     }
 }
 

@@ -80,6 +80,8 @@ pub struct Knobs {
     pub front_contexts: bool,
     /// [`SwingTuning::loop_start`](crate::SwingTuning).
     pub loop_start: bool,
+    /// [`RetileOptions::crease_tips`].
+    pub crease_tips: bool,
     /// [`EncodeOptions::framing`](crate::EncodeOptions).
     pub framing: crate::container::Framing,
 }
@@ -115,6 +117,7 @@ fn run(
         adaptive_density: knobs.adaptive_density,
         last_resort: false,
         loop_start: knobs.loop_start,
+        crease_tips: knobs.crease_tips,
     };
     match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {

@@ -56,7 +56,11 @@ fn ellipsoid(levels: u32) -> TriMesh {
 
 /// Retiles one closed, oriented manifold on its own: a one-piece file
 /// without patches.
-fn retile(mesh: &TriMesh, table: &CornerTable, opt: &RetileOptions) -> Result<Retiled, Failure> {
+pub(super) fn retile(
+    mesh: &TriMesh,
+    table: &CornerTable,
+    opt: &RetileOptions,
+) -> Result<Retiled, Failure> {
     let (v, f) = (mesh.vertex_count() as i64, mesh.face_count() as i64);
     let handles = v - f / 2 < 2;
     retile_piece(
@@ -87,6 +91,7 @@ fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
             adaptive_density: false,
             last_resort: false,
             loop_start: false,
+            crease_tips: false,
         },
     )
 }
@@ -220,6 +225,7 @@ fn probe() {
                 adaptive_density: std::env::var_os("SWM_RETILE_ADAPTIVE").is_some(),
                 last_resort: std::env::var_os("SWM_RETILE_LAST_RESORT").is_some(),
                 loop_start: std::env::var_os("SWM_RETILE_LOOP").is_some(),
+                crease_tips: false,
             },
         );
         let dt = t0.elapsed().as_secs_f64();
@@ -299,6 +305,7 @@ const KNOBS: rate::Knobs = rate::Knobs {
     adaptive_density: false,
     front_contexts: true,
     loop_start: true,
+    crease_tips: false,
     framing: crate::container::Framing::Compact,
 };
 

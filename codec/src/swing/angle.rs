@@ -341,7 +341,10 @@ fn bad(why: &'static str) -> Error {
 /// other triangle places nothing. r = [`tip_radius`] of
 /// [`first_edge_length`] of `first[0]`, for the whole mesh, times
 /// 2^(ℓ/4) for the k-th C tip of level ℓ = `levels[k]` when the file
-/// carries levels (`DENS`, format 1.1; `None`: every level is 0).
+/// carries levels (`DENS`, format 1.1; `None`: every level is 0), times
+/// `stretch::factor(K, j)` for its radius code j = `stretch[k]` when the
+/// file carries them (`RADS`, format 1.1; `None`: every code is 0), in
+/// that order: `(r · 2^(ℓ/4)) · (1 + j·2^(3−K))`.
 ///
 /// Fails (format error, never a panic) when the table is not numbered
 /// that way, the number of codes or first triangles is wrong, a code is
@@ -354,11 +357,20 @@ pub fn rebuild_positions(
     bits: u8,
     codes: &[u32],
     levels: Option<&[i8]>,
+    stretch: Option<&[i32]>,
     mut points: Option<&mut super::chain::Points<'_>>,
 ) -> Result<Vec<[f64; 3]>, Error> {
     if let Some(l) = levels {
         if l.len() != codes.len() || l.iter().any(|l| l.abs() > super::density::LEVEL_MAX) {
             return Err(bad("levels are not one per angle code, or out of range"));
+        }
+    }
+    if let Some(j) = stretch {
+        let limit = super::stretch::max_code(bits);
+        if j.len() != codes.len() || j.iter().any(|j| j.abs() > limit) {
+            return Err(bad(
+                "radius codes are not one per angle code, or out of range",
+            ));
         }
     }
     let mut k = 0usize;
@@ -393,6 +405,10 @@ pub fn rebuild_positions(
             let rk = match levels {
                 Some(l) => r * super::density::ratio(l[k]),
                 None => r,
+            };
+            let rk = match stretch {
+                Some(j) => super::stretch::apply(bits, rk, j[k]),
+                None => rk,
             };
             k += 1;
             let [b, c, prev] = [b, c, prev].map(|v| v as usize);

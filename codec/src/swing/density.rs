@@ -274,6 +274,7 @@ mod tests {
                 adaptive_density: true,
                 front_contexts: false,
                 loop_start: false,
+                crease_tips: false,
                 post_hint: false,
             },
             ..EncodeOptions::default()

@@ -32,7 +32,7 @@ use crate::prelude::*;
 
 use super::angle::{first_edge_length, push_point, tip_radius, AngleTable, Frame};
 use super::front::{Loops, CONTEXTS};
-use super::{chain, density, residual};
+use super::{chain, density, residual, stretch};
 use crate::edgebreaker::Symbol;
 #[cfg(feature = "encoder")]
 use crate::entropy::Encoder;
@@ -58,6 +58,9 @@ pub(super) trait Source {
     fn code(&mut self, tip: usize, gl: usize, gr: usize) -> Result<u32, Error>;
     /// Its level (`None` in a file without `DENS`).
     fn level(&mut self, tip: usize, gl: usize, gr: usize) -> Result<Option<i8>, Error>;
+    /// Its radius code (0 in a file without `RADS`); `behind` is the
+    /// previous tip.
+    fn stretch(&mut self, tip: usize, gl: usize, gr: usize, behind: usize) -> Result<i32, Error>;
     /// The tip was placed on GL, GR with previous tip P (vertex numbers).
     fn placed(&mut self, _gate: [u32; 3]) {}
 }
@@ -121,6 +124,7 @@ pub(super) fn run(
                         None => r,
                     };
                     let behind = loops.behind(gr) as usize;
+                    let rk = stretch::apply(bits, rk, src.stretch(tip, vl, vr, behind)?);
                     // A boundary loop's point (`chain`), else a swing tip.
                     let point = match points.as_deref_mut() {
                         Some(p) => p.tip(q, x[vl], x[vr], x[behind])?,
@@ -189,6 +193,8 @@ pub(super) struct Decoded {
     pub codes: Vec<u32>,
     /// `None` without `DENS`.
     pub levels: Option<Vec<i8>>,
+    /// `None` without `RADS`.
+    pub stretch: Option<Vec<i32>>,
     /// The positions the pass placed.
     pub positions: Vec<[f64; 3]>,
     /// Per C tip: the GL, GR and previous tip it was placed on.
@@ -200,6 +206,7 @@ struct Reading<'a> {
     models: Models,
     geom: residual::Reader<'a>,
     dens: Option<density::Reader<'a>>,
+    rads: Option<stretch::Reader<'a>>,
     out: Decoded,
 }
 
@@ -253,10 +260,21 @@ impl Source for Reading<'_> {
         }
         Ok(Some(l))
     }
+
+    fn stretch(&mut self, tip: usize, gl: usize, gr: usize, behind: usize) -> Result<i32, Error> {
+        let Some(d) = &mut self.rads else {
+            return Ok(0);
+        };
+        let j = d.get([tip, gl, gr, behind])?;
+        if let Some(out) = &mut self.out.stretch {
+            out.push(j);
+        }
+        Ok(j)
+    }
 }
 
-/// Decodes `CLRF` (`bytes`) with `GEOM` (`geom`) and `DENS` (`dens`, if
-/// the file has one): `symbols` symbols, as `TOPO` counts them, of a mesh
+/// Decodes `CLRF` (`bytes`) with `GEOM` (`geom`), `DENS` (`dens`) and
+/// `RADS` (`rads`, each if the file has one): `symbols` symbols, as `TOPO` counts them, of a mesh
 /// of `vertices` vertices with angle bits `bits`, predicted code
 /// `predicted` and first triangles `first`. Each stream must end exactly
 /// where its encoder finished it.
@@ -265,6 +283,7 @@ pub(super) fn decode(
     bytes: &[u8],
     geom: &[u8],
     dens: Option<&[u8]>,
+    rads: Option<&[u8]>,
     first: &[[[f64; 3]; 3]],
     bits: u8,
     predicted: u32,
@@ -279,10 +298,14 @@ pub(super) fn decode(
         dens: dens
             .map(|b| density::Reader::new(b, vertices))
             .transpose()?,
+        rads: rads
+            .map(|b| stretch::Reader::new(b, vertices, bits))
+            .transpose()?,
         out: Decoded {
             symbols: Vec::with_capacity(symbols),
             codes: Vec::new(),
             levels: dens.map(|_| Vec::new()),
+            stretch: rads.map(|_| Vec::new()),
             positions: Vec::new(),
             gates: Vec::new(),
         },
@@ -296,6 +319,9 @@ pub(super) fn decode(
     if let Some(d) = src.dens {
         d.finish()?;
     }
+    if let Some(d) = src.rads {
+        d.finish()?;
+    }
     Ok(src.out)
 }
 
@@ -307,6 +333,7 @@ struct Replaying<'a> {
     triangles: &'a [[u32; 3]],
     codes: &'a [u32],
     levels: Option<&'a [i8]>,
+    stretch: Option<&'a [i32]>,
     /// Symbols used so far, and C tips placed so far (the index of the
     /// code and level the next C reads).
     at: (usize, usize),
@@ -376,6 +403,15 @@ impl Source for Replaying<'_> {
         }
     }
 
+    fn stretch(&mut self, _tip: usize, _gl: usize, _gr: usize, _: usize) -> Result<i32, Error> {
+        match self.stretch {
+            Some(j) => Ok(*j
+                .get(self.at.1)
+                .ok_or(bad("fewer radius codes than C tips"))?),
+            None => Ok(0),
+        }
+    }
+
     /// A C tip is placed once its code and level were read: the next C
     /// reads the next ones.
     fn placed(&mut self, _gate: [u32; 3]) {
@@ -385,7 +421,8 @@ impl Source for Replaying<'_> {
 
 /// Codes the symbols of a retiled mesh as `CLRF`: the pass over
 /// `symbols` with the triangles in creation order (tip first), the C
-/// tips' `codes` and `levels` (`None`: no `DENS`), as the decoder will
+/// tips' `codes`, `levels` (`None`: no `DENS`) and radius codes
+/// `stretch` (`None`: no `RADS`), as the decoder will
 /// meet them. Fails when the pass cannot follow the mesh (the caller then
 /// writes `CLRS`).
 #[cfg(feature = "encoder")]
@@ -395,6 +432,7 @@ pub(super) fn encode(
     triangles: &[[u32; 3]],
     codes: &[u32],
     levels: Option<&[i8]>,
+    stretch: Option<&[i32]>,
     first: &[[[f64; 3]; 3]],
     bits: u8,
     vertices: usize,
@@ -405,6 +443,7 @@ pub(super) fn encode(
         triangles,
         codes,
         levels,
+        stretch,
         at: (0, 0),
         contexts: Vec::with_capacity(symbols.len()),
         splits: Vec::new(),

@@ -145,6 +145,7 @@ fn measure_contexts() {
             &codes,
             read::read_levels(&file, &table, count).unwrap().as_deref(),
             None,
+            None,
         )
         .unwrap();
         let bits = head.bits;

@@ -38,6 +38,7 @@ mod front;
 mod hole;
 mod read;
 mod residual;
+mod stretch;
 #[cfg(feature = "encoder")]
 mod write;
 
@@ -49,6 +50,8 @@ mod tests;
 pub use angle::{first_edge_length, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
 #[cfg(feature = "encoder")]
 pub(crate) use density::{gate_level, ratio as level_ratio, LEVEL_MAX};
+#[cfg(feature = "encoder")]
+pub(crate) use stretch::{apply as stretch_apply, nearest as stretch_code};
 // What the retiler builds its tips with: the decoder's own arithmetic.
 #[cfg(feature = "encoder")]
 pub use angle::{quantize, tip_radius, AngleTable, Frame};
@@ -92,6 +95,10 @@ pub struct Retiled {
     /// plus d (`DENS`, format 1.1). Empty, or all zero: every radius is r
     /// and the file is format 1.0.
     pub steps: Vec<i8>,
+    /// The radius code j of each C tip, in order: its radius is further
+    /// scaled by 1 + j·2^(3−K) (`RADS`, format 1.1). Empty, or all zero:
+    /// every tip is on its circle.
+    pub stretch: Vec<i32>,
     /// L = |first[0][0] − first[0][2]| ([`first_edge_length`]); every
     /// component's tips use its radius.
     pub edge_length: f64,

@@ -8,7 +8,7 @@ use crate::prelude::*;
 
 use super::chain::{self, Loops};
 
-use super::{angle, density, hole, residual, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+use super::{angle, density, hole, residual, stretch, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
 use crate::container::{check_count_fits, parse_container, Container, Mode, Section, Tag};
 use crate::edgebreaker::{self, Connectivity, Symbol};
 use crate::varint::Reader;
@@ -106,6 +106,7 @@ pub(crate) fn read_head(bytes: &[u8], components: u32) -> Result<Head, Error> {
 pub(super) struct Tips {
     pub codes: Vec<u32>,
     pub levels: Option<Vec<i8>>,
+    pub stretch: Option<Vec<i32>>,
     /// The positions the pass placed, and each C tip's GL, GR and P.
     pub positions: Vec<[f64; 3]>,
     pub gates: Vec<[u32; 3]>,
@@ -141,19 +142,21 @@ pub(super) fn read_connectivity(
                 return Err(bad("more vertices than the symbols can place"));
             }
             let vertices = h.vertex_count as usize;
-            // Per vertex: a position, a residual length, a level and a
-            // step flag; per symbol: up to two nodes of 17 bytes, the
-            // symbol, a code and a level.
+            // Per vertex: a position, a residual length, a level and two
+            // flags (step, radius code); per symbol: up to two nodes of
+            // 17 bytes, the symbol, a code, a level and a radius code.
             let (v, s) = (vertices as u64, count as u64);
-            limits.check_alloc(v.saturating_mul(28).saturating_add(s.saturating_mul(40)))?;
+            limits.check_alloc(v.saturating_mul(29).saturating_add(s.saturating_mul(44)))?;
             let geom = file.require(Tag::GEOM)?;
             let dens = file.find(Tag::DENS).map(|s| s.bytes);
+            let rads = file.find(Tag::RADS).map(|s| s.bytes);
             let (list, reader) = read_loops(file, head.bits)?;
             let points = reader.map(|r| points(&list, r, &head));
             let d = super::forward::decode(
                 clrf.bytes,
                 geom.bytes,
                 dens,
+                rads,
                 &head.first,
                 head.bits,
                 head.predicted,
@@ -166,6 +169,7 @@ pub(super) fn read_connectivity(
             let tips = Tips {
                 codes: d.codes,
                 levels: d.levels,
+                stretch: d.stretch,
                 positions: d.positions,
                 gates: d.gates,
             };
@@ -301,20 +305,22 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
         u64::from(head.bits),
         1 << crate::entropy::PRECISION,
     )?;
-    // f64 and f32 positions, a length per vertex, a code per C tip; a
-    // mask bit per triangle and a new number per vertex.
+    // f64 and f32 positions, a length and a radius flag per vertex, a
+    // code, a level and a radius code per C tip; a mask bit per triangle
+    // and a new number per vertex.
     let (v, t) = (table.vertex_count() as u64, table.face_count() as u64);
-    limits.check_alloc(v.saturating_mul(45).saturating_add(t.saturating_mul(13)))?;
-    let (codes, levels, placed) = match tips {
+    limits.check_alloc(v.saturating_mul(46).saturating_add(t.saturating_mul(18)))?;
+    let (codes, levels, radii, placed) = match tips {
         Some(t) => {
             // The pass's positions are the table's when every C tip was
             // placed on the table's own gate and previous tip.
             let same = super::angle::gates_match(&table, head.first.len(), &t.gates)?;
-            (t.codes, t.levels, same.then_some(t.positions))
+            (t.codes, t.levels, t.stretch, same.then_some(t.positions))
         }
         None => (
             residual::decode(&table, geom, count, head.bits, head.predicted)?,
             read_levels(file, &table, count)?,
+            read_stretch(file, &table, count, head.bits)?,
             None,
         ),
     };
@@ -329,6 +335,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
                 head.bits,
                 &codes,
                 levels.as_deref(),
+                radii.as_deref(),
                 points.as_mut(),
             )?;
             if let Some(p) = points {
@@ -399,6 +406,33 @@ pub(super) fn read_levels(
     )
     .map_err(|e| in_section(s.offset)(e.into()))?;
     density::decode(table, s.bytes, count)
+        .map(Some)
+        .map_err(in_section(s.offset))
+}
+
+/// The radius code of each of the `count` C tips, from `RADS` (`None`
+/// without one); the count is checked against the section's length
+/// first.
+pub(super) fn read_stretch(
+    file: &Container<'_>,
+    table: &CornerTable,
+    count: usize,
+    bits: u8,
+) -> Result<Option<Vec<i32>>, Error> {
+    let Some(s) = file.find(Tag::RADS) else {
+        return Ok(None);
+    };
+    // A flag costs more than 1/2^16 bit: each of its model's two symbols
+    // keeps a frequency of at least 1.
+    check_count_fits(
+        "radius code",
+        count as u64,
+        s.bytes.len(),
+        1,
+        1 << crate::entropy::PRECISION,
+    )
+    .map_err(|e| in_section(s.offset)(e.into()))?;
+    stretch::decode(table, bits, s.bytes, count)
         .map(Some)
         .map_err(in_section(s.offset))
 }

@@ -61,9 +61,18 @@ pub(super) fn for_each_c(
     table: &CornerTable,
     mut f: impl FnMut(usize, usize, usize, usize) -> Result<(), Error>,
 ) -> Result<(), Error> {
+    for_each_c_behind(table, |k, tip, gl, gr, _| f(k, tip, gl, gr))
+}
+
+/// [`for_each_c`], also with the vertex behind the gate (across it from
+/// the tip; `usize::MAX` where the table has none).
+pub(super) fn for_each_c_behind(
+    table: &CornerTable,
+    mut f: impl FnMut(usize, usize, usize, usize, usize) -> Result<(), Error>,
+) -> Result<(), Error> {
     let v = table.vertices();
     let (mut next, mut k) = (0usize, 0usize);
-    for t in v.chunks_exact(3) {
+    for (i, t) in v.chunks_exact(3).enumerate() {
         let [a, b, c] = [t[0].idx(), t[1].idx(), t[2].idx()];
         if b >= next {
             if (a, b, c) != (next, next + 1, next + 2) {
@@ -74,7 +83,13 @@ pub(super) fn for_each_c(
             if c >= next {
                 return Err(bad("a C tip is built on vertices not yet placed"));
             }
-            f(k, a, b, c)?;
+            let o = table.opposite(crate::CornerId(3 * i as u32));
+            let behind = if o.is_some() && o.idx() < v.len() {
+                v[o.idx()].idx()
+            } else {
+                usize::MAX
+            };
+            f(k, a, b, c, behind)?;
             k += 1;
             next += 1;
         }

@@ -76,6 +76,7 @@ pub(super) fn emulate(mesh: &TriMesh, bits: u8) -> Retiled {
         codes,
         edge_length,
         steps: Vec::new(),
+        stretch: Vec::new(),
         hole_mask: Vec::new(),
         rest: None,
         loops: Default::default(),
@@ -391,6 +392,7 @@ fn the_pass_places_the_tips_where_the_rebuilding_pass_does() {
             head.bits,
             &tips.codes,
             tips.levels.as_deref(),
+            tips.stretch.as_deref(),
             None,
         )
         .unwrap();
@@ -1185,6 +1187,7 @@ fn a_file_may_be_all_rest() {
         codes: Vec::new(),
         edge_length: 0.0,
         steps: Vec::new(),
+        stretch: Vec::new(),
         hole_mask: Vec::new(),
         rest: Some((rest_mesh(), 10)),
         loops: Default::default(),

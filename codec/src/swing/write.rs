@@ -8,7 +8,7 @@
 
 use super::read::{write_head, Head};
 use super::{
-    angle, chain, density, forward, hole, residual, Retiled, SwingStats, MAX_ANGLE_BITS,
+    angle, chain, density, forward, hole, residual, stretch, Retiled, SwingStats, MAX_ANGLE_BITS,
     MIN_ANGLE_BITS,
 };
 use crate::container::{write_container, Framing, Header, Mode, Tag};
@@ -68,6 +68,7 @@ fn front_coded(
     codes: &[u32],
     head: &Head,
     levels: Option<&[i8]>,
+    radii: Option<(&[i32], &[u8])>,
     geom: &[u8],
     dens: Option<&[u8]>,
     loop_bytes: Option<&[u8]>,
@@ -81,6 +82,7 @@ fn front_coded(
         &retiled.triangles,
         codes,
         levels,
+        radii.map(|r| r.0),
         &retiled.first,
         retiled.angle_bits,
         nv,
@@ -95,6 +97,7 @@ fn front_coded(
         &bytes,
         geom,
         dens,
+        radii.map(|r| r.1),
         &head.first,
         head.bits,
         head.predicted,
@@ -106,6 +109,7 @@ fn front_coded(
     let same = back.symbols == retiled.symbols
         && back.codes == codes
         && back.levels.as_deref() == levels
+        && back.stretch.as_deref() == radii.map(|r| r.0)
         && same_bits(&back.positions, &retiled.positions);
     same.then_some(bytes)
 }
@@ -229,6 +233,20 @@ pub(crate) fn write(
         ),
         None => None,
     };
+    // RADS likewise only when some radius code is not 0.
+    let stretched = retiled.stretch.iter().any(|&j| j != 0);
+    let rads = if stretched {
+        Some(stretch::encode(&decoded, bits, &retiled.stretch)?)
+    } else {
+        None
+    };
+    let radii = match &rads {
+        Some(b) => Some(
+            stretch::decode(&decoded, bits, b, retiled.codes.len())
+                .map_err(|_| internal("the radius codes do not decode"))?,
+        ),
+        None => None,
+    };
     // Loop points carry the predicted code, which only the other tips
     // decide.
     let angles = angle::AngleTable::new(bits);
@@ -269,6 +287,7 @@ pub(crate) fn write(
         bits,
         &codes,
         levels.as_deref(),
+        radii.as_deref(),
         points.as_mut(),
     )
     .and_then(|x| points.map_or(Ok(()), |p| p.finish()).map(|_| x))
@@ -287,6 +306,7 @@ pub(crate) fn write(
             &codes,
             &head,
             levels.as_deref(),
+            radii.as_deref().zip(rads.as_deref()),
             &geom,
             dens.as_deref(),
             loop_bytes.as_deref(),
@@ -324,8 +344,8 @@ pub(crate) fn write(
         triangles.len() as u32,
         first.len() as u32,
     );
-    if dens.is_some() || clers_tag == Tag::CLRF || loop_bytes.is_some() {
-        // DENS, CLRF and LOOP are format 1.1 sections.
+    if dens.is_some() || clers_tag == Tag::CLRF || loop_bytes.is_some() || rads.is_some() {
+        // DENS, CLRF, LOOP and RADS are format 1.1 sections.
         header.minor = 1;
     }
     let header = header.with_framing(framing);
@@ -337,6 +357,9 @@ pub(crate) fn write(
     ];
     if let Some(b) = &dens {
         sections.push((Tag::DENS, b));
+    }
+    if let Some(b) = &rads {
+        sections.push((Tag::RADS, b));
     }
     if let Some(b) = &loop_bytes {
         sections.push((Tag::LOOP, b));

@@ -110,6 +110,7 @@ impl Config {
             adaptive_density: self == Config::SwingAdaptive,
             front_contexts: true,
             loop_start: true,
+            crease_tips: true,
             post_hint: true,
         }
     }
