@@ -569,7 +569,7 @@ pub(crate) fn encode_swing_pieces(
     // the plain retiling for a size request whose hint is measured (the
     // measure decides), used outright otherwise.
     let creased =
-        options.swing.crease_tips && crate::retile::crease_length(input) >= input.bbox_diagonal();
+        options.swing.crease_tips && crate::retile::crease_length(pieces) >= input.bbox_diagonal();
     let measured = options.swing.post_hint && request.target.is_ok();
     let budget = crate::retile::Budget::new(options.limits);
     let knobs = rate::Knobs {

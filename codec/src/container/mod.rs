@@ -105,6 +105,7 @@ pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
 pub(crate) use read::{check_magic, declared_len, table_end, TableCheck};
 pub use read::{parse_container, Container, Section, Sections};
 pub use tag::Tag;
+pub(crate) use tag::KNOWN_CRITICAL;
 pub use write::{container_len, write_container, write_container_into};
 
 /// Major format version this crate writes and reads. A decoder rejects any

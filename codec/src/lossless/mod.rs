@@ -18,7 +18,7 @@ use crate::prelude::*;
 
 #[cfg(test)]
 use crate::container::parse_container;
-use crate::container::{check_count_fits, Container, Tag};
+use crate::container::{check_count_fits, Container, Tag, KNOWN_CRITICAL};
 #[cfg(feature = "encoder")]
 use crate::container::{write_container, Framing, Header, Mode};
 use crate::edgebreaker::{self, Connectivity, Side, SplitEvent, Symbol};
@@ -302,24 +302,18 @@ pub(crate) fn read_connectivity(
     file: &Container<'_>,
     limits: &Limits,
 ) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
-    // Critical sections of the SwingWrapper mode mean nothing here.
-    for tag in [
-        Tag::HOLE,
-        Tag::REST,
-        Tag::DENS,
-        Tag::CLRF,
-        Tag::LOOP,
-        Tag::RADS,
-    ] {
-        if file.find(tag).is_some() {
-            return Err(crate::FormatError::new(
-                "SWM",
-                crate::Malformed::BadSyntax(
-                    "a lossless file has a HOLE, REST, DENS, CLRF, LOOP or RADS section",
-                ),
-            )
-            .into());
-        }
+    // Critical sections of the SwingWrapper mode mean nothing here: every
+    // known critical section but mode 0's own four.
+    const OWN: [Tag; 4] = [Tag::HEAD, Tag::CLRS, Tag::TOPO, Tag::GEOM];
+    if KNOWN_CRITICAL
+        .iter()
+        .any(|t| !OWN.contains(t) && file.find(*t).is_some())
+    {
+        return Err(crate::FormatError::new(
+            "SWM",
+            crate::Malformed::BadSyntax("a lossless file has a critical section of mode 1"),
+        )
+        .into());
     }
     let quantizer = read_head(file.require(Tag::HEAD)?.bytes)?;
     let (conn, dummies) = read_topology(file, limits)?;

@@ -124,41 +124,37 @@ impl Retiler<'_> {
     }
 }
 
-/// Total length of the creases of `mesh` (edges of two faces whose
-/// normals turn by more than [`CREASE_ANGLE`]); the encoder tries tips
-/// on creases only where this reaches the bounding-box diagonal
-/// (`crate::hinted`: with fewer, the tips cannot change the error
-/// measurably and the trial would only cost time).
-pub(crate) fn crease_length(mesh: &crate::TriMesh) -> f64 {
-    use std::collections::HashMap;
-    let p = |v: u32| DVec3::from_array(mesh.positions[v as usize].map(f64::from));
-    let normals: Vec<DVec3> = mesh
-        .triangles
-        .iter()
-        .map(|t| {
-            (p(t[1]) - p(t[0]))
-                .cross(p(t[2]) - p(t[0]))
-                .normalize_or_zero()
-        })
-        .collect();
-    // Per undirected edge: its first face, and how many faces hold it.
-    let mut edges: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
-    for (f, t) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            let e = edges.entry((a.min(b), a.max(b))).or_insert((f as u32, 0));
-            e.1 += 1;
-        }
-    }
-    // Summed in face order, not the map's (which varies from run to run).
+/// Total length of the creases of the input's components `pieces`
+/// (edges between two of its own faces, not a hole's patch, whose normals
+/// turn by more than [`CREASE_ANGLE`]), read off the pieces' corner
+/// tables; the encoder tries tips on creases only where this reaches the
+/// bounding-box diagonal (`crate::hinted`: with fewer, the tips cannot
+/// change the error measurably and the trial would only cost time).
+pub(crate) fn crease_length(pieces: &[super::fill::Piece]) -> f64 {
     let cos = CREASE_ANGLE.to_radians().cos();
     let mut total = 0.0;
-    for (g, t) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            let (f, n) = edges[&(a.min(b), a.max(b))];
-            if n == 2 && f as usize != g && normals[f as usize].dot(normals[g]) < cos {
-                total += p(a).distance(p(b));
+    for piece in pieces {
+        let (mesh, table) = (&piece.mesh, &piece.table);
+        let p = |v: crate::VertexId| DVec3::from_array(mesh.positions[v.idx()].map(f64::from));
+        let normals: Vec<DVec3> = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] =
+                    t.map(|v| DVec3::from_array(mesh.positions[v as usize].map(f64::from)));
+                (b - a).cross(c - a).normalize_or_zero()
+            })
+            .collect();
+        let own = |f: crate::FaceId| piece.patch[f.idx()] == NONE;
+        for c in (0..table.corner_count() as u32).map(crate::CornerId) {
+            let o = table.opposite(c);
+            // Each edge once, from its lower corner.
+            if o.is_none() || o.0 < c.0 {
+                continue;
+            }
+            let (f, g) = (c.face(), o.face());
+            if own(f) && own(g) && normals[f.idx()].dot(normals[g.idx()]) < cos {
+                total += p(table.vertex(c.next())).distance(p(table.vertex(c.prev())));
             }
         }
     }
@@ -166,51 +162,14 @@ pub(crate) fn crease_length(mesh: &crate::TriMesh) -> f64 {
 }
 
 #[cfg(test)]
-pub(crate) mod tests {
+mod tests {
     use super::*;
+    use crate::post::bend::tests::cube;
     use crate::retile::{RetileOptions, Retiled};
     use crate::{CornerTable, TriMesh};
 
-    /// The box [−1, 1]³, each face a grid of `n` × `n` squares cut along
-    /// one diagonal, outward oriented.
-    pub(crate) fn grid_box(n: i32) -> TriMesh {
-        let mut index = std::collections::HashMap::new();
-        let mut positions = Vec::new();
-        let mut triangles = Vec::new();
-        let mut vertex = |p: [i32; 3]| -> u32 {
-            *index.entry(p).or_insert_with(|| {
-                positions.push(p.map(|c| 2.0 * c as f32 / n as f32 - 1.0));
-                (positions.len() - 1) as u32
-            })
-        };
-        for axis in 0..3 {
-            for side in [0, n] {
-                let (mut u, mut v) = ((axis + 1) % 3, (axis + 2) % 3);
-                if side == 0 {
-                    std::mem::swap(&mut u, &mut v);
-                }
-                let at = |i: i32, j: i32| {
-                    let mut p = [0; 3];
-                    p[axis] = side;
-                    p[u] = i;
-                    p[v] = j;
-                    p
-                };
-                for i in 0..n {
-                    for j in 0..n {
-                        let [a, b, c, d] = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]
-                            .map(&mut vertex);
-                        triangles.push([a, b, c]);
-                        triangles.push([a, c, d]);
-                    }
-                }
-            }
-        }
-        TriMesh::new(positions, triangles)
-    }
-
     fn retiled_box(creases: bool) -> Retiled {
-        let mesh = grid_box(8);
+        let mesh = cube(8).0;
         let table = CornerTable::new(&mesh.triangles, mesh.vertex_count()).unwrap();
         let opt = RetileOptions {
             edge_length: 0.3,
@@ -269,10 +228,31 @@ pub(crate) mod tests {
         );
     }
 
+    fn pieces(mesh: &TriMesh) -> Vec<crate::retile::fill::Piece> {
+        let table = CornerTable::new(&mesh.triangles, mesh.vertex_count()).unwrap();
+        crate::retile::fill::pieces(mesh, &table).unwrap()
+    }
+
     #[test]
     fn crease_length_counts_the_sharp_edges_only() {
-        let length = crease_length(&grid_box(8));
+        let length = crease_length(&pieces(&cube(8).0));
         assert!((length - 24.0).abs() < 1e-9, "{length}");
-        assert_eq!(crease_length(&crate::retile::tests::sphere(3)), 0.0);
+        assert_eq!(
+            crease_length(&pieces(&crate::retile::tests::sphere(3))),
+            0.0
+        );
+        // A box without its top face: the rim turns by 90° but borders a
+        // hole's patch, so only the 8 other edges count.
+        let mut open = cube(8).0;
+        let top = |v: u32| open.positions[v as usize][2] == 1.0;
+        let kept = open
+            .triangles
+            .iter()
+            .copied()
+            .filter(|t| !t.iter().all(|&v| top(v)))
+            .collect();
+        open.triangles = kept;
+        let length = crease_length(&pieces(&open));
+        assert!((length - 16.0).abs() < 1e-9, "{length}");
     }
 }

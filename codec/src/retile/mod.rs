@@ -37,7 +37,7 @@
 mod boundary;
 mod budget;
 pub mod compose;
-pub(crate) mod crease;
+mod crease;
 pub(crate) use crease::crease_length;
 mod density;
 pub mod fill;

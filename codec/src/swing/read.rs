@@ -385,6 +385,31 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     Ok(mesh)
 }
 
+/// One value per C tip from the section `tag` (`None` without one),
+/// decoded by `decode` from its payload once `count` values of at least
+/// 1/2^16 bit each (a binary or ternary adaptive symbol per tip keeps
+/// every frequency at least 1) are known to fit its length.
+fn read_per_tip<T>(
+    file: &Container<'_>,
+    tag: Tag,
+    what: &'static str,
+    count: usize,
+    decode: impl FnOnce(&[u8]) -> Result<Vec<T>, Error>,
+) -> Result<Option<Vec<T>>, Error> {
+    let Some(s) = file.find(tag) else {
+        return Ok(None);
+    };
+    check_count_fits(
+        what,
+        count as u64,
+        s.bytes.len(),
+        1,
+        1 << crate::entropy::PRECISION,
+    )
+    .map_err(|e| in_section(s.offset)(e.into()))?;
+    decode(s.bytes).map(Some).map_err(in_section(s.offset))
+}
+
 /// The level of each of the `count` C tips, from `DENS` (`None` without
 /// one); the count is checked against the section's length first.
 pub(super) fn read_levels(
@@ -392,22 +417,9 @@ pub(super) fn read_levels(
     table: &CornerTable,
     count: usize,
 ) -> Result<Option<Vec<i8>>, Error> {
-    let Some(s) = file.find(Tag::DENS) else {
-        return Ok(None);
-    };
-    // A step costs more than 1/2^16 bit: each of its model's three
-    // symbols keeps a frequency of at least 1.
-    check_count_fits(
-        "level step",
-        count as u64,
-        s.bytes.len(),
-        1,
-        1 << crate::entropy::PRECISION,
-    )
-    .map_err(|e| in_section(s.offset)(e.into()))?;
-    density::decode(table, s.bytes, count)
-        .map(Some)
-        .map_err(in_section(s.offset))
+    read_per_tip(file, Tag::DENS, "level step", count, |b| {
+        density::decode(table, b, count)
+    })
 }
 
 /// The radius code of each of the `count` C tips, from `RADS` (`None`
@@ -419,22 +431,9 @@ pub(super) fn read_stretch(
     count: usize,
     bits: u8,
 ) -> Result<Option<Vec<i32>>, Error> {
-    let Some(s) = file.find(Tag::RADS) else {
-        return Ok(None);
-    };
-    // A flag costs more than 1/2^16 bit: each of its model's two symbols
-    // keeps a frequency of at least 1.
-    check_count_fits(
-        "radius code",
-        count as u64,
-        s.bytes.len(),
-        1,
-        1 << crate::entropy::PRECISION,
-    )
-    .map_err(|e| in_section(s.offset)(e.into()))?;
-    stretch::decode(table, bits, s.bytes, count)
-        .map(Some)
-        .map_err(in_section(s.offset))
+    read_per_tip(file, Tag::RADS, "radius code", count, |b| {
+        stretch::decode(table, bits, b, count)
+    })
 }
 
 /// The figures of a SwingWrapper file, read without decoding geometry:

@@ -108,7 +108,7 @@ fn unzigzag(z: u32) -> i64 {
 
 /// Bit length: 0 for 0, else one plus the index of the highest set bit.
 #[cfg(feature = "encoder")]
-fn bit_length(z: u32) -> u32 {
+pub(super) fn bit_length(z: u32) -> u32 {
     u32::BITS - z.leading_zeros()
 }
 

@@ -146,7 +146,7 @@ impl Writer {
         if j != 0 {
             enc.encode_bits(u32::from(j < 0), 1);
             let m = j.unsigned_abs() - 1;
-            let len = u32::BITS - m.leading_zeros();
+            let len = super::residual::bit_length(m);
             enc.encode(&mut models.len, len);
             if len > 1 {
                 enc.encode_bits(m - (1 << (len - 1)), len - 1);
@@ -278,7 +278,7 @@ mod tests {
         assert_eq!(nearest(8, f64::NAN), 0);
     }
 
-    /// The box of `retile::crease`'s tests retiled at L = 0.3 with its
+    /// Bender's test cube (8 × 8 squares a face) retiled at L = 0.3 with its
     /// tips on the edges (an edge-length request uses them outright);
     /// `CLRS`, so that other radius codes change the positions only (the
     /// `CLRF` pass takes its contexts from them).
@@ -298,7 +298,7 @@ mod tests {
             },
             ..EncodeOptions::default()
         };
-        let mesh = crate::retile::crease::tests::grid_box(8);
+        let mesh = crate::post::bend::tests::cube(8).0;
         crate::encode(&mesh, &options).unwrap().bytes
     }
 

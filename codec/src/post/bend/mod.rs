@@ -24,7 +24,7 @@ mod stencil;
 mod step;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 use super::SharpEdges;
 use crate::{CornerTable, Error, FormatError, Limits, Malformed, TopologyError, TriMesh};

@@ -707,7 +707,7 @@ fn an_icosahedron_bends_into_a_smooth_convex_ball() {
 
 /// The cube [-1, 1]³, each face an `n`×`n` grid of squares cut by a
 /// diagonal, outward oriented, with its 12 edges tagged.
-fn cube(n: u32) -> (TriMesh, SharpEdges) {
+pub(crate) fn cube(n: u32) -> (TriMesh, SharpEdges) {
     let mut index = BTreeMap::new();
     let mut positions = Vec::new();
     let mut vertex = |p: [i32; 3]| {
