@@ -582,7 +582,7 @@ pub(crate) fn encode_swing_pieces(
         crease_tips: creased && !measured,
         framing: options.framing,
     };
-    let mut chosen = request.run(pieces, knobs, &budget)?;
+    let mut chosen = request.run(pieces, knobs, &budget, None)?;
     let mut hint = None;
     if options.swing.post_hint {
         let (c, h) = crate::hinted::finish(

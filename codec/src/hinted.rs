@@ -47,7 +47,7 @@
 use crate::api::AUTO_SAMPLES;
 use crate::metrics::Surface;
 use crate::post::hint::{self, HintReport, PostProcessing};
-use crate::retile::rate::{self, Chosen, Knobs};
+use crate::retile::rate::{self, Chosen, Knobs, Prior};
 use crate::retile::{fill::Piece, Budget};
 use crate::{Error, TriMesh};
 
@@ -72,9 +72,16 @@ pub(crate) struct Request {
 }
 
 impl Request {
-    /// Rate control's file for this request with `knobs`.
-    pub fn run(&self, pieces: &[Piece], knobs: Knobs, budget: &Budget) -> Result<Chosen, Error> {
-        self.run_at(pieces, knobs, budget, 0)
+    /// Rate control's file for this request with `knobs`; its search
+    /// starts from `prior`, an earlier file's, when given.
+    pub fn run(
+        &self,
+        pieces: &[Piece],
+        knobs: Knobs,
+        budget: &Budget,
+        prior: Option<Prior>,
+    ) -> Result<Chosen, Error> {
+        self.run_at(pieces, knobs, budget, 0, prior)
     }
 
     /// The same for `less` bytes fewer (budget and cap).
@@ -84,6 +91,7 @@ impl Request {
         knobs: Knobs,
         budget: &Budget,
         less: u64,
+        prior: Option<Prior>,
     ) -> Result<Chosen, Error> {
         let cap = self.max_bytes.map(|c| c.saturating_sub(less));
         match self.target {
@@ -91,8 +99,8 @@ impl Request {
             Ok(b) => {
                 let b = b.saturating_sub(less).max(1);
                 match self.angle_bits {
-                    Some(_) => rate::at_size(pieces, b, cap, knobs, budget),
-                    None => rate::at_size_auto(pieces, b, cap, knobs, budget),
+                    Some(_) => rate::at_size(pieces, b, cap, knobs, budget, prior),
+                    None => rate::at_size_auto(pieces, b, cap, knobs, budget, prior),
                 }
             }
         }
@@ -136,7 +144,8 @@ pub(crate) fn finish(
             crease_tips: true,
             ..knobs
         };
-        match try_file(pieces, with, request, budget, &reference)? {
+        let prior = Some(best.0.prior);
+        match try_file(pieces, with, request, budget, &reference, prior)? {
             Some((b, mut h)) if fits(&b) && h.l2_after() < best.1.l2_after() => {
                 h.crease_tips = true;
                 best = (b, h);
@@ -178,7 +187,7 @@ pub(crate) fn finish(
             ..on_surface
         };
         // A retiling that fails with this aim leaves the best so far.
-        let b = match attempt.run(pieces, knobs, budget) {
+        let b = match attempt.run(pieces, knobs, budget, Some(best.0.prior)) {
             Ok(b) => b,
             Err(Error::Retile(_) | Error::Size(_)) => continue,
             Err(e) => return Err(e),
@@ -206,8 +215,9 @@ fn try_file(
     request: Request,
     budget: &Budget,
     reference: &Surface,
+    prior: Option<Prior>,
 ) -> Result<Option<(Chosen, HintReport)>, Error> {
-    match request.run(pieces, knobs, budget) {
+    match request.run(pieces, knobs, budget, prior) {
         Ok(b) => hinted(pieces, b, knobs, request, budget, reference).map(Some),
         Err(Error::Retile(_) | Error::Size(_)) => Ok(None),
         Err(e) => Err(e),
@@ -252,7 +262,7 @@ fn hinted(
         chosen.bytes = with;
         return Ok((noted(chosen, report.chosen, request), report));
     }
-    let again = match request.run_at(pieces, knobs, budget, extra) {
+    let again = match request.run_at(pieces, knobs, budget, extra, Some(chosen.prior)) {
         Ok(c) => c,
         Err(Error::Retile(_) | Error::Size(_)) => return Ok(plain(chosen, report)),
         Err(e) => return Err(e),
