@@ -38,7 +38,10 @@
 //! Invariants: the code is one the tip's frame gives (the decoder
 //! rebuilds X̂ from it bit for bit); a move needs a strict drop of the
 //! cost ([`FIT_GAIN`]), so a flat region keeps the aimed code; the work
-//! is O(region faces) per step, so O(input faces) per run overall.
+//! is O(region faces) per step, so O(input faces) per run overall. The
+//! forward term measures each region vertex once (not once per face that
+//! holds it) and adds the same terms in the same order, so the codes are
+//! bit for bit those of the per-corner sum (issue 22).
 
 use super::surface::Surface;
 use super::Retiler;
@@ -82,17 +85,12 @@ impl Retiler<'_> {
             return aimed;
         }
         let region = &mut self.fit_region;
-        region.clear();
-        region.extend(
-            faces
-                .iter()
-                .map(|&f| Surface::corners(f).map(|c| self.s.p(c).to_array())),
-        );
+        region.fill(&self.s, faces);
         let (gl, gr) = (self.xhat[vl as usize], self.xhat[vr as usize]);
         let table = &self.table;
-        let cost = |code: u32| {
+        let mut cost = |code: u32| {
             let tip = DVec3::from_array(frame.point(table, code));
-            two_sided(region, [tip, gl, gr])
+            region.two_sided([tip, gl, gr])
         };
         let n = 1i64 << table.bits();
         let code_at = |d: i64| (i64::from(aimed) + d).rem_euclid(n) as u32;
@@ -118,26 +116,84 @@ impl Retiler<'_> {
     }
 }
 
-/// The cost of the module header for triangle `t` = (tip, GL, GR) over
-/// the faces `region` of M (their corners).
-fn two_sided(region: &[[[f64; 3]; 3]], t: [DVec3; 3]) -> f64 {
-    let tri = t.map(|v| v.to_array());
-    let mut forward = 0.0;
-    for face in region {
-        for &p in face {
-            forward += triangle_distance2_f64(p, &tri);
+/// The region of a fit: its faces' corners, and each corner as one of
+/// the region's distinct vertices, so that the forward term measures
+/// each vertex once however many region faces hold it (about six).
+#[derive(Default)]
+pub(super) struct Region {
+    /// Per face, its three corners.
+    faces: Vec<[[f64; 3]; 3]>,
+    /// Per face, its corners as indices into `points`.
+    index: Vec<[u32; 3]>,
+    /// The distinct vertices of the region.
+    points: Vec<[f64; 3]>,
+    /// Per surface vertex: (epoch, index into `points`) when it is in
+    /// the region being built.
+    slot: Vec<(u32, u32)>,
+    epoch: u32,
+    /// Scratch of the forward term: d(p, T)² per point.
+    dist: Vec<f64>,
+}
+
+impl Region {
+    /// Takes the faces `faces` of `s`.
+    fn fill(&mut self, s: &Surface, faces: &[u32]) {
+        self.faces.clear();
+        self.index.clear();
+        self.points.clear();
+        if self.slot.len() < s.vertex_count() {
+            self.slot.resize(s.vertex_count(), (0, 0));
+        }
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.slot.fill((0, 0));
+            self.epoch = 1;
+        }
+        for &f in faces {
+            let corners = Surface::corners(f);
+            self.faces.push(corners.map(|c| s.p(c).to_array()));
+            let index = corners.map(|c| {
+                let v = s.v[c as usize] as usize;
+                let (epoch, i) = self.slot[v];
+                if epoch == self.epoch {
+                    return i;
+                }
+                let i = self.points.len() as u32;
+                self.points.push(s.p(c).to_array());
+                self.slot[v] = (self.epoch, i);
+                i
+            });
+            self.index.push(index);
         }
     }
-    let mut backward = 0.0;
-    for w in FIT_POINTS {
-        let x = (t[0] * w[0] + t[1] * w[1] + t[2] * w[2]).to_array();
-        let nearest = region
-            .iter()
-            .map(|face| triangle_distance2_f64(x, face))
-            .fold(f64::INFINITY, f64::min);
-        backward += nearest;
+
+    /// The cost of the module header for triangle `t` = (tip, GL, GR).
+    /// The forward sum adds the same terms in the same order (face by
+    /// face, corner by corner) as one distance per face corner would, so
+    /// the result is bit for bit the same.
+    fn two_sided(&mut self, t: [DVec3; 3]) -> f64 {
+        let tri = t.map(|v| v.to_array());
+        self.dist.clear();
+        self.dist
+            .extend(self.points.iter().map(|&p| triangle_distance2_f64(p, &tri)));
+        let mut forward = 0.0;
+        for face in &self.index {
+            for &i in face {
+                forward += self.dist[i as usize];
+            }
+        }
+        let mut backward = 0.0;
+        for w in FIT_POINTS {
+            let x = (t[0] * w[0] + t[1] * w[1] + t[2] * w[2]).to_array();
+            let nearest = self
+                .faces
+                .iter()
+                .map(|face| triangle_distance2_f64(x, face))
+                .fold(f64::INFINITY, f64::min);
+            backward += nearest;
+        }
+        forward / (3 * self.faces.len()) as f64 + backward / FIT_POINTS.len() as f64
     }
-    forward / (3 * region.len()) as f64 + backward / FIT_POINTS.len() as f64
 }
 
 #[cfg(test)]

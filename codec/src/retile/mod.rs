@@ -211,7 +211,7 @@ fn retile_piece(
         approximate: opt.approximate_tips,
         fit: opt.fit_tips,
         offsets: offset::Scratch::default(),
-        fit_region: Vec::new(),
+        fit_region: fit::Region::default(),
         run_steps: budget::RUN_STEPS_PER_ELEMENT.saturating_mul(elements),
         run_bytes,
         budget,
@@ -338,8 +338,8 @@ struct Retiler<'b> {
     /// Choose C codes by `fit`.
     fit: bool,
     offsets: offset::Scratch,
-    /// Scratch of `fit`: the corners of the region just claimed.
-    fit_region: Vec<[[f64; 3]; 3]>,
+    /// Scratch of `fit`: the region just claimed.
+    fit_region: fit::Region,
     cap: usize,
     /// The two angle codes of each loop point (`boundary`), in order.
     loop_codes: Vec<[u32; 2]>,
