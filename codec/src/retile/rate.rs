@@ -22,10 +22,11 @@
 //!
 //! A run that fails (some gate found no valid triangle) is retried from
 //! the next flattest start vertex, first at the same L and then at L 3%,
-//! 6%, 12% either side of it and 24%, 48%, … above: failures are not monotonic in L (measured on
-//! horse: runs fail and succeed alternately over a few percent of L), so
-//! they cannot bracket a binary search the way the thesis's "largest L
-//! that works" search assumed.
+//! 6%, 12% either side of it and 24%, 48%, … above: failures are not
+//! monotonic in L (measured on horse: runs fail and succeed alternately
+//! over a few percent of L), so they cannot bracket a binary search the
+//! way the thesis's "largest L that works" search assumed. A model step
+//! is moved off any L where a run failed (it would fail again).
 //!
 //! The result is the run nearest the request among those within
 //! `max_bytes`; it lands within `TOLERANCE` of the request unless no run
@@ -552,7 +553,10 @@ fn search(
                 if done.iter().any(|&(ld, _)| (next / ld).ln().abs() < REPEAT) {
                     break;
                 }
-                l = next;
+                // Nor again where a run failed: its start vertices would
+                // fail as before (a search on bunny-1m once alternated
+                // between a failing L and the one 3% below it).
+                l = clear_of(next, &attempts);
             }
             Err(f) => {
                 attempts.push(Attempt {
@@ -654,6 +658,24 @@ const FAIL_STEP: f64 = 0.03;
 /// The most a retry after failures lowers L, relative.
 const FAIL_DOWN: f64 = 0.12;
 
+/// `l`, or the nearest of l·(1 ± k·1.5%), k = 1, 2, …, that lies
+/// farther than [`FAILED_NEAR`] (relative) from every L tried that failed.
+fn clear_of(l: f64, attempts: &[Attempt]) -> f64 {
+    let failed = |x: f64| {
+        attempts
+            .iter()
+            .any(|a| a.outcome.is_err() && (x / a.edge_length).ln().abs() < FAILED_NEAR)
+    };
+    (0..=8)
+        .flat_map(|k| [1.0 + 0.015 * f64::from(k), 1.0 - 0.015 * f64::from(k)])
+        .map(|f| l * f)
+        .find(|&x| !failed(x))
+        .unwrap_or(l)
+}
+
+/// How near (|ln L|) a failed run's L a new run is not made.
+const FAILED_NEAR: f64 = 0.005;
+
 /// Least |ln L| between two runs for their sizes to measure a slope.
 const SLOPE_SPAN: f64 = 0.04;
 
@@ -672,4 +694,33 @@ fn infeasible(attempts: &[Attempt]) -> Error {
         failure: last.and_then(|a| a.outcome.err()),
     }
     .into()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_model_step_never_lands_on_an_edge_length_that_failed() {
+        let failed = |l| Attempt {
+            edge_length: l,
+            outcome: Err(Failure::Runaway),
+        };
+        let ok = |l| Attempt {
+            edge_length: l,
+            outcome: Ok(100),
+        };
+        // A successful run there does not count: only failures repel.
+        assert_eq!(clear_of(1.0, &[ok(1.0)]), 1.0);
+        let attempts = [failed(1.0), failed(1.015), ok(0.97)];
+        let l = clear_of(1.001, &attempts);
+        assert!(
+            attempts
+                .iter()
+                .filter(|a| a.outcome.is_err())
+                .all(|a| (l / a.edge_length).ln().abs() >= FAILED_NEAR),
+            "{l}"
+        );
+        assert!((l / 1.001).ln().abs() < 0.04, "{l} moved too far");
+    }
 }
