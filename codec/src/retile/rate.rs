@@ -10,8 +10,8 @@
 //! runs measure one), and by interpolation between the nearest runs on
 //! either side of the aim once both exist. A search after another for the
 //! same request (coarser angles, other tips, the hint's few bytes less)
-//! starts at the earlier file's L with its measured slope ([`Prior`]),
-//! so it usually needs two runs. Measured on the corpus at 0.5-8 b/v
+//! starts where the earlier search's model meets the request, with its
+//! measured slope ([`Prior`]), so it usually needs two runs. Measured on the corpus at 0.5-8 b/v
 //! (BENCHMARKS.md, "Rate control in few runs").
 //!
 //! The size does not always answer L: below the header and the parts
@@ -443,8 +443,8 @@ const FIRST_BITS_PER_TRIANGLE: f64 = 2.0;
 /// Each run after the first steps to where the size model through the
 /// runs so far meets the aim: between the nearest runs on either side of
 /// it once there are both (interpolating ln size against ln L), else
-/// from the nearest run along the slope the last two runs measured (or
-/// the prior's). The search stops early, with the nearest file, where
+/// from the nearest run along the slope last measured between two runs
+/// (or the prior's). The search stops early, with the nearest file, where
 /// size does not answer L: twice a step towards the aim moved the size
 /// away from it (the header and parts kept losslessly make tiny requests
 /// unreachable), or the model asks for an L already run.
