@@ -43,6 +43,7 @@
 //! holds it) and adds the same terms in the same order, so the codes are
 //! bit for bit those of the per-corner sum (issue 22).
 
+use super::marks::Marks;
 use super::surface::Surface;
 use super::Retiler;
 use crate::metrics::triangle_distance2_f64;
@@ -127,10 +128,10 @@ pub(super) struct Region {
     index: Vec<[u32; 3]>,
     /// The distinct vertices of the region.
     points: Vec<[f64; 3]>,
-    /// Per surface vertex: (epoch, index into `points`) when it is in
-    /// the region being built.
-    slot: Vec<(u32, u32)>,
-    epoch: u32,
+    /// The surface vertices already in `points`...
+    seen: Marks,
+    /// ... and, per surface vertex in `seen`, its index there.
+    slot: Vec<u32>,
     /// Scratch of the forward term: d(p, T)² per point.
     dist: Vec<f64>,
 }
@@ -141,26 +142,21 @@ impl Region {
         self.faces.clear();
         self.index.clear();
         self.points.clear();
+        self.seen.clear(s.vertex_count());
         if self.slot.len() < s.vertex_count() {
-            self.slot.resize(s.vertex_count(), (0, 0));
-        }
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.slot.fill((0, 0));
-            self.epoch = 1;
+            self.slot.resize(s.vertex_count(), 0);
         }
         for &f in faces {
             let corners = Surface::corners(f);
             self.faces.push(corners.map(|c| s.p(c).to_array()));
             let index = corners.map(|c| {
-                let v = s.v[c as usize] as usize;
-                let (epoch, i) = self.slot[v];
-                if epoch == self.epoch {
-                    return i;
+                let v = s.v[c as usize];
+                if !self.seen.insert(v) {
+                    return self.slot[v as usize];
                 }
                 let i = self.points.len() as u32;
                 self.points.push(s.p(c).to_array());
-                self.slot[v] = (self.epoch, i);
+                self.slot[v as usize] = i;
                 i
             });
             self.index.push(index);

@@ -550,7 +550,7 @@ fn search(
                 let next = next_length(&done, aim, measured.unwrap_or(slope)).min(l_max);
                 // The model asks for a retiling already made: nothing left
                 // to learn.
-                if done.iter().any(|&(ld, _)| (next / ld).ln().abs() < REPEAT) {
+                if already_run(&done, next) {
                     break;
                 }
                 // Nor again where a run failed: its start vertices would
@@ -631,7 +631,7 @@ fn next_length(done: &[(f64, u64)], aim: f64, slope: f64) -> f64 {
                 _ => Some((l, s)),
             })
     };
-    let ran = |l: f64| done.iter().any(|&(ld, _)| (l / ld).ln().abs() < REPEAT);
+    let ran = |l: f64| already_run(done, l);
     if let (Some((ls, ss)), Some((ll, sl))) =
         (nearest(&|s| off(s) < 0.0), nearest(&|s| off(s) >= 0.0))
     {
@@ -678,6 +678,11 @@ const FAILED_NEAR: f64 = 0.005;
 
 /// Least |ln L| between two runs for their sizes to measure a slope.
 const SLOPE_SPAN: f64 = 0.04;
+
+/// Whether a successful run of `done` was made at `l` (within [`REPEAT`]).
+fn already_run(done: &[(f64, u64)], l: f64) -> bool {
+    done.iter().any(|&(ld, _)| (l / ld).ln().abs() < REPEAT)
+}
 
 /// Edge lengths closer than this (relative) count as the same run.
 const REPEAT: f64 = 0.002;

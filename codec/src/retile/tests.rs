@@ -329,7 +329,6 @@ fn rate_control_lands_in_at_most_three_runs() {
             "{target}: {:?}",
             first.report
         );
-        eprintln!("{target}: {runs} runs");
         assert!(
             runs <= 3,
             "{target} bytes took {runs} runs: {:?}",
@@ -341,7 +340,6 @@ fn rate_control_lands_in_at_most_three_runs() {
         };
         let second =
             rate::at_size(&pieces, target, None, coarser, &budget, Some(first.prior)).unwrap();
-        eprintln!("  from its prior: {} runs", second.report.attempts.len());
         assert!(
             second.report.within_tolerance,
             "{target}: {:?}",
