@@ -791,3 +791,64 @@ fn swing_crease_v1_1_reencodes_to_the_same_bytes() {
         "re-encoding the golden box no longer gives golden/swing-crease-v1.1.swm"
     );
 }
+
+// --- CLRD and GEOF: lossless symbols and positions of a dense mesh ---
+
+/// The golden sphere (642 vertices) at 6 bits, where vertices are about
+/// four grid steps apart and nearly every vertex has valence 6: the
+/// encoder keeps `CLRD` and `GEOF`, smaller than `CLRS` and `GEOM`.
+fn golden_dense_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Lossless { qp: 6 },
+        ..EncodeOptions::default()
+    }
+}
+
+const LOSSLESS_DENSE_V1_1: &[u8] = include_bytes!("../format-spec/golden/lossless-dense-v1.1.swm");
+
+/// The test vector of format-spec/04-lossless.md ("Golden file of CLRD
+/// and GEOF").
+const LOSSLESS_DENSE_V1_1_FNV1A64: u64 = 0xF6EC_ED5E_393D_6A5F;
+
+/// Writes the dense golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_lossless_dense_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_lossless_dense_v1_1_golden() {
+    let options = golden_dense_options();
+    write_golden("lossless-dense-v1.1.swm", &golden_sphere(), &options);
+    let encoded = swm::encode(&golden_sphere(), &options).unwrap();
+    println!("sections {:?}", encoded.stats.lossless.map(|s| s.sections));
+}
+
+/// Must hold forever: a failure means the decoder no longer reads the
+/// CLRD and GEOF sections of format 1.1 as specified.
+#[test]
+fn lossless_dense_v1_1_decodes_to_its_test_vector() {
+    let info = swm::inspect(LOSSLESS_DENSE_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    let tags: Vec<&[u8; 4]> = info.stats.sections.iter().map(|(t, _)| t).collect();
+    assert!(
+        tags.contains(&b"CLRD") && tags.contains(&b"GEOF"),
+        "{tags:?}"
+    );
+    assert!(!tags.contains(&b"CLRS") && !tags.contains(&b"GEOM"));
+    let mesh = swm::decode(LOSSLESS_DENSE_V1_1, &DecodeOptions::default())
+        .expect("golden file lossless-dense-v1.1.swm must decode");
+    assert_eq!((mesh.positions.len(), mesh.triangles.len()), (642, 1280));
+    assert_eq!(
+        mesh_hash(&mesh),
+        LOSSLESS_DENSE_V1_1_FNV1A64,
+        "decoded mesh differs from format-spec/04-lossless.md's test vector"
+    );
+}
+
+/// The encoder still writes the dense golden bytes from the golden sphere.
+#[test]
+fn lossless_dense_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_sphere(), &golden_dense_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, LOSSLESS_DENSE_V1_1,
+        "re-encoding the golden sphere no longer gives golden/lossless-dense-v1.1.swm"
+    );
+}

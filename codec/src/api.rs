@@ -713,10 +713,10 @@ pub fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> {
     let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
     let (qp, stats, swing) = match h.mode {
         Mode::Lossless => {
-            let (q, conn, dummies) = crate::lossless::read_connectivity(&file, limits)?;
+            let (q, conn, dummies, table) = crate::lossless::read_connectivity(&file, limits)?;
             // As strict as `decode` about the counts (issue 18): the
             // connectivity is decoded and checked against the header.
-            crate::lossless::decode_topology(&file, &conn, &dummies)?;
+            crate::lossless::decode_topology(&file, &conn, &dummies, table)?;
             let stats = LosslessStats::new(h, &conn, dummies.len(), sections, bytes.len());
             (q.bits, stats, None)
         }

@@ -47,12 +47,12 @@ pub(crate) const MODE_AT: usize = 8;
 /// one-byte section count, the CRC.
 pub(crate) const MIN_COMPACT_LEN: usize = MODE_AT + 1 + 3 + 1 + super::header::CRC_LEN;
 
-/// Registered tags and their codes: code `k` (1..=12) is `CODES[k − 1]`.
-/// Code 0 announces a literal four-byte tag; codes 13–255 are reserved
+/// Registered tags and their codes: code `k` (1..=14) is `CODES[k − 1]`.
+/// Code 0 announces a literal four-byte tag; codes 15–255 are reserved
 /// for tags later versions register, and a decoder that meets one cannot
 /// tell whether the section is critical, so it rejects the file as
 /// unsupported.
-pub(crate) const CODES: [Tag; 12] = [
+pub(crate) const CODES: [Tag; 14] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -65,6 +65,8 @@ pub(crate) const CODES: [Tag; 12] = [
     Tag::LOOP,
     Tag::POST,
     Tag::RADS,
+    Tag::GEOF,
+    Tag::CLRD,
 ];
 
 /// The one-byte code of a registered tag.

@@ -46,6 +46,14 @@ impl Tag {
     /// moving it along its gate's bisecting plane, off the circle, onto a
     /// crease of the input (format-spec/05-swing.md).
     pub const RADS: Tag = Tag(*b"RADS");
+    /// Critical (format 1.1). Lossless positions coded with the offsets
+    /// of their predictions as context, in place of `GEOM`
+    /// (format-spec/04-lossless.md).
+    pub const GEOF: Tag = Tag(*b"GEOF");
+    /// Critical (format 1.1). Lossless CLERS symbols coded last to first
+    /// with the decoder's degrees at the active gate as context, in place
+    /// of `CLRS` (format-spec/04-lossless.md).
+    pub const CLRD: Tag = Tag(*b"CLRD");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
     /// Ancillary (format 1.1). The encoder's post-processing hint:
@@ -89,7 +97,7 @@ impl Tag {
 /// any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
 /// (At most 16: the parser keeps them in a `u16`.)
-pub(crate) const KNOWN_CRITICAL: [Tag; 10] = [
+pub(crate) const KNOWN_CRITICAL: [Tag; 12] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -100,6 +108,8 @@ pub(crate) const KNOWN_CRITICAL: [Tag; 10] = [
     Tag::CLRF,
     Tag::LOOP,
     Tag::RADS,
+    Tag::GEOF,
+    Tag::CLRD,
 ];
 
 /// Ancillary tags of format 1.0, then those 1.1 added. Other ancillary

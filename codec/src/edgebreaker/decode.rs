@@ -22,6 +22,13 @@
 //! triangles then get the encoder's vertex numbers: the first triangle's
 //! three vertices, then each C tip in symbol order.
 //!
+//! The decoder can take its symbols from a stream as it goes
+//! ([`decode_from`] with a [`SymbolSource`]), telling the source the
+//! state each symbol is decoded in: the triangles already built around
+//! the active gate's start vertex (the tip a C would close) and its end
+//! vertex, counted per union-find class, which `CLRD` (format 1.1) uses
+//! as the symbol's context. Plain [`decode`] keeps no counts.
+//!
 //! Every step is checked: the decoder reads hostile data, so a stream that
 //! does not describe a closed manifold gives an error, never a panic, a
 //! loop or an allocation beyond the declared (and limit-checked) counts.
@@ -41,14 +48,97 @@ struct State {
     v: Vec<u32>,
     o: Vec<u32>,
     parent: Vec<u32>,
+    /// Corners of each provisional vertex so far (kept only when contexts
+    /// are asked for; valid at union-find roots).
+    corners: Vec<u32>,
+    /// Whether `corners` is kept.
+    counting: bool,
     stack: Vec<u32>,
+}
+
+/// Largest count of corners a context tells apart ([`State::context`]).
+const DEGREE_CAP: u32 = 7;
+
+/// Contexts of [`SymbolSource::symbol`]: 0 when no gate is open (the
+/// symbol can only be an E), else one per pair of capped corner counts.
+pub const CONTEXTS: usize = 1 + ((DEGREE_CAP + 1) * (DEGREE_CAP + 1)) as usize;
+
+/// Where the decoder takes the symbols from, last to first.
+pub trait SymbolSource {
+    /// Whether the decoder works out each symbol's context (otherwise it
+    /// passes 0).
+    const CONTEXTS: bool;
+    /// Symbol `i`, in the decoder's state `ctx` (see [`CONTEXTS`]).
+    fn symbol(&mut self, i: usize, ctx: usize) -> Result<Symbol, FormatError>;
+}
+
+/// The symbols of a [`Connectivity`], no contexts.
+struct Known<'a>(&'a [Symbol]);
+
+impl SymbolSource for Known<'_> {
+    const CONTEXTS: bool = false;
+    #[inline]
+    fn symbol(&mut self, i: usize, _ctx: usize) -> Result<Symbol, FormatError> {
+        Ok(self.0[i])
+    }
+}
+
+/// The symbols of a [`Connectivity`], each context recorded.
+struct Recorded<'a> {
+    symbols: &'a [Symbol],
+    contexts: Vec<u8>,
+}
+
+impl SymbolSource for Recorded<'_> {
+    const CONTEXTS: bool = true;
+    #[inline]
+    fn symbol(&mut self, i: usize, ctx: usize) -> Result<Symbol, FormatError> {
+        self.contexts.push(ctx as u8);
+        Ok(self.symbols[i])
+    }
 }
 
 impl State {
     fn fresh(&mut self) -> u32 {
         let id = self.parent.len() as u32;
         self.parent.push(id);
+        if self.counting {
+            self.corners.push(0);
+        }
         id
+    }
+
+    /// Gives the unassigned corner `c` a new provisional vertex.
+    #[inline]
+    fn fresh_at(&mut self, c: u32) {
+        let id = self.fresh();
+        self.v[c as usize] = id;
+        if self.counting {
+            self.corners[id as usize] = 1;
+        }
+    }
+
+    /// The decoder's state at the active gate, as a context: the corners
+    /// already built around the gate's two vertices (its start, the pivot
+    /// a C closes, then its end), each capped at [`DEGREE_CAP`]. Read
+    /// backwards, a C is the triangle that completes its tip's fan, so on
+    /// a mesh of regular valence the count at the pivot all but names the
+    /// symbol.
+    fn context(&mut self) -> usize {
+        let Some(&top) = self.stack.last() else {
+            return 0;
+        };
+        let mut count = |c: u32| {
+            let id = self.v[c as usize];
+            if id == UNSET {
+                return 0;
+            }
+            let r = self.find(id);
+            self.corners[r as usize].min(DEGREE_CAP)
+        };
+        let start = count(CornerId(top).next().0);
+        let end = count(CornerId(top).prev().0);
+        1 + (start * (DEGREE_CAP + 1) + end) as usize
     }
 
     fn find(&mut self, mut x: u32) -> u32 {
@@ -65,10 +155,18 @@ impl State {
         let cur = self.v[c as usize];
         if cur == UNSET {
             self.v[c as usize] = id;
+            if self.counting {
+                let r = self.find(id);
+                self.corners[r as usize] += 1;
+            }
         } else {
             let (a, b) = (self.find(cur), self.find(id));
             if a != b {
                 self.parent[a.max(b) as usize] = a.min(b);
+                if self.counting {
+                    let moved = self.corners[a.max(b) as usize];
+                    self.corners[a.min(b) as usize] += moved;
+                }
             }
         }
     }
@@ -120,21 +218,77 @@ impl State {
 /// has `conn.triangles()` faces and `conn.vertices` vertices, numbered as
 /// the encoder visited them.
 pub fn decode(conn: &Connectivity) -> Result<CornerTable, FormatError> {
-    for (k, e) in conn.splits.iter().enumerate() {
-        let ordered = k == 0 || conn.splits[k - 1].split < e.split;
-        let in_range = e.split < e.source && (e.source as usize) < conn.symbols.len();
-        if !ordered || !in_range || conn.symbols[e.split as usize] != Symbol::S {
-            return Err(bad("invalid handle event"));
-        }
-    }
     let ranges = conn
         .component_ranges()
         .ok_or(bad("connectivity symbols do not match the component count"))?;
-    let nf = conn.triangles() as usize;
+    let mut symbols = Vec::new();
+    decode_from(conn, &ranges, &mut Known(&conn.symbols), &mut symbols)
+}
+
+/// [`decode`], also returning the context of every symbol in the order
+/// the decoder asks for them (components last to first, each from its
+/// last symbol to its first): what `CLRD` codes them with.
+pub fn decode_recording(conn: &Connectivity) -> Result<(CornerTable, Vec<u8>), FormatError> {
+    let ranges = conn
+        .component_ranges()
+        .ok_or(bad("connectivity symbols do not match the component count"))?;
+    let mut src = Recorded {
+        symbols: &conn.symbols,
+        contexts: Vec::with_capacity(conn.symbols.len()),
+    };
+    let mut symbols = Vec::new();
+    let table = decode_from(conn, &ranges, &mut src, &mut symbols)?;
+    Ok((table, src.contexts))
+}
+
+/// Symbol ranges of components whose symbol counts are `counts`, or
+/// `None` if they do not add up to `total`.
+pub fn ranges_of(counts: &[u64], total: usize) -> Option<Vec<(usize, usize)>> {
+    let mut ranges = Vec::with_capacity(counts.len());
+    let mut start = 0usize;
+    for &n in counts {
+        let end = start.checked_add(usize::try_from(n).ok()?)?;
+        ranges.push((start, end));
+        start = end;
+    }
+    (start == total).then_some(ranges)
+}
+
+/// The decoder proper: `conn`'s symbols are ignored and taken from `src`
+/// instead, for components `ranges` (which must cover `0..symbol count`
+/// in order); `conn.symbols.len()` is not used either, the count being
+/// the end of the last range. `symbols` receives every symbol decoded.
+/// The ranges are checked against the decoded symbols.
+pub fn decode_from<S: SymbolSource>(
+    conn: &Connectivity,
+    ranges: &[(usize, usize)],
+    src: &mut S,
+    symbols: &mut Vec<Symbol>,
+) -> Result<CornerTable, FormatError> {
+    let count = ranges.last().map_or(0, |r| r.1);
+    if ranges.len() != conn.components as usize {
+        return Err(bad("connectivity symbols do not match the component count"));
+    }
+    for (k, e) in conn.splits.iter().enumerate() {
+        let ordered = k == 0 || conn.splits[k - 1].split < e.split;
+        let in_range = e.split < e.source && (e.source as usize) < count;
+        if !ordered || !in_range {
+            return Err(bad("invalid handle event"));
+        }
+    }
+    symbols.clear();
+    symbols.resize(count, Symbol::C);
+    let nf = count + ranges.len();
     let mut st = State {
         v: vec![UNSET; 3 * nf],
         o: vec![UNSET; 3 * nf],
         parent: Vec::with_capacity(nf + 2 * ranges.len()),
+        corners: Vec::with_capacity(if S::CONTEXTS {
+            nf + 2 * ranges.len()
+        } else {
+            0
+        }),
+        counting: S::CONTEXTS,
         stack: Vec::new(),
     };
     // Corner facing the source edge of each event, filled when the source
@@ -150,22 +304,25 @@ pub fn decode(conn: &Connectivity) -> Result<CornerTable, FormatError> {
         for i in (start..end).rev() {
             let t = (i + k + 1) as u32;
             let (a, b, c) = (3 * t, 3 * t + 1, 3 * t + 2);
-            match conn.symbols[i] {
+            let ctx = if S::CONTEXTS { st.context() } else { 0 };
+            let symbol = src.symbol(i, ctx)?;
+            symbols[i] = symbol;
+            match symbol {
                 Symbol::E => {
                     for x in [a, b, c] {
-                        st.v[x as usize] = st.fresh();
+                        st.fresh_at(x);
                     }
                     st.stack.push(a);
                 }
                 Symbol::L => {
                     let top = st.top()?;
-                    st.v[b as usize] = st.fresh();
+                    st.fresh_at(b);
                     st.glue(b, top)?;
                     *st.stack.last_mut().expect("top exists") = a;
                 }
                 Symbol::R => {
                     let top = st.top()?;
-                    st.v[c as usize] = st.fresh();
+                    st.fresh_at(c);
                     st.glue(c, top)?;
                     *st.stack.last_mut().expect("top exists") = a;
                 }
@@ -227,7 +384,20 @@ pub fn decode(conn: &Connectivity) -> Result<CornerTable, FormatError> {
     if next_source != 0 || next_split != 0 {
         return Err(bad("handle events do not match the symbols"));
     }
-    finish(conn, &ranges, st)
+    if S::CONTEXTS {
+        // Coded ranges must be the ones the symbols imply.
+        let decoded = Connectivity {
+            symbols: core::mem::take(symbols),
+            splits: conn.splits.clone(),
+            components: conn.components,
+            vertices: conn.vertices,
+        };
+        if decoded.component_ranges().as_deref() != Some(ranges) {
+            return Err(bad("component lengths do not match the symbols"));
+        }
+        *symbols = decoded.symbols;
+    }
+    finish(symbols, conn.vertices, ranges, st)
 }
 
 /// Resolves provisional vertices and numbers them in encoder order.
@@ -245,7 +415,8 @@ pub fn decode(conn: &Connectivity) -> Result<CornerTable, FormatError> {
 /// surface, distinct vertices per triangle, and the encoder's numbering.
 /// Debug builds still run the full [`CornerTable::check`].
 fn finish(
-    conn: &Connectivity,
+    symbols: &[Symbol],
+    vertices: u32,
     ranges: &[(usize, usize)],
     st: State,
 ) -> Result<CornerTable, FormatError> {
@@ -281,18 +452,18 @@ fn finish(
         for x in [3 * t, 3 * t + 1, 3 * t + 2] {
             visit(x)?;
         }
-        for i in start..end {
-            if conn.symbols[i] == Symbol::C {
+        for (i, &s) in symbols.iter().enumerate().take(end).skip(start) {
+            if s == Symbol::C {
                 visit(3 * (i + k + 1) as u32)?;
             }
         }
     }
-    if next != conn.vertices {
+    if next != vertices {
         return Err(FormatError::new(
             "SWM",
             Malformed::CountMismatch {
                 element: "vertices",
-                declared: conn.vertices.into(),
+                declared: vertices.into(),
                 found: next.into(),
             },
         ));

@@ -33,7 +33,7 @@ mod tests;
 #[cfg(test)]
 pub(crate) use tests::swm_corpus_like as tests_support;
 
-pub use decode::decode;
+pub use decode::{decode, decode_from, decode_recording, ranges_of, SymbolSource, CONTEXTS};
 pub use encode::{encode, Encoded};
 pub use holes::{close_holes, fill_holes, Closed, Filled};
 pub use shared::{Connectivity, Side, SplitEvent, Symbol};

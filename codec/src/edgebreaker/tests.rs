@@ -29,6 +29,12 @@ fn roundtrip(name: &str, triangles: &[[u32; 3]], vertex_count: usize) -> Encoded
         expected(&table, &enc),
         "{name}: decoded triangles differ"
     );
+    // Recording the contexts builds the same table, one context per
+    // symbol, each in range.
+    let (recorded, contexts) = decode_recording(conn).unwrap();
+    assert_eq!(recorded.triangles(), dec.triangles(), "{name}");
+    assert_eq!(contexts.len(), conn.symbols.len(), "{name}");
+    assert!(contexts.iter().all(|&c| (c as usize) < CONTEXTS), "{name}");
     // Recompressing the decoded mesh gives the same symbols, in the
     // decoder's own numbering (identity orders).
     let again = encode(&dec).unwrap();

@@ -43,6 +43,23 @@
 //! modelling the top mantissa bit gains 0.1–0.2 bits/vertex, the second
 //! 0.03–0.06, a third nothing.
 //!
+//! **`GEOF` (format 1.1, [`Coding::Offsets`]), a rule beyond the
+//! sources.** A `Multi` average is rounded to the grid, and where the
+//! exact average fell inside its cell is known to both sides: on the
+//! point, a third or a quarter of a step below or above, or half a step
+//! below (ties round up). Where residuals are about a step (dense scans,
+//! subdivision surfaces, low `qp`) that says which small residual is the
+//! likelier, so `GEOF` codes lengths at neighbourhood levels ≤ 1, and
+//! every mantissa, in contexts of that offset group, and turns the
+//! residual's sign when the average lies above, so that its side gets
+//! the shorter zig-zag code. The encoder also breaks subset ties towards
+//! more parallelograms (see the encoder). Measured (bytes of the section,
+//! `GEOM` → `GEOF`): bunny-1m 11 bits 281,288 → 227,212, 8 bits 224,884 →
+//! 179,340; horse 8 bits 22,056 → 19,020; bunny 8 bits 18,496 → 16,820;
+//! 11 and 14 bits on the 35k–50k-vertex scans within ±1.3% either way,
+//! fandisk at 8 bits +7.7% — which is why the lossless mode writes
+//! whichever of the two is shorter.
+//!
 //! Both sides keep the same model state and update it in the same order;
 //! every step marked "must match the encoder exactly" is shared code or a
 //! mirror of the encoder's step.
@@ -54,7 +71,9 @@
 
 use crate::prelude::*;
 
-use super::predict::{average, average_of, parallelogram, Prediction, Predictions, MAX_SELECTABLE};
+use super::predict::{
+    mean_in_grid, offsets, parallelogram, sum_of, Prediction, Predictions, MAX_SELECTABLE,
+};
 use super::quantize::{max_value, MAX_BITS};
 #[cfg(doc)]
 use super::traverse::traverse;
@@ -66,6 +85,40 @@ use crate::{Error, FormatError, Malformed};
 /// Mantissa bits below the leading one coded adaptively (the rest are raw).
 const MODELED_MANTISSA_BITS: u32 = 2;
 
+/// Which section's coding: format 1.0's `GEOM` or 1.1's `GEOF`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coding {
+    /// `GEOM`: lengths in contexts of axis and neighbourhood level.
+    Plain,
+    /// `GEOF`: also in contexts of where the exact mean of the averaged
+    /// parallelograms lies against the grid point it rounds to, with the
+    /// residual's sign turned so that the mean's side comes first.
+    Offsets,
+}
+
+/// Offset groups of [`Coding::offsets`]: on the grid point, a third or a
+/// quarter off (oriented), half off.
+const GROUPS: usize = 3;
+
+/// The offset groups split the length contexts only at neighbourhood
+/// levels up to this one (residuals of about a step): where residuals
+/// are larger a fraction of a step hardly moves them, and three times the
+/// contexts only thin the statistics. Measured (`GEOF` bytes, levels ≤ 1
+/// against every level; ≤ 0 is clearly worse, bunny-1m 11 bits 239,508):
+/// at 8 bits horse 19,328 → 19,020, homer 4,352 → 4,332, bunny-1m
+/// 179,236 → 179,340; at 11 bits spot 5,296 → 5,236, homer 10,192 →
+/// 10,008, bunny 34,064 → 34,344, bunny-1m 226,968 → 227,212.
+const OFFSET_LEVELS: u32 = 1;
+
+#[inline]
+fn group(offset: u8) -> usize {
+    match offset {
+        0 => 0,
+        1 | 2 => 1,
+        _ => 2,
+    }
+}
+
 /// The model state both sides keep. Must match the encoder exactly: the
 /// encoder and the decoder create it the same way and update it after
 /// every vertex in the same way.
@@ -74,7 +127,8 @@ struct Models {
     /// Bit lengths, per axis and neighbourhood length (`3 × (bits + 1)`
     /// contexts over `bits + 1` symbols).
     lengths: ContextModel,
-    /// Top mantissa bits, per length `L` (entries 0 and 1 unused).
+    /// Top mantissa bits, per offset group and length `L` (entries 0 and
+    /// 1 of each group unused).
     mantissa: Vec<AdaptiveModel>,
     /// Subset choice, for 2, 3, 4 selectable parallelograms.
     subsets: [AdaptiveModel; MAX_SELECTABLE - 1],
@@ -85,12 +139,14 @@ struct Models {
 }
 
 impl Models {
-    fn new(bits: u8, vertices: usize) -> Self {
+    fn new(bits: u8, vertices: usize, coding: Coding) -> Self {
         let symbols = bits as u32 + 1;
+        let groups = if coding == Coding::Offsets { GROUPS } else { 1 };
         Models {
             bits,
-            lengths: ContextModel::new(3 * symbols as usize, symbols),
-            mantissa: (0..=bits as u32)
+            lengths: ContextModel::new(groups * 3 * symbols as usize, symbols),
+            mantissa: (0..groups)
+                .flat_map(|_| 0..=bits as u32)
                 .map(|len| AdaptiveModel::new(1 << modeled_bits(len).max(1)))
                 .collect(),
             subsets: core::array::from_fn(|i| AdaptiveModel::new((1 << (i + 2)) - 1)),
@@ -137,13 +193,20 @@ impl Models {
     /// The length model's context for `axis`, given the lengths already
     /// coded for this vertex's earlier axes.
     #[inline]
-    fn context(&self, axis: usize, coded: &[u32; 3]) -> usize {
+    fn context(&self, axis: usize, coded: &[u32; 3], group: usize) -> usize {
         let level = match axis {
             0 => self.around[0],
             1 => (self.around[1] + coded[0]).div_ceil(2),
             _ => (self.around[2] + coded[0] + coded[1] + 1) / 3,
         };
-        axis * (self.bits as usize + 1) + level as usize
+        let group = if level <= OFFSET_LEVELS { group } else { 0 };
+        (group * 3 + axis) * (self.bits as usize + 1) + level as usize
+    }
+
+    /// The mantissa model for length `len` in offset group `group`.
+    #[inline]
+    fn mantissa(&mut self, group: usize, len: u32) -> &mut AdaptiveModel {
+        &mut self.mantissa[group * (self.bits as usize + 1) + len as usize]
     }
 
     fn end(&mut self, coded: [u32; 3]) {
@@ -164,20 +227,33 @@ fn length(z: u32) -> u32 {
 }
 
 /// The zig-zagged wrap-around residual of `q` against `pred`.
+/// With `flip`, the residual's sign is turned first (offset 2: the mean
+/// lies above the prediction, so positive residuals are the likelier).
 #[inline]
-fn residual(q: u32, pred: u32, bits: u8) -> u32 {
+fn residual(q: u32, pred: u32, bits: u8, flip: bool) -> u32 {
     let r = q.wrapping_sub(pred) & max_value(bits);
     // Sign-extend from `bits` bits: values ≥ 2^(bits−1) are negative.
     let shift = 32 - bits as u32;
-    let s = ((r << shift) as i32) >> shift;
+    let mut s = ((r << shift) as i32) >> shift;
+    if flip {
+        // −2^(bits−1) becomes 2^(bits−1), which wraps to the same
+        // residual; zig-zag keeps it within `bits` bits either way.
+        s = s.wrapping_neg();
+        if s == 1 << (bits - 1) {
+            s = -s;
+        }
+    }
     ((s << 1) ^ (s >> 31)) as u32
 }
 
 /// Inverse of [`residual`]: the grid coordinate `pred + s mod 2^bits`.
 /// Must match the encoder exactly.
 #[inline]
-fn reconstruct(z: u32, pred: u32, bits: u8) -> u32 {
-    let s = ((z >> 1) as i32) ^ -((z & 1) as i32);
+fn reconstruct(z: u32, pred: u32, bits: u8, flip: bool) -> u32 {
+    let mut s = ((z >> 1) as i32) ^ -((z & 1) as i32);
+    if flip {
+        s = s.wrapping_neg();
+    }
     pred.wrapping_add(s as u32) & max_value(bits)
 }
 
@@ -203,7 +279,8 @@ fn check_bits(bits: u8) -> Result<(), Error> {
     }
 }
 
-/// Encodes quantized positions, in decoding order, with their predictions.
+/// Encodes quantized positions, in decoding order, with their predictions,
+/// in format 1.0's coding ([`Coding::V1_0`]).
 ///
 /// # Panics
 ///
@@ -216,6 +293,65 @@ pub fn encode_positions(
     bits: u8,
     enc: &mut Encoder,
 ) {
+    encode_positions_as(quantized, predictions, bits, Coding::Plain, enc)
+}
+
+/// The predicted point of a vertex, the offsets of the exact mean against
+/// it, and the subset coded for it (if any).
+struct Predicted {
+    point: [u32; 3],
+    offsets: [u8; 3],
+}
+
+impl Predicted {
+    /// The prediction of the parallelograms `points` selected by `subset`.
+    #[inline]
+    fn of(points: &[[i64; 3]], subset: u32, bits: u8, coding: Coding) -> Predicted {
+        let (sum, n) = sum_of(points, subset);
+        let point = mean_in_grid(sum, n, bits);
+        let offsets = if coding == Coding::Offsets {
+            offsets(sum, n, point)
+        } else {
+            [0; 3]
+        };
+        Predicted { point, offsets }
+    }
+
+    /// The coded value of grid coordinate `q` on `axis`, and its offset
+    /// group.
+    #[inline]
+    fn residual(&self, axis: usize, q: u32, bits: u8) -> (u32, usize) {
+        let o = self.offsets[axis];
+        (residual(q, self.point[axis], bits, o == 2), group(o))
+    }
+
+    /// Inverse of [`Predicted::residual`]. Must match the encoder exactly.
+    #[inline]
+    fn reconstruct(&self, axis: usize, z: u32, bits: u8) -> u32 {
+        reconstruct(z, self.point[axis], bits, self.offsets[axis] == 2)
+    }
+
+    /// A prediction without offsets (none, delta, one parallelogram).
+    fn plain(point: [u32; 3]) -> Predicted {
+        Predicted {
+            point,
+            offsets: [0; 3],
+        }
+    }
+}
+
+/// [`encode_positions`] in the coding `coding`.
+///
+/// # Panics
+///
+/// As [`encode_positions`].
+pub fn encode_positions_as(
+    quantized: &[[u32; 3]],
+    predictions: &Predictions,
+    bits: u8,
+    coding: Coding,
+    enc: &mut Encoder,
+) {
     assert!(check_bits(bits).is_ok(), "quantization bits out of range");
     assert_eq!(
         quantized.len(),
@@ -224,7 +360,7 @@ pub fn encode_positions(
     );
     let max = max_value(bits);
     let paras = &predictions.parallelograms[..];
-    let mut m = Models::new(bits, quantized.len());
+    let mut m = Models::new(bits, quantized.len(), coding);
     for (k, (q, p)) in quantized.iter().zip(&predictions.vertices).enumerate() {
         assert!(q.iter().all(|&c| c <= max), "coordinate outside the grid");
         if let Err(e) = p.check(k, paras) {
@@ -236,46 +372,60 @@ pub fn encode_positions(
         // Step 1: the subset, chosen by estimated cost.
         let list = p.selectable(paras);
         let pred = if list.len() >= 2 {
-            let model = &m.subsets[list.len() - 2];
             let mut points = [[0i64; 3]; MAX_SELECTABLE];
             for (p, &abo) in points.iter_mut().zip(list) {
                 *p = parallelogram(decoded, abo);
             }
             let points = &points[..list.len()];
-            let mut best = (u32::MAX, 0, [0; 3]);
+            let model = &m.subsets[list.len() - 2];
+            let mut best = ((u32::MAX, 0), 0, Predicted::plain([0; 3]));
             for subset in 1u32..(1 << list.len()) {
                 // The point `average(decoded, list, subset, bits)` gives.
-                let pred = average_of(points, subset, bits);
+                let pred = Predicted::of(points, subset, bits, coding);
                 let mut bits16 = cost(model, subset - 1);
                 let mut coded = [0u32; 3];
                 for axis in 0..3 {
-                    let len = length(residual(q[axis], pred[axis], bits));
-                    let ctx = m.context(axis, &coded);
+                    let (z, g) = pred.residual(axis, q[axis], bits);
+                    let len = length(z);
+                    let ctx = m.context(axis, &coded, g);
                     bits16 += cost(m.lengths.get_ref(ctx), len) + 16 * len.saturating_sub(1);
                     coded[axis] = len;
                 }
-                if bits16 < best.0 {
-                    best = (bits16, subset, pred);
+                // Ties: `GEOM` takes the first subset (its files stay as
+                // they were); `GEOF` the one with more parallelograms.
+                // Where residuals are a step or less many subsets tie, and
+                // taking the first locks the subset model onto a single
+                // parallelogram, the noisiest prediction (bunny-1m at 11
+                // bits: 276,300 against 227,212 bytes). Breaking ties by
+                // the smaller residual instead fits the noise and spreads
+                // the subset model (227,724; on a dense smooth sphere at
+                // 8 bits 20,252 against 16,328).
+                let key = match coding {
+                    Coding::Plain => (bits16, 0),
+                    Coding::Offsets => (bits16, MAX_SELECTABLE as u32 - subset.count_ones()),
+                };
+                if key < best.0 {
+                    best = (key, subset, pred);
                 }
             }
             enc.encode(&mut m.subsets[list.len() - 2], best.1 - 1);
             best.2
         } else {
-            p.predict(decoded, paras, bits)
+            Predicted::plain(p.predict(decoded, paras, bits))
         };
 
         // Steps 2–3: the residuals.
         let mut coded = [0u32; 3];
         for axis in 0..3 {
-            let z = residual(q[axis], pred[axis], bits);
+            let (z, g) = pred.residual(axis, q[axis], bits);
             let len = length(z);
-            let ctx = m.context(axis, &coded);
+            let ctx = m.context(axis, &coded, g);
             enc.encode(m.lengths.get(ctx), len);
             if len >= 2 {
                 let below = len - 1;
                 let top = modeled_bits(len);
                 let raw = below - top;
-                enc.encode(&mut m.mantissa[len as usize], (z >> raw) & ((1 << top) - 1));
+                enc.encode(m.mantissa(g, len), (z >> raw) & ((1 << top) - 1));
                 enc.encode_bits(z & ((1 << raw) - 1), raw);
             }
             coded[axis] = len;
@@ -297,11 +447,23 @@ pub fn decode_positions(
     dec: &mut Decoder,
     out: &mut Vec<[u32; 3]>,
 ) -> Result<(), Error> {
+    decode_positions_as(predictions, bits, Coding::Plain, dec, out)
+}
+
+/// Decodes what [`encode_positions_as`] wrote with the same `coding`.
+/// Fails, never panics and allocates as [`decode_positions`].
+pub fn decode_positions_as(
+    predictions: &Predictions,
+    bits: u8,
+    coding: Coding,
+    dec: &mut Decoder,
+    out: &mut Vec<[u32; 3]>,
+) -> Result<(), Error> {
     check_bits(bits)?;
     out.clear();
     out.reserve(predictions.len());
     let paras = &predictions.parallelograms[..];
-    let mut m = Models::new(bits, predictions.len());
+    let mut m = Models::new(bits, predictions.len(), coding);
     for (k, p) in predictions.vertices.iter().enumerate() {
         p.check(k, paras)?;
         m.begin(p, paras);
@@ -309,28 +471,34 @@ pub fn decode_positions(
         // Step 1, mirrored: must match the encoder exactly.
         let list = p.selectable(paras);
         let pred = if list.len() >= 2 {
+            let mut points = [[0i64; 3]; MAX_SELECTABLE];
+            for (p, &abo) in points.iter_mut().zip(list) {
+                *p = parallelogram(out, abo);
+            }
+            let points = &points[..list.len()];
             let subset = dec.decode(&mut m.subsets[list.len() - 2])? + 1;
-            average(out, list, subset, bits)
+            Predicted::of(points, subset, bits, coding)
         } else {
-            p.predict(out, paras, bits)
+            Predicted::plain(p.predict(out, paras, bits))
         };
 
         // Steps 2–3, mirrored: must match the encoder exactly.
         let mut q = [0u32; 3];
         let mut coded = [0u32; 3];
         for axis in 0..3 {
-            let ctx = m.context(axis, &coded);
+            let g = group(pred.offsets[axis]);
+            let ctx = m.context(axis, &coded, g);
             let len = dec.decode(m.lengths.get(ctx))?;
             let z = if len >= 2 {
                 let below = len - 1;
                 let top = modeled_bits(len);
                 let raw = below - top;
-                let high = (1 << top) | dec.decode(&mut m.mantissa[len as usize])?;
+                let high = (1 << top) | dec.decode(m.mantissa(g, len))?;
                 (high << raw) | dec.decode_bits(raw)?
             } else {
                 len
             };
-            q[axis] = reconstruct(z, pred[axis], bits);
+            q[axis] = pred.reconstruct(axis, z, bits);
             coded[axis] = len;
         }
         m.end(coded);

@@ -218,11 +218,12 @@ pub(crate) fn parallelogram(decoded: &[[u32; 3]], [a, b, o]: [u32; 3]) -> [i64; 
     core::array::from_fn(|k| a[k] as i64 + b[k] as i64 - o[k] as i64)
 }
 
-/// [`average`] of parallelograms computed beforehand with
-/// [`parallelogram`] (the encoder tries every subset of the same few).
-/// The same sums and rounding, so the same point.
+/// The sums behind [`average`] for parallelograms computed beforehand
+/// with [`parallelogram`] (the encoder tries every subset of the same
+/// few): per axis the sum of those `subset` selects, and how many there
+/// are. [`mean_in_grid`] of them is the point [`average`] gives.
 #[inline]
-pub(crate) fn average_of(points: &[[i64; 3]], subset: u32, bits: u8) -> [u32; 3] {
+pub(crate) fn sum_of(points: &[[i64; 3]], subset: u32) -> ([i64; 3], i64) {
     let mut sum = [0i64; 3];
     let mut n = 0i64;
     for (i, p) in points.iter().enumerate() {
@@ -233,7 +234,27 @@ pub(crate) fn average_of(points: &[[i64; 3]], subset: u32, bits: u8) -> [u32; 3]
             }
         }
     }
-    mean_in_grid(sum, n, bits)
+    (sum, n)
+}
+
+/// Where the exact mean `sum/n` lies against the grid point `pred` it
+/// rounds to, per axis: 0 on it (or clamped away from it), 1 a third or a
+/// quarter of a step below, 2 that much above, 3 half a step below (ties
+/// round up, so a half is never above).
+#[inline]
+pub(crate) fn offsets(sum: [i64; 3], n: i64, pred: [u32; 3]) -> [u8; 3] {
+    core::array::from_fn(|k| {
+        let d = sum[k] - n * pred[k] as i64;
+        if d == 0 || d.abs() >= n {
+            0
+        } else if 2 * d == -n {
+            3
+        } else if d < 0 {
+            1
+        } else {
+            2
+        }
+    })
 }
 
 /// `⌊(2·sum + n) / (2n)⌋` per axis (n at least 1), clamped into the grid.
@@ -241,7 +262,7 @@ pub(crate) fn average_of(points: &[[i64; 3]], subset: u32, bits: u8) -> [u32; 3]
 /// shifts and multiplications: a 64-bit division is the slowest
 /// instruction of the whole prediction.
 #[inline]
-fn mean_in_grid(sum: [i64; 3], n: i64, bits: u8) -> [u32; 3] {
+pub(crate) fn mean_in_grid(sum: [i64; 3], n: i64, bits: u8) -> [u32; 3] {
     let max = max_value(bits) as i64;
     let n = n.max(1);
     core::array::from_fn(|k| {
@@ -349,7 +370,10 @@ mod tests {
                 let points: Vec<[i64; 3]> = list.iter().map(|&p| parallelogram(&d, p)).collect();
                 for subset in 1..1u32 << n {
                     assert_eq!(
-                        average_of(&points, subset, bits),
+                        {
+                            let (sum, n) = sum_of(&points, subset);
+                            mean_in_grid(sum, n, bits)
+                        },
                         average(&d, &list, subset, bits)
                     );
                     // The constant divisors agree with the plain division.
@@ -360,7 +384,13 @@ mod tests {
                     let (k, total) = sum.fold((0i64, 0i64), |(k, t), (_, p)| (k + 1, t + p[0]));
                     let plain =
                         ((2 * total + k).div_euclid(2 * k)).clamp(0, max_value(bits) as i64);
-                    assert_eq!(average_of(&points, subset, bits)[0] as i64, plain);
+                    assert_eq!(
+                        {
+                            let (sum, n) = sum_of(&points, subset);
+                            mean_in_grid(sum, n, bits)
+                        }[0] as i64,
+                        plain
+                    );
                 }
             }
         }

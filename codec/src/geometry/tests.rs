@@ -24,16 +24,31 @@ impl Rng {
     }
 }
 
+const CODINGS: [Coding; 2] = [Coding::Plain, Coding::Offsets];
+
 fn encode(q: &[[u32; 3]], p: &Predictions, bits: u8) -> Vec<u8> {
+    encode_as(q, p, bits, Coding::Plain)
+}
+
+fn encode_as(q: &[[u32; 3]], p: &Predictions, bits: u8, coding: Coding) -> Vec<u8> {
     let mut enc = Encoder::new();
-    encode_positions(q, p, bits, &mut enc);
+    encode_positions_as(q, p, bits, coding, &mut enc);
     enc.finish()
 }
 
 fn decode(bytes: &[u8], p: &Predictions, bits: u8) -> Result<Vec<[u32; 3]>, Error> {
+    decode_as(bytes, p, bits, Coding::Plain)
+}
+
+fn decode_as(
+    bytes: &[u8],
+    p: &Predictions,
+    bits: u8,
+    coding: Coding,
+) -> Result<Vec<[u32; 3]>, Error> {
     let mut dec = Decoder::new(bytes)?;
     let mut out = vec![[7, 7, 7]; 3]; // stale content must not leak
-    decode_positions(p, bits, &mut dec, &mut out)?;
+    decode_positions_as(p, bits, coding, &mut dec, &mut out)?;
     dec.finish()?;
     Ok(out)
 }
@@ -89,10 +104,13 @@ fn random_round_trips() {
         for n in [0, 1, 2, 3, 50, 2_000] {
             let p = random_predictions(&mut rng, n);
             let q = random_points(&mut rng, n, bits);
-            let bytes = encode(&q, &p, bits);
-            assert_eq!(decode(&bytes, &p, bits).unwrap(), q, "bits {bits} n {n}");
-            // Deterministic.
-            assert_eq!(encode(&q, &p, bits), bytes);
+            for coding in CODINGS {
+                let bytes = encode_as(&q, &p, bits, coding);
+                let back = decode_as(&bytes, &p, bits, coding).unwrap();
+                assert_eq!(back, q, "bits {bits} n {n} {coding:?}");
+                // Deterministic.
+                assert_eq!(encode_as(&q, &p, bits, coding), bytes);
+            }
         }
     }
 }
@@ -174,8 +192,9 @@ fn garbage_never_panics() {
         };
         let bits = 1 + rng.below(24) as u8;
         let mut out = Vec::new();
+        let coding = CODINGS[(round / 2) % 2];
         if let Ok(mut dec) = Decoder::new(&bytes) {
-            if decode_positions(&p, bits, &mut dec, &mut out).is_ok() {
+            if decode_positions_as(&p, bits, coding, &mut dec, &mut out).is_ok() {
                 let max = ((1u64 << bits) - 1) as u32;
                 assert_eq!(out.len(), n);
                 assert!(out.iter().flatten().all(|&c| c <= max));

@@ -7,8 +7,17 @@
 //! * `TOPO`: varus: symbol count, dummy count and dummy vertices
 //!   (delta-coded), event count and events;
 //! * `CLRS`: the CLERS symbols, range coded with the previous symbol as
-//!   context;
-//! * `GEOM`: the position residuals (see `geometry::lossless`).
+//!   context; or in a 1.1 file `CLRD`: the same symbols in Spirale
+//!   Reversi's order, each in the context of the decoder's state (the
+//!   triangles built around the active gate's two vertices), when that is
+//!   smaller — a rule beyond the sources: read backwards a C completes
+//!   its tip's fan, so on meshes of regular valence the count all but
+//!   names the symbol (bunny-1m at 11 bits: 51,096 → 8,788 bytes; bunny
+//!   7,924 → 5,012; the valence-driven coders of Touma–Gotsman and
+//!   Draco exploit the same regularity forwards);
+//! * `GEOM`: the position residuals (see `geometry::lossless`), or in a
+//!   1.1 file `GEOF`: the same with the predictions' offsets as context,
+//!   when that is smaller.
 //!
 //! Encoder and decoder steps that mirror each other sit side by side
 //! below; each pair must match exactly. The SwingWrapper mode writes and
@@ -29,7 +38,6 @@ use crate::geometry::{lossless as geo, Quantizer};
 #[cfg(feature = "encoder")]
 use crate::varint;
 use crate::varint::Reader;
-#[cfg(feature = "encoder")]
 use crate::CornerTable;
 use crate::{Error, FormatError, Limits, Malformed, TriMesh};
 
@@ -98,8 +106,9 @@ pub(crate) fn encode(
     let closed = edgebreaker::close_holes(table).table;
     let eb = edgebreaker::encode(&closed)?;
     let conn = &eb.connectivity;
-    // The decoder's table, built the decoder's way, so predictions match.
-    let decoded = edgebreaker::decode(conn)?;
+    // The decoder's table, built the decoder's way, so predictions match;
+    // and the symbols' contexts in `CLRD`.
+    let (decoded, contexts) = edgebreaker::decode_recording(conn)?;
     let real = mesh.vertex_count() as u32;
     // Decoded vertex k is input vertex vertex_order[k]; dummies (ids past
     // the real vertices) carry no position.
@@ -131,7 +140,7 @@ pub(crate) fn encode(
     }
     let head = write_head(&quantizer);
     let topo = write_topo(conn, &dummies);
-    let clrs = write_clers(&conn.symbols);
+    let (clers_tag, clers) = code_symbols(conn, &contexts, framing)?;
     // What `geo::encode_mesh_positions` does, with each point quantized
     // straight from the input in coding order (decoded vertex k is input
     // vertex vertex_order[k]; the traversal never visits a dummy).
@@ -146,9 +155,7 @@ pub(crate) fn encode(
                 .map_or([0; 3], |&p| quantizer.quantize(p))
         })
         .collect();
-    let mut enc = Encoder::new();
-    geo::encode_positions(&ordered, &traversal.predictions, qp, &mut enc);
-    let geom = enc.finish();
+    let (geom_tag, geom) = code_positions(&ordered, &traversal.predictions, qp, framing);
 
     let triangles = mesh.face_count() as u32;
     let header =
@@ -156,8 +163,8 @@ pub(crate) fn encode(
     let sections: [(Tag, &[u8]); 4] = [
         (Tag::HEAD, &head),
         (Tag::TOPO, &topo),
-        (Tag::CLRS, &clrs),
-        (Tag::GEOM, &geom),
+        (clers_tag, &clers),
+        (geom_tag, &geom),
     ];
     let bytes = write_container(&header, &sections)?;
     let tags = sections.iter().map(|(t, b)| (t.0, b.len()));
@@ -165,19 +172,84 @@ pub(crate) fn encode(
     Ok((bytes, stats, source))
 }
 
+#[cfg(feature = "encoder")]
+/// The symbols' section: `CLRS`, or with the compact framing whichever of
+/// `CLRS` and `CLRD` is smaller (`CLRS` on a tie).
+fn code_symbols(
+    conn: &Connectivity,
+    contexts: &[u8],
+    framing: Framing,
+) -> Result<(Tag, Vec<u8>), Error> {
+    let clrs = write_clers(&conn.symbols);
+    if framing == Framing::Fixed {
+        return Ok((Tag::CLRS, clrs));
+    }
+    let clrd = write_clrd(conn, contexts)?;
+    Ok(if clrd.len() < clrs.len() {
+        (Tag::CLRD, clrd)
+    } else {
+        (Tag::CLRS, clrs)
+    })
+}
+
+#[cfg(feature = "encoder")]
+/// The positions' section: `GEOM`, or with the compact framing (a 1.1
+/// file anyway) whichever of `GEOM` and `GEOF` is smaller (`GEOM` on a
+/// tie). `GEOF`'s offset contexts win on dense scans, where residuals are
+/// a grid step or less (bunny-1m at 11 bits: 281,288 → 227,724 bytes),
+/// and lose up to a few percent on coarse meshes, whose residuals a
+/// fraction of a step does not move (fandisk at 8 bits: 3,752 → 3,844);
+/// coding both costs a second pass over the residuals, which runs beside
+/// the first when there is a second core.
+fn code_positions(
+    ordered: &[[u32; 3]],
+    predictions: &crate::geometry::Predictions,
+    qp: u8,
+    framing: Framing,
+) -> (Tag, Vec<u8>) {
+    let code = |coding| {
+        let mut enc = Encoder::new();
+        geo::encode_positions_as(ordered, predictions, qp, coding, &mut enc);
+        enc.finish()
+    };
+    if framing == Framing::Fixed {
+        return (Tag::GEOM, code(geo::Coding::Plain));
+    }
+    let (plain, offsets) = rayon::join(|| code(geo::Coding::Plain), || code(geo::Coding::Offsets));
+    if offsets.len() < plain.len() {
+        (Tag::GEOF, offsets)
+    } else {
+        (Tag::GEOM, plain)
+    }
+}
+
+/// The positions' section of a mode-0 file: exactly one of `GEOM` (1.0)
+/// and `GEOF` (1.1), and the coding it says.
+fn positions_section<'a>(file: &Container<'a>) -> Result<(geo::Coding, &'a [u8]), Error> {
+    match (file.find(Tag::GEOM), file.find(Tag::GEOF)) {
+        (Some(s), None) => Ok((geo::Coding::Plain, s.bytes)),
+        (None, Some(s)) => Ok((geo::Coding::Offsets, s.bytes)),
+        (Some(_), Some(_)) => Err(bad("both GEOM and GEOF")),
+        (None, None) => file
+            .require(Tag::GEOM)
+            .map(|s| (geo::Coding::Plain, s.bytes)),
+    }
+}
+
 /// Decodes a lossless-mode file whose container was parsed.
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
-    let (quantizer, conn, dummies) = read_connectivity(file, limits)?;
-    let topo = decode_topology(file, &conn, &dummies)?;
+    let (quantizer, conn, dummies, table) = read_connectivity(file, limits)?;
+    let topo = decode_topology(file, &conn, &dummies, table)?;
     // What `geo::decode_mesh_positions` does, with each point dequantized
     // straight into its place instead of through a table by vertex.
     let traversal = crate::geometry::traverse_except(&topo.table, &topo.excluded)?;
-    let geom = file.require(Tag::GEOM)?.bytes;
+    let (coding, geom) = positions_section(file)?;
     let mut dec = Decoder::new(geom)?;
     let mut quantized = Vec::new();
-    geo::decode_positions(
+    geo::decode_positions_as(
         &traversal.predictions,
         quantizer.bits,
+        coding,
         &mut dec,
         &mut quantized,
     )?;
@@ -220,19 +292,14 @@ pub(crate) fn decode_topology(
     file: &Container<'_>,
     conn: &Connectivity,
     dummies: &[u32],
+    table: Option<CornerTable>,
 ) -> Result<Topology, Error> {
-    // The table's vertex count includes the dummies; the header's does
-    // not, and the message quotes the header.
-    let table = edgebreaker::decode(conn).map_err(|mut e| {
-        if let Malformed::CountMismatch {
-            declared, found, ..
-        } = &mut e.what
-        {
-            *declared = declared.saturating_sub(dummies.len() as u64);
-            *found = found.saturating_sub(dummies.len() as u64);
+    let table = match table {
+        Some(t) => t,
+        None => {
+            edgebreaker::decode(conn).map_err(|e| vertices_without_dummies(e, dummies.len()))?
         }
-        Error::from(e)
-    })?;
+    };
     let mut excluded = vec![false; conn.vertices as usize];
     for &d in dummies {
         excluded[d as usize] = true;
@@ -297,14 +364,23 @@ pub(crate) fn mismatch(element: &'static str, declared: u64, found: u64) -> Erro
     .into()
 }
 
-/// Reads HEAD, TOPO and CLRS; also used by `inspect`.
-pub(crate) fn read_connectivity(
-    file: &Container<'_>,
-    limits: &Limits,
-) -> Result<(Quantizer, Connectivity, Vec<u32>), Error> {
+/// The connectivity of a lossless file as read: its symbols, the dummy
+/// vertices, and the corner table when reading the symbols (from `CLRD`)
+/// already built it.
+pub(crate) type Read = (Quantizer, Connectivity, Vec<u32>, Option<CornerTable>);
+
+/// Reads HEAD, TOPO and CLRS or CLRD; also used by `inspect`.
+pub(crate) fn read_connectivity(file: &Container<'_>, limits: &Limits) -> Result<Read, Error> {
     // Critical sections of the SwingWrapper mode mean nothing here: every
-    // known critical section but mode 0's own four.
-    const OWN: [Tag; 4] = [Tag::HEAD, Tag::CLRS, Tag::TOPO, Tag::GEOM];
+    // known critical section but mode 0's own.
+    const OWN: [Tag; 6] = [
+        Tag::HEAD,
+        Tag::CLRS,
+        Tag::TOPO,
+        Tag::GEOM,
+        Tag::GEOF,
+        Tag::CLRD,
+    ];
     if KNOWN_CRITICAL
         .iter()
         .any(|t| !OWN.contains(t) && file.find(*t).is_some())
@@ -316,8 +392,31 @@ pub(crate) fn read_connectivity(
         .into());
     }
     let quantizer = read_head(file.require(Tag::HEAD)?.bytes)?;
-    let (conn, dummies) = read_topology(file, limits)?;
-    Ok((quantizer, conn, dummies))
+    let Some(clrd) = file.find(Tag::CLRD) else {
+        let (conn, dummies) = read_topology(file, limits)?;
+        return Ok((quantizer, conn, dummies, None));
+    };
+    if file.find(Tag::CLRS).is_some() {
+        return Err(bad("both CLRS and CLRD"));
+    }
+    let (mut conn, dummies, count) = read_topo(file, limits, clrd.bytes.len())?;
+    let table = read_clrd(clrd.bytes, &mut conn, count)
+        .map_err(|e| vertices_without_dummies(e, dummies.len()))?;
+    Ok((quantizer, conn, dummies, Some(table)))
+}
+
+/// A vertex-count error of the closed mesh restated for the file's
+/// vertices: the table's count includes the dummies, the header's does
+/// not, and the message quotes the header.
+fn vertices_without_dummies(mut e: FormatError, dummies: usize) -> Error {
+    if let Malformed::CountMismatch {
+        declared, found, ..
+    } = &mut e.what
+    {
+        *declared = declared.saturating_sub(dummies as u64);
+        *found = found.saturating_sub(dummies as u64);
+    }
+    Error::from(e)
 }
 
 /// Reads TOPO and CLRS (the connectivity and the dummy vertices), with
@@ -527,6 +626,112 @@ fn read_clers(bytes: &[u8], count: usize) -> Result<Vec<Symbol>, Error> {
     Ok(out)
 }
 
+// --- CLRD (1.1): written and read side by side; must match exactly. ---
+//
+// The symbols in the order Spirale Reversi asks for them (components
+// last to first, each from its last symbol to its first), each in the
+// model of its decoder state (`edgebreaker::decode_from`'s contexts: the
+// corners built around the active gate's two vertices). Before the
+// stream, the symbol counts of components K−1 … 1 as varus (component 0
+// has the rest): read backwards, a component's end cannot be told from
+// its symbols.
+
+#[cfg(feature = "encoder")]
+/// `CLRD` for `conn`, whose symbols had the contexts `contexts` (from
+/// `edgebreaker::decode_recording`).
+fn write_clrd(conn: &Connectivity, contexts: &[u8]) -> Result<Vec<u8>, Error> {
+    let ranges = conn
+        .component_ranges()
+        .ok_or(bad("connectivity symbols do not match the component count"))?;
+    let mut out = Vec::new();
+    for &(start, end) in ranges.iter().skip(1).rev() {
+        varint::put(&mut out, (end - start) as u64);
+    }
+    let mut enc = Encoder::new();
+    let mut models = ContextModel::new(edgebreaker::CONTEXTS, 5);
+    let order = ranges
+        .iter()
+        .rev()
+        .flat_map(|&(start, end)| (start..end).rev());
+    for (i, &ctx) in order.zip(contexts) {
+        enc.encode(models.get(ctx as usize), conn.symbols[i] as u32);
+    }
+    out.extend_from_slice(&enc.finish());
+    Ok(out)
+}
+
+/// The symbols of `CLRD`, decoded while Spirale Reversi asks for them.
+struct Streamed<'a> {
+    dec: Decoder<'a>,
+    models: ContextModel,
+}
+
+impl edgebreaker::SymbolSource for Streamed<'_> {
+    const CONTEXTS: bool = true;
+    fn symbol(&mut self, _i: usize, ctx: usize) -> Result<Symbol, FormatError> {
+        let code = self
+            .dec
+            .decode(self.models.get(ctx))
+            .map_err(format_error)?;
+        Symbol::from_code(code).ok_or(FormatError::new(
+            "SWM",
+            Malformed::BadSyntax("CLERS code out of range"),
+        ))
+    }
+}
+
+/// The format error inside an entropy decoder's error.
+fn format_error(e: Error) -> FormatError {
+    match e {
+        Error::Format(f) => f,
+        _ => FormatError::new("SWM", Malformed::BadSyntax("invalid entropy-coded data")),
+    }
+}
+
+/// Reads `CLRD` for `conn` (its `TOPO` read, `count` symbols): fills
+/// `conn.symbols` and returns the closed mesh's corner table, which
+/// decoding the symbols has built.
+fn read_clrd(
+    bytes: &[u8],
+    conn: &mut Connectivity,
+    count: usize,
+) -> Result<CornerTable, FormatError> {
+    let mut r = Reader::new(bytes);
+    let components = conn.components as usize;
+    let malformed = |why| FormatError::new("SWM", Malformed::BadSyntax(why));
+    // A varu takes a byte at least: checked before sizing anything by K.
+    if components.saturating_sub(1) > r.remaining() {
+        return Err(malformed("more component lengths than CLRD holds"));
+    }
+    let mut counts = vec![0u64; components];
+    let mut rest = count as u64;
+    for k in (1..components).rev() {
+        let n = r.varu()?;
+        rest = rest
+            .checked_sub(n)
+            .ok_or(malformed("component lengths exceed the symbol count"))?;
+        counts[k] = n;
+    }
+    if let Some(first) = counts.first_mut() {
+        *first = rest;
+    } else if count != 0 {
+        return Err(malformed("symbols without a component"));
+    }
+    let ranges = edgebreaker::ranges_of(&counts, count)
+        .ok_or(malformed("component lengths do not add up"))?;
+    let stream = &bytes[bytes.len() - r.remaining()..];
+    let mut src = Streamed {
+        dec: Decoder::new(stream).map_err(format_error)?,
+        models: ContextModel::new(edgebreaker::CONTEXTS, 5),
+    };
+    let mut symbols = Vec::new();
+    let table = edgebreaker::decode_from(conn, &ranges, &mut src, &mut symbols)?;
+    // The stream must end exactly where the encoder finished it.
+    src.dec.finish().map_err(format_error)?;
+    conn.symbols = symbols;
+    Ok(table)
+}
+
 /// Parses and decodes a whole lossless file (for tests).
 #[cfg(test)]
 pub(crate) fn decode_bytes(bytes: &[u8]) -> Result<TriMesh, Error> {
@@ -592,7 +797,7 @@ mod tests {
         let closed = CornerTable::new(&filled.triangles, filled.vertex_count).unwrap();
         let recoded = edgebreaker::encode(&closed).unwrap().connectivity;
         let file = parse_container(&bytes, &Limits::default()).unwrap();
-        let (_, coded, _) = read_connectivity(&file, &Limits::default()).unwrap();
+        let (_, coded, _, _) = read_connectivity(&file, &Limits::default()).unwrap();
         assert_eq!(
             recoded.symbols, coded.symbols,
             "{name}: recompression gives other symbols"
@@ -723,5 +928,215 @@ mod tests {
         assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::HEAD, &head)).is_err());
         // The unmodified frame still decodes (the helper itself is sound).
         assert!(decode_bytes(&crate::container::with_section(&bytes, Tag::CLRS, &clrs)).is_ok());
+    }
+
+    /// The section that holds the positions, and its size.
+    fn positions_tag(bytes: &[u8]) -> (Tag, usize) {
+        let file = parse_container(bytes, &Limits::default()).unwrap();
+        let s = file
+            .sections()
+            .find(|s| s.tag == Tag::GEOM || s.tag == Tag::GEOF)
+            .unwrap();
+        (s.tag, s.bytes.len())
+    }
+
+    #[test]
+    fn dense_meshes_take_geof_and_coarse_ones_keep_geom() {
+        use crate::edgebreaker::tests_support::*;
+        // About two grid steps between vertices: residuals are a step or
+        // less, where the offsets' contexts pay.
+        let dense = bumpy_sphere(5);
+        let c = crate::clean(&dense, &CleanOptions::default()).unwrap();
+        let (bytes, _, _) = encode(&c.table, &c.mesh, 8, Framing::Compact).unwrap();
+        let (tag, geof) = positions_tag(&bytes);
+        assert_eq!(tag, Tag::GEOF);
+        let fixed = encode(&c.table, &c.mesh, 8, Framing::Fixed).unwrap().0;
+        let (tag, geom) = positions_tag(&fixed);
+        assert_eq!(tag, Tag::GEOM, "the fixed framing writes a 1.0 file");
+        assert!(
+            geof * 10 < geom * 9,
+            "GEOF {geof} against GEOM {geom} bytes"
+        );
+        let (a, b) = (decode_bytes(&bytes).unwrap(), decode_bytes(&fixed).unwrap());
+        assert_eq!(a.positions, b.positions);
+        assert_eq!(a.triangles, b.triangles);
+        check_roundtrip("dense sphere", &dense, 8);
+        // Coarse: hundreds of steps between vertices.
+        let coarse = crate::clean(&torus(12, 7), &CleanOptions::default()).unwrap();
+        let bytes = encode(&coarse.table, &coarse.mesh, 16, Framing::Compact)
+            .unwrap()
+            .0;
+        assert_eq!(positions_tag(&bytes).0, Tag::GEOM);
+    }
+
+    #[test]
+    fn geof_is_checked_like_geom() {
+        let c = crate::clean(&bumpy_sphere(3), &CleanOptions::default()).unwrap();
+        let bytes = encode(&c.table, &c.mesh, 7, Framing::Compact).unwrap().0;
+        assert_eq!(positions_tag(&bytes).0, Tag::GEOF);
+        for cut in 0..bytes.len() {
+            assert!(decode_bytes(&bytes[..cut]).is_err());
+        }
+        for bit in 0..bytes.len() * 8 {
+            let mut b = bytes.clone();
+            b[bit / 8] ^= 1 << (bit % 8);
+            assert!(
+                decode_bytes(&b).is_err(),
+                "bit {bit} flipped and still decoded"
+            );
+        }
+        // Both position sections, or GEOF's payload read as GEOM's.
+        let file = parse_container(&bytes, &Limits::default()).unwrap();
+        let mut sections: Vec<(Tag, &[u8])> = file.sections().map(|s| (s.tag, s.bytes)).collect();
+        let geof = sections.iter().find(|s| s.0 == Tag::GEOF).unwrap().1;
+        sections.push((Tag::GEOM, geof));
+        let both = write_container(&file.header, &sections).unwrap();
+        assert!(matches!(
+            decode_bytes(&both),
+            Err(Error::Format(FormatError {
+                what: Malformed::BadSyntax(_),
+                ..
+            }))
+        ));
+        sections.retain(|s| s.0 != Tag::GEOF);
+        let renamed = write_container(&file.header, &sections).unwrap();
+        assert!(decode_bytes(&renamed).is_err());
+        sections.retain(|s| s.0 != Tag::GEOM);
+        let none = write_container(&file.header, &sections).unwrap();
+        assert!(decode_bytes(&none).is_err());
+    }
+
+    /// A dense smooth closed surface in general position: an icosphere
+    /// of `levels` subdivisions with smooth bumps, turned off the axes.
+    fn bumpy_sphere(levels: u32) -> TriMesh {
+        use crate::edgebreaker::tests_support::*;
+        let t = (1.0 + 5f64.sqrt()) / 2.0;
+        let (p, f) = subdivided(icosahedron(t), levels, |a, b| {
+            let m: [f64; 3] = core::array::from_fn(|k| a[k] + b[k]);
+            let n = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+            m.map(|c| c / n)
+        });
+        let (c1, s1, c2, s2) = (0.8f64.cos(), 0.8f64.sin(), 0.5f64.cos(), 0.5f64.sin());
+        let p = p
+            .iter()
+            .map(|&[x, y, z]| {
+                let r = 1.0 + 0.15 * (3.0 * x + 1.0).sin() * (2.0 * y).sin() * (2.5 * z).cos();
+                let (x, y, z) = (x * r, y * r, z * r);
+                let (x, y) = (c1 * x - s1 * y, s1 * x + c1 * y);
+                let (y, z) = (c2 * y - s2 * z, s2 * y + c2 * z);
+                [x as f32, y as f32, z as f32]
+            })
+            .collect();
+        TriMesh::new(p, f)
+    }
+
+    /// The section that holds the symbols.
+    fn symbols_tag(bytes: &[u8]) -> Tag {
+        let file = parse_container(bytes, &Limits::default()).unwrap();
+        let s = file
+            .sections()
+            .find(|s| s.tag == Tag::CLRS || s.tag == Tag::CLRD)
+            .unwrap();
+        s.tag
+    }
+
+    /// Three dense spheres side by side: three components.
+    fn three_spheres() -> TriMesh {
+        let one = bumpy_sphere(3);
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for k in 0..3u32 {
+            let base = positions.len() as u32;
+            positions.extend(
+                one.positions
+                    .iter()
+                    .map(|p| [p[0] + 3.0 * k as f32, p[1], p[2]]),
+            );
+            triangles.extend(one.triangles.iter().map(|t| t.map(|v| v + base)));
+        }
+        TriMesh::new(positions, triangles)
+    }
+
+    #[test]
+    fn regular_meshes_take_clrd_with_their_component_lengths() {
+        let mesh = three_spheres();
+        let c = crate::clean(&mesh, &CleanOptions::default()).unwrap();
+        let bytes = encode(&c.table, &c.mesh, 8, Framing::Compact).unwrap().0;
+        assert_eq!(symbols_tag(&bytes), Tag::CLRD);
+        let fixed = encode(&c.table, &c.mesh, 8, Framing::Fixed).unwrap().0;
+        assert_eq!(
+            symbols_tag(&fixed),
+            Tag::CLRS,
+            "the fixed framing writes a 1.0 file"
+        );
+        let file = parse_container(&bytes, &Limits::default()).unwrap();
+        let clrd = file.section(Tag::CLRD).unwrap().to_vec();
+        let clrs = parse_container(&fixed, &Limits::default()).unwrap();
+        let clrs = clrs.section(Tag::CLRS).unwrap().len();
+        assert!(
+            clrd.len() * 2 < clrs,
+            "CLRD {} against CLRS {clrs} bytes",
+            clrd.len()
+        );
+        check_roundtrip("three spheres", &mesh, 8);
+        let (a, b) = (decode_bytes(&bytes).unwrap(), decode_bytes(&fixed).unwrap());
+        assert_eq!(a.triangles, b.triangles);
+        // Two component lengths (1,279 symbols each: 1,280 triangles less
+        // the first), then the stream.
+        assert_eq!(&clrd[..4], &[0xFF, 0x09, 0xFF, 0x09]);
+        for (at, value) in [(0, 0xFD), (0, 0x80), (2, 0xFE), (1, 0x7F), (3, 0x0A)] {
+            let mut d = clrd.clone();
+            d[at] = value;
+            let b = crate::container::with_section(&bytes, Tag::CLRD, &d);
+            assert!(
+                decode_bytes(&b).is_err(),
+                "length byte {at} = {value:#x} accepted"
+            );
+        }
+        // No lengths at all, or the stream alone.
+        let b = crate::container::with_section(&bytes, Tag::CLRD, &clrd[4..]);
+        assert!(decode_bytes(&b).is_err());
+        let b = crate::container::with_section(&bytes, Tag::CLRD, &[]);
+        assert!(decode_bytes(&b).is_err());
+        // Both symbol sections, or neither.
+        let mut sections: Vec<(Tag, &[u8])> = file.sections().map(|s| (s.tag, s.bytes)).collect();
+        let clrs_bytes = write_clers(
+            &read_connectivity(&file, &Limits::default())
+                .unwrap()
+                .1
+                .symbols,
+        );
+        sections.push((Tag::CLRS, &clrs_bytes));
+        let both = write_container(&file.header, &sections).unwrap();
+        assert!(decode_bytes(&both).is_err());
+        sections.retain(|s| s.0 != Tag::CLRS && s.0 != Tag::CLRD);
+        let none = write_container(&file.header, &sections).unwrap();
+        assert!(decode_bytes(&none).is_err());
+        // CLRS's stream in CLRD's place (lengths and all).
+        sections.push((Tag::CLRD, &clrs_bytes));
+        let swapped = write_container(&file.header, &sections).unwrap();
+        assert!(decode_bytes(&swapped).is_err());
+    }
+
+    #[test]
+    fn clrd_survives_hostile_bytes() {
+        let c = crate::clean(&bumpy_sphere(2), &CleanOptions::default()).unwrap();
+        let bytes = encode(&c.table, &c.mesh, 6, Framing::Compact).unwrap().0;
+        assert_eq!(symbols_tag(&bytes), Tag::CLRD);
+        for bit in 0..bytes.len() * 8 {
+            let mut b = bytes.clone();
+            b[bit / 8] ^= 1 << (bit % 8);
+            assert!(
+                decode_bytes(&b).is_err(),
+                "bit {bit} flipped and still decoded"
+            );
+        }
+        let mut rng = crate::mesh::test_rng::Rng(0x5eed);
+        for _ in 0..3000 {
+            let b = crate::container::overwrite_randomly(&bytes, &mut rng);
+            if let Ok(mesh) = decode_bytes(&b) {
+                mesh.validate().unwrap();
+            }
+        }
     }
 }

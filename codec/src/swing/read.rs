@@ -119,6 +119,10 @@ pub(super) fn read_connectivity(
     limits: &Limits,
 ) -> Result<(Head, Connectivity, CornerTable, Option<Tips>), Error> {
     let h = &file.header;
+    if file.find(Tag::GEOF).is_some() || file.find(Tag::CLRD).is_some() {
+        // Mode 0's positions mean nothing here (05-swing.md, check 1).
+        return Err(bad("a SwingWrapper file has a critical section of mode 0"));
+    }
     let head = read_head(file.require(Tag::HEAD)?.bytes, h.component_count)?;
     let (conn, dummies, tips) = match (file.find(Tag::CLRS), file.find(Tag::CLRF)) {
         (Some(_), Some(_)) => return Err(bad("a file with both CLRS and CLRF")),
@@ -464,8 +468,8 @@ pub(crate) fn inspect(
     let rest_counts = match rest_frame(file, limits)? {
         Some((rest, offset)) => {
             let check = || {
-                let (_, conn, dummies) = crate::lossless::read_connectivity(&rest, limits)?;
-                crate::lossless::decode_topology(&rest, &conn, &dummies)?;
+                let (_, conn, dummies, table) = crate::lossless::read_connectivity(&rest, limits)?;
+                crate::lossless::decode_topology(&rest, &conn, &dummies, table)?;
                 Ok::<_, Error>(conn.components)
             };
             let components = check().map_err(in_section(offset))?;

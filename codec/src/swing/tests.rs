@@ -695,6 +695,11 @@ fn hostile_sections(front: bool) {
         let b = crate::container::write_container(&file.header, &refs).unwrap();
         assert!(decode_bytes(&b).is_err(), "{tag} missing");
     }
+    // Mode 0's positions section (1.1) has no meaning here.
+    let mut refs: Vec<(Tag, &[u8])> = file.sections().map(|s| (s.tag, s.bytes)).collect();
+    refs.push((Tag::GEOF, &[]));
+    let b = crate::container::write_container(&file.header, &refs).unwrap();
+    assert!(decode_bytes(&b).is_err(), "GEOF in a SwingWrapper file");
 }
 
 #[test]
