@@ -124,6 +124,7 @@ fn cases() -> &'static Path {
             "swing-v1.1",
             "swing-front-v1.1",
             "lossless-compact-v1.1",
+            "lossless-dense-v1.1",
         ] {
             let path = Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join(format!("../format-spec/golden/{name}.swm"));

@@ -163,8 +163,8 @@ fn tag_present(bytes: &[u8], tag: &[u8; 4]) -> bool {
 }
 
 /// Small files of every kind the encoder writes (lossless, with holes and
-/// handles too; swing, with `HOLE` and with `REST`), encoded once per
-/// test binary.
+/// handles too, and dense: `CLRD` and `GEOF`; swing, with `HOLE` and
+/// with `REST`), encoded once per test binary.
 pub fn samples() -> &'static [Sample] {
     static SAMPLES: OnceLock<Vec<Sample>> = OnceLock::new();
     SAMPLES.get_or_init(|| {
@@ -184,6 +184,16 @@ pub fn samples() -> &'static [Sample] {
         let lossless_torus = encode(
             &swm_corpus::torus(1.0, 0.4, 8, 6),
             EncodeMode::Lossless { qp: 10 },
+        );
+        // Vertices about four grid steps apart, nearly all of valence 6:
+        // the format 1.1 sections CLRD and GEOF.
+        let lossless_dense = encode(
+            &swm_corpus::icosphere(1.0, 3),
+            EncodeMode::Lossless { qp: 6 },
+        );
+        assert!(
+            tag_present(&lossless_dense, b"CLRD") && tag_present(&lossless_dense, b"GEOF"),
+            "the dense icosphere has no CLRD or no GEOF section"
         );
         let swing_file = encode(&swm_corpus::torus(1.0, 0.4, 16, 8), swing(0.35));
         let hole = encode(&capped_sphere(), swing(0.3));
@@ -220,6 +230,10 @@ pub fn samples() -> &'static [Sample] {
             Sample {
                 name: "swing+REST",
                 bytes: rest,
+            },
+            Sample {
+                name: "lossless dense (CLRD, GEOF)",
+                bytes: lossless_dense,
             },
         ]
     })
