@@ -395,4 +395,24 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn offsets_say_where_the_mean_fell() {
+        // (sum, n) on one axis → the offset of the exact mean against the
+        // grid point it rounds to (ties round up).
+        for (sum, n, want) in [
+            (7, 1, 0),  // one parallelogram: always on the point
+            (3, 2, 3),  // 1.5 rounds to 2: half below
+            (4, 2, 0),  // 2
+            (4, 3, 2),  // 1.333 rounds to 1: a third above
+            (5, 3, 1),  // 1.667 rounds to 2: a third below
+            (5, 4, 2),  // 1.25: a quarter above
+            (7, 4, 1),  // 1.75: a quarter below
+            (6, 4, 3),  // 1.5: half below
+            (-5, 2, 0), // −2.5 clamps to 0, 2.5 steps away
+        ] {
+            let pred = mean_in_grid([sum; 3], n, 8);
+            assert_eq!(offsets([sum; 3], n, pred), [want; 3], "{sum}/{n}");
+        }
+    }
 }

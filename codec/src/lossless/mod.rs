@@ -196,9 +196,9 @@ fn code_symbols(
 /// The positions' section: `GEOM`, or with the compact framing (a 1.1
 /// file anyway) whichever of `GEOM` and `GEOF` is smaller (`GEOM` on a
 /// tie). `GEOF`'s offset contexts win on dense scans, where residuals are
-/// a grid step or less (bunny-1m at 11 bits: 281,288 → 227,724 bytes),
-/// and lose up to a few percent on coarse meshes, whose residuals a
-/// fraction of a step does not move (fandisk at 8 bits: 3,752 → 3,844);
+/// a grid step or less (bunny-1m at 11 bits: 281,288 → 227,212 bytes),
+/// and can lose a few percent on coarse meshes, whose residuals a
+/// fraction of a step does not move (fandisk at 8 bits: 3,752 → 4,040);
 /// coding both costs a second pass over the residuals, which runs beside
 /// the first when there is a second core.
 fn code_positions(
