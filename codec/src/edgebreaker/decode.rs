@@ -471,10 +471,13 @@ fn finish(
     // Each closed fan's start is its lowest corner (as `vertex_fans`
     // chooses it), i.e. the first corner of the vertex in corner order.
     let mut vertex_corner = vec![CornerId::NONE; next as usize];
-    let mut v = Vec::with_capacity(st.v.len());
-    for (c, &id) in st.v.iter().enumerate() {
+    // Provisional ids become vertex numbers in place: the corner array is
+    // the largest the decoder holds, and a second one would be fresh
+    // memory the kernel must fault in and zero.
+    let mut v = st.v;
+    for (c, id) in v.iter_mut().enumerate() {
         let n = root
-            .get(id as usize)
+            .get(*id as usize)
             .and_then(|&r| number.get(r as usize))
             .copied()
             .unwrap_or(UNSET);
@@ -485,8 +488,10 @@ fn finish(
         if first.is_none() {
             *first = CornerId(c as u32);
         }
-        v.push(VertexId(n));
+        *id = n;
     }
+    // Same size and alignment: collected in place.
+    let v: Vec<VertexId> = v.into_iter().map(VertexId).collect();
     for t in v.chunks_exact(3) {
         if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
             return Err(bad("decoded triangle repeats a vertex"));
