@@ -459,14 +459,52 @@ pub fn decode_positions_as(
     dec: &mut Decoder,
     out: &mut Vec<[u32; 3]>,
 ) -> Result<(), Error> {
-    check_bits(bits)?;
-    out.clear();
-    out.reserve(predictions.len());
+    let mut pd = PositionDecoder::new(bits, coding, dec, predictions.len())?;
     let paras = &predictions.parallelograms[..];
-    let mut m = Models::new(bits, predictions.len(), coding);
-    for (k, p) in predictions.vertices.iter().enumerate() {
-        p.check(k, paras)?;
-        m.begin(p, paras);
+    for &p in &predictions.vertices {
+        pd.next(p, paras)?;
+    }
+    *out = pd.into_points();
+    Ok(())
+}
+
+/// The decoder of [`decode_positions_as`] one vertex at a time, for a
+/// traversal that hands over each prediction as it makes it
+/// (`traverse_visiting`).
+pub struct PositionDecoder<'d, 'b> {
+    bits: u8,
+    coding: Coding,
+    dec: &'d mut Decoder<'b>,
+    m: Models,
+    out: Vec<[u32; 3]>,
+}
+
+impl<'d, 'b> PositionDecoder<'d, 'b> {
+    /// A decoder for about `vertices` vertices (a capacity, not a limit).
+    /// Fails if `bits` is not in `1..=24`.
+    pub fn new(
+        bits: u8,
+        coding: Coding,
+        dec: &'d mut Decoder<'b>,
+        vertices: usize,
+    ) -> Result<Self, Error> {
+        check_bits(bits)?;
+        Ok(PositionDecoder {
+            bits,
+            coding,
+            dec,
+            m: Models::new(bits, vertices, coding),
+            out: Vec::with_capacity(vertices),
+        })
+    }
+
+    /// Decodes the next vertex, predicted by `p` (whose `Multi` entries
+    /// index `paras`).
+    pub fn next(&mut self, p: Prediction, paras: &[[u32; 3]]) -> Result<(), Error> {
+        let (bits, coding) = (self.bits, self.coding);
+        let (m, out) = (&mut self.m, &mut self.out);
+        p.check(out.len(), paras)?;
+        m.begin(&p, paras);
 
         // Step 1, mirrored: must match the encoder exactly.
         let list = p.selectable(paras);
@@ -476,7 +514,7 @@ pub fn decode_positions_as(
                 *p = parallelogram(out, abo);
             }
             let points = &points[..list.len()];
-            let subset = dec.decode(&mut m.subsets[list.len() - 2])? + 1;
+            let subset = self.dec.decode(&mut m.subsets[list.len() - 2])? + 1;
             Predicted::of(points, subset, bits, coding)
         } else {
             Predicted::plain(p.predict(out, paras, bits))
@@ -488,13 +526,13 @@ pub fn decode_positions_as(
         for axis in 0..3 {
             let g = group(pred.offsets[axis]);
             let ctx = m.context(axis, &coded, g);
-            let len = dec.decode(m.lengths.get(ctx))?;
+            let len = self.dec.decode(m.lengths.get(ctx))?;
             let z = if len >= 2 {
                 let below = len - 1;
                 let top = modeled_bits(len);
                 let raw = below - top;
-                let high = (1 << top) | dec.decode(m.mantissa(g, len))?;
-                (high << raw) | dec.decode_bits(raw)?
+                let high = (1 << top) | self.dec.decode(m.mantissa(g, len))?;
+                (high << raw) | self.dec.decode_bits(raw)?
             } else {
                 len
             };
@@ -503,8 +541,13 @@ pub fn decode_positions_as(
         }
         m.end(coded);
         out.push(q);
+        Ok(())
     }
-    Ok(())
+
+    /// The grid points decoded, in decoding order.
+    pub fn into_points(self) -> Vec<[u32; 3]> {
+        self.out
+    }
 }
 
 /// Encodes the quantized positions of a mesh, one per vertex of `table`

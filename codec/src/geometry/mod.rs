@@ -38,7 +38,9 @@ mod traverse;
 
 pub use predict::{average, Prediction, Predictions, MAX_SELECTABLE};
 pub use quantize::{Quantizer, MAX_BITS, MIN_BITS};
-pub use traverse::{traverse, traverse_except, Traversal, MAX_PRIORITY};
+pub use traverse::{
+    traverse, traverse_except, traverse_visiting, Traversal, Visitor, MAX_PRIORITY,
+};
 
 #[cfg(test)]
 mod tests;

@@ -27,6 +27,9 @@
 //! decoder compute it the same way once connectivity is known; the
 //! connectivity codec does not need to know about it. Must match the
 //! encoder exactly: both sides call [`traverse`] on identical tables.
+//! The encoder collects every prediction first; the lossless decoder
+//! takes each one as it is made ([`traverse_visiting`]) and decodes the
+//! vertex there, so geometry decodes in one pass over the traversal.
 //!
 //! Rules, in order:
 //! 1. A component starts at the triangle of the lowest corner whose
@@ -108,6 +111,34 @@ pub fn traverse(table: &CornerTable) -> Result<Traversal, Error> {
 /// not in the order and no prediction uses them. Entries past the end of
 /// `excluded` count as false.
 pub fn traverse_except(table: &CornerTable, excluded: &[bool]) -> Result<Traversal, Error> {
+    walk(table, excluded, None)
+}
+
+/// What [`traverse_visiting`] hands each vertex, in decoding order: its
+/// prediction, whose `Multi` entries index the parallelogram list given
+/// with it (that vertex's own, from 0).
+pub type Visitor<'a> = dyn FnMut(Prediction, &[[u32; 3]]) -> Result<(), Error> + 'a;
+
+/// [`traverse_except`] that hands each vertex's prediction to `visit` as
+/// soon as it is made, instead of collecting them: a decoder decodes the
+/// vertex's position right there, while its neighbours are in the cache,
+/// and no list of predictions is kept. Returns the order (the
+/// predictions of the result are empty). Stops at `visit`'s first error.
+pub fn traverse_visiting(
+    table: &CornerTable,
+    excluded: &[bool],
+    visit: &mut Visitor<'_>,
+) -> Result<Vec<VertexId>, Error> {
+    walk(table, excluded, Some(visit)).map(|t| t.order)
+}
+
+/// The traversal; with `visit`, predictions go there instead of into the
+/// result.
+fn walk<'v, 'f>(
+    table: &CornerTable,
+    excluded: &[bool],
+    visit: Option<&'v mut Visitor<'f>>,
+) -> Result<Traversal, Error> {
     let vertices = table.vertex_count();
     let corners = table.corner_count() - table.corner_count() % 3;
     let v_of = table.vertices();
@@ -120,7 +151,7 @@ pub fn traverse_except(table: &CornerTable, excluded: &[bool]) -> Result<Travers
             },
         )));
     }
-    let mut state = State::new(table, corners, excluded);
+    let mut state = State::new(table, corners, excluded, visit);
 
     let mut seed_cursor = 0;
     while let Some(seed) = (seed_cursor..corners).find(|&c| state.open(v_of[c].0)) {
@@ -134,7 +165,7 @@ pub fn traverse_except(table: &CornerTable, excluded: &[bool]) -> Result<Travers
                     None => Prediction::None,
                     Some(from) => Prediction::Delta { from },
                 };
-                state.decode(v.idx(), Some(p));
+                state.decode(v.idx(), Some(p))?;
             }
             if let Some(id) = state.id(v.0) {
                 previous = Some(id);
@@ -142,13 +173,13 @@ pub fn traverse_except(table: &CornerTable, excluded: &[bool]) -> Result<Travers
         }
         // Rules 2–4 until the component is done.
         while let Some(v) = state.pop() {
-            state.decode(v, None);
+            state.decode(v, None)?;
         }
     }
     // Rule 5.
     for v in 0..vertices {
         if state.open(v as u32) {
-            state.decode(v, Some(Prediction::None));
+            state.decode(v, Some(Prediction::None))?;
         }
     }
     Ok(state.out)
@@ -168,8 +199,10 @@ const _: () = assert!(MAX_PRIORITY < DEGREE as usize);
 
 /// Working state of [`traverse`]. Memory: 4 bytes per corner and 9 per
 /// vertex, freed on return (the result aside).
-struct State<'t> {
+struct State<'t, 'v, 'f> {
     table: &'t CornerTable,
+    /// Where predictions go instead of `out.predictions`, if anywhere.
+    visit: Option<&'v mut Visitor<'f>>,
     /// Corners of whole triangles.
     corners: usize,
     /// `start[v] .. start[v+1]` index `fan`: the corners of vertex `v`,
@@ -185,8 +218,13 @@ struct State<'t> {
     out: Traversal,
 }
 
-impl<'t> State<'t> {
-    fn new(table: &'t CornerTable, corners: usize, excluded: &[bool]) -> Self {
+impl<'t, 'v, 'f> State<'t, 'v, 'f> {
+    fn new(
+        table: &'t CornerTable,
+        corners: usize,
+        excluded: &[bool],
+        visit: Option<&'v mut Visitor<'f>>,
+    ) -> Self {
         let vertices = table.vertex_count();
         let v_of = table.vertices();
         // Corners per vertex by a counting sort: no swinging, so a broken
@@ -200,6 +238,7 @@ impl<'t> State<'t> {
             .collect();
         State {
             table,
+            visit,
             corners,
             start,
             fan,
@@ -276,10 +315,15 @@ impl<'t> State<'t> {
     /// triangles glued along all three edges) counts as not decoded for
     /// the prediction and as decoded for the updates, as if the two were
     /// separate passes, prediction first.
-    fn decode(&mut self, v: usize, given: Option<Prediction>) {
+    fn decode(&mut self, v: usize, given: Option<Prediction>) -> Result<(), Error> {
         self.id[v] = self.out.order.len() as u32;
         self.flags[v] |= DECODED;
         self.out.order.push(VertexId(v as u32));
+        if self.visit.is_some() {
+            // Each vertex's list starts afresh: the visitor has used the
+            // previous one.
+            self.out.predictions.parallelograms.clear();
+        }
         let first = self.out.predictions.parallelograms.len();
         let mut from = None;
         let predict = given.is_none();
@@ -366,7 +410,13 @@ impl<'t> State<'t> {
                 }
             }
         };
-        self.out.predictions.vertices.push(p);
+        match self.visit.as_mut() {
+            Some(visit) => visit(p, &self.out.predictions.parallelograms),
+            None => {
+                self.out.predictions.vertices.push(p);
+                Ok(())
+            }
+        }
     }
 
     /// Rule 3: the undecoded candidate of highest priority, if any.

@@ -241,21 +241,21 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let (quantizer, conn, dummies, table) = read_connectivity(file, limits)?;
     let topo = decode_topology(file, &conn, &dummies, table)?;
     // What `geo::decode_mesh_positions` does, with each point dequantized
-    // straight into its place instead of through a table by vertex.
-    let traversal = crate::geometry::traverse_except(&topo.table, &topo.excluded)?;
+    // straight into its place instead of through a table by vertex, and
+    // in one pass: each vertex's position is decoded as soon as the
+    // traversal has its prediction.
     let (coding, geom) = positions_section(file)?;
     let mut dec = Decoder::new(geom)?;
-    let mut quantized = Vec::new();
-    geo::decode_positions_as(
-        &traversal.predictions,
-        quantizer.bits,
-        coding,
-        &mut dec,
-        &mut quantized,
-    )?;
+    let mut pd =
+        geo::PositionDecoder::new(quantizer.bits, coding, &mut dec, topo.table.vertex_count())?;
+    let order =
+        crate::geometry::traverse_visiting(&topo.table, &topo.excluded, &mut |p, paras| {
+            pd.next(p, paras)
+        })?;
+    let quantized = pd.into_points();
     dec.finish()?;
     let mut positions = vec![[0f32; 3]; file.header.vertex_count as usize];
-    for (v, q) in traversal.order.iter().zip(&quantized) {
+    for (v, q) in order.iter().zip(&quantized) {
         // The traversal decodes exactly the vertices not excluded, so
         // every real vertex gets its point (and the error cannot happen).
         let slot = topo
