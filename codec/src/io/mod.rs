@@ -257,8 +257,10 @@ fn read_bytes_in(
 /// only when complete, so `path` holds either its old content or the
 /// whole new file; on an error the temporary file is removed. The rename
 /// replaces whatever entry `path` is: a symbolic link at `path` is
-/// replaced, not followed. An invalid mesh (see [`TriMesh::validate`]) is
-/// refused before anything is created.
+/// replaced, not followed. A `path` that exists and is not a file (a
+/// device such as `/dev/null`, a FIFO) is written to in place instead,
+/// since a rename would replace the device itself. An invalid mesh (see
+/// [`TriMesh::validate`]) is refused before anything is created.
 pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), Error> {
     write_mesh_as(path, MeshFormat::from_path(path)?, mesh)
 }

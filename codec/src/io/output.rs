@@ -20,6 +20,15 @@
 //!   process-wide registry that [`discard_unfinished`] empties, so that a
 //!   program ending on a signal leaves no hidden partial file behind.
 //!
+//! - a target that exists and is neither a regular file nor a symbolic
+//!   link (a device such as `/dev/null`, a FIFO, a socket) is written to
+//!   in place, with no temporary file: renaming over it would replace
+//!   the device node with a plain file (`-o /dev/null` once turned the
+//!   machine's `/dev/null` into a file that every later reader saw
+//!   filled with other programs' output). Such a target receives the
+//!   data as it is produced, so an error can leave part of it there, as
+//!   with standard output.
+//!
 //! Someone who may write to the target's directory can still replace the
 //! temporary file between its creation and the rename, as they can
 //! replace the target itself; the guarantees are against everyone else.
@@ -178,9 +187,27 @@ fn write_listed(
     registry: &Registry,
     fill: impl FnOnce(&mut File) -> Result<(), Error>,
 ) -> Result<(), Error> {
+    if is_special(path) {
+        // Opened without `create` or `truncate`: it exists and is not a
+        // file, so there is nothing to create, and truncating a device
+        // means nothing (a FIFO refuses it).
+        let mut file = OpenOptions::new().write(true).open(path)?;
+        return fill(&mut file);
+    }
     let mut temp = Unfinished::create(path, registry)?;
     fill(temp.file())?;
     temp.persist(path)
+}
+
+/// Whether `path` names an existing entry that is not a regular file, a
+/// symbolic link or a directory: a device, a FIFO or a socket, which a
+/// rename must not replace. A directory is left to the rename, which
+/// refuses it.
+fn is_special(path: &Path) -> bool {
+    std::fs::symlink_metadata(path).is_ok_and(|meta| {
+        let kind = meta.file_type();
+        !(kind.is_file() || kind.is_symlink() || kind.is_dir())
+    })
 }
 
 #[cfg(test)]
@@ -273,6 +300,50 @@ mod tests {
         write_atomic(&target, |_| Ok(())).unwrap();
         let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
         assert_eq!(mode(&target), mode(&created));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_device_is_written_to_not_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let null = Path::new("/dev/null");
+        let is_device =
+            |p: &Path| std::fs::symlink_metadata(p).is_ok_and(|m| m.file_type().is_char_device());
+        if !is_device(null) {
+            println!("skipped: /dev/null is not a character device here");
+            return;
+        }
+        write_atomic(null, |f| Ok(f.write_all(b"gone")?)).unwrap();
+        assert!(is_device(null), "/dev/null was replaced");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_receives_the_data_and_stays_a_fifo() {
+        use std::io::Read;
+        use std::os::unix::fs::FileTypeExt;
+        let dir = scratch("fifo");
+        let fifo = dir.join("pipe");
+        match std::process::Command::new("mkfifo").arg(&fifo).status() {
+            Ok(status) if status.success() => {}
+            _ => {
+                println!("skipped: mkfifo is not available");
+                return;
+            }
+        }
+        let reader = std::thread::spawn({
+            let fifo = fifo.clone();
+            move || {
+                let mut got = Vec::new();
+                File::open(&fifo).unwrap().read_to_end(&mut got).unwrap();
+                got
+            }
+        });
+        write_atomic(&fifo, |f| Ok(f.write_all(b"through the pipe")?)).unwrap();
+        assert_eq!(reader.join().unwrap(), b"through the pipe");
+        let meta = std::fs::symlink_metadata(&fifo).unwrap();
+        assert!(meta.file_type().is_fifo());
+        assert_eq!(listing(&dir), ["pipe"]);
     }
 
     #[test]
