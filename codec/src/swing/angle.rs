@@ -434,44 +434,6 @@ pub fn rebuild_positions(
     Ok(x)
 }
 
-/// Whether [`rebuild_positions`] on `table` would build every C tip on
-/// the gate and previous tip listed in `gates` (GL, GR, P per C tip, in
-/// order), after checking the table's numbering as it does (same walk,
-/// same errors, `first` first triangles). When it would, and the codes,
-/// levels and first triangles are the same, it places every vertex
-/// exactly where the `CLRF` pass did (the same arithmetic on the same
-/// inputs), so the decoder keeps the pass's positions instead of
-/// computing them twice.
-pub(super) fn gates_match(
-    table: &CornerTable,
-    first: usize,
-    gates: &[[u32; 3]],
-) -> Result<bool, Error> {
-    let (mut firsts, mut k, mut same) = (0usize, 0usize, true);
-    let placed = walk(table, |triangle| {
-        match triangle {
-            Coded::First => {
-                firsts += 1;
-                if firsts > first {
-                    return Err(bad("more components than first triangles"));
-                }
-            }
-            Coded::C(gate) => {
-                same &= gates.get(k) == Some(&gate);
-                k += 1;
-            }
-        }
-        Ok(())
-    })?;
-    if firsts != first {
-        return Err(bad("more first triangles than components"));
-    }
-    if placed != table.vertex_count() as u64 {
-        return Err(bad("a vertex is neither a first vertex nor a C tip"));
-    }
-    Ok(same && k == gates.len())
-}
-
 /// A triangle of the rebuilding pass that places vertices.
 enum Coded {
     /// A component's first triangle (three new vertices).

@@ -314,17 +314,21 @@ impl Reader<'_> {
 /// triangle, `tip = Some(loop tip)` (one of its component's first
 /// `n − 2` C tips, the rule [`Points`] places by). The numbering was
 /// checked when the positions were rebuilt.
-fn walk(table: &crate::CornerTable, loops: &Loops, mut f: impl FnMut(bool, Option<bool>)) {
+fn walk(
+    triangles: impl Iterator<Item = [u32; 3]>,
+    loops: &Loops,
+    mut f: impl FnMut(bool, Option<bool>),
+) {
     let (mut next, mut component) = (0usize, 0u32);
     let (mut fan, mut tips) = (0u32, 0u32);
-    for tri in table.vertices().chunks_exact(3) {
-        let tip = if tri[1].idx() >= next {
+    for tri in triangles {
+        let tip = if tri[1] as usize >= next {
             fan = loops.points(component);
             tips = fan.saturating_sub(2);
             component += 1;
             next += 3;
             None
-        } else if tri[0].idx() == next {
+        } else if tri[0] as usize == next {
             next += 1;
             let on_loop = tips > 0;
             tips = tips.saturating_sub(1);
@@ -337,11 +341,28 @@ fn walk(table: &crate::CornerTable, loops: &Loops, mut f: impl FnMut(bool, Optio
     }
 }
 
+/// The triangles of the decoded `table`, in order.
+fn table_triangles(table: &crate::CornerTable) -> impl Iterator<Item = [u32; 3]> + '_ {
+    table
+        .vertices()
+        .chunks_exact(3)
+        .map(|t| [t[0].idx() as u32, t[1].idx() as u32, t[2].idx() as u32])
+}
+
+/// Per triangle of `triangles` (a decoded mesh's, in order, as the
+/// `CLRF` pass builds them): it belongs to a loop's fan, which the
+/// decoder drops with its dummy vertex.
+pub fn fans_of(triangles: &[[u32; 3]], loops: &Loops) -> Vec<bool> {
+    let mut out = Vec::with_capacity(triangles.len());
+    walk(triangles.iter().copied(), loops, |fan, _| out.push(fan));
+    out
+}
+
 /// Per triangle of the decoded `table`: it belongs to a loop's fan, which
 /// the decoder drops with its dummy vertex.
 pub fn fans(table: &crate::CornerTable, loops: &Loops) -> Vec<bool> {
     let mut out = Vec::with_capacity(table.face_count());
-    walk(table, loops, |fan, _| out.push(fan));
+    walk(table_triangles(table), loops, |fan, _| out.push(fan));
     out
 }
 
@@ -349,7 +370,7 @@ pub fn fans(table: &crate::CornerTable, loops: &Loops) -> Vec<bool> {
 #[cfg(feature = "encoder")]
 pub fn loop_tips(table: &crate::CornerTable, loops: &Loops) -> Vec<bool> {
     let mut out = Vec::new();
-    walk(table, loops, |_, tip| out.extend(tip));
+    walk(table_triangles(table), loops, |_, tip| out.extend(tip));
     out
 }
 

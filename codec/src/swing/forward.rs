@@ -19,8 +19,13 @@
 //! placed by [`super::angle::Frame`] exactly as `rebuild_positions`
 //! places it; an S names its tip's node. The encoder runs the same pass
 //! over the symbols it knows ([`encode`]), so both sides see the same
-//! contexts by construction; the decoder ([`decode`]) returns the symbols,
-//! codes and levels, and the rest of decoding is that of `CLRS` files.
+//! contexts by construction. The pass also builds each symbol's
+//! triangle (tip, GL, GR) off the front (`Loops::built`) and, in the
+//! decoder ([`decode`]), reads its `HOLE` bit with the context of the
+//! triangles across its edges, so a `CLRF` file decodes in this one
+//! pass: no corner table, no Spirale Reversi, no second walk (issue 22;
+//! the same mesh as connectivity decoding gives on every file swm
+//! writes, which the encoder checks before it keeps `CLRF`).
 //!
 //! Stream: one range-coded stream (03-entropy.md) of, per symbol, the
 //! symbol in `SYM[ctx]` (16 adaptive models over C, L, E, R, S); after
@@ -31,8 +36,8 @@
 use crate::prelude::*;
 
 use super::angle::{first_edge_length, push_point, tip_radius, AngleTable, Frame};
-use super::front::{Loops, CONTEXTS};
-use super::{chain, density, residual, stretch};
+use super::front::{Built, Loops, CONTEXTS};
+use super::{chain, density, hole, residual, stretch};
 use crate::edgebreaker::Symbol;
 #[cfg(feature = "encoder")]
 use crate::entropy::Encoder;
@@ -63,6 +68,23 @@ pub(super) trait Source {
     fn stretch(&mut self, tip: usize, gl: usize, gr: usize, behind: usize) -> Result<i32, Error>;
     /// The tip was placed on GL, GR with previous tip P (vertex numbers).
     fn placed(&mut self, _gate: [u32; 3]) {}
+    /// Triangle number `t` was built: its vertices and earlier
+    /// neighbours (`first` for a component's first triangle, which has
+    /// none).
+    fn triangle(&mut self, _t: u32, _built: &Built, _first: bool) -> Result<(), Error> {
+        Ok(())
+    }
+}
+
+/// Checks that a triangle of the pass has three distinct vertices: a
+/// front that names one vertex twice (a hostile stream) cannot build a
+/// triangle on it.
+fn distinct(b: &Built) -> Result<(), Error> {
+    let [a, l, r] = b.tri;
+    if a == l || a == r || l == r {
+        return Err(bad("a triangle of the forward pass repeats a vertex"));
+    }
+    Ok(())
 }
 
 /// The forward pass over `symbols` symbols of a mesh of `vertices`
@@ -97,7 +119,14 @@ pub(super) fn run(
             p.start(k as u32, f)?;
         }
         let v = |i: usize| (base + i) as u32;
-        let mut gate = Some(loops.start([v(0), v(1), v(2)]));
+        let t0 = (k + done) as u32;
+        let mut gate = Some(loops.start([v(0), v(1), v(2)], t0));
+        let built = Built {
+            tri: [v(0), v(1), v(2)],
+            parent: t0,
+            sides: [None, None],
+        };
+        src.triangle(t0, &built, true)?;
         while let Some(gr) = gate {
             if done == symbols {
                 return Err(bad("the symbols end before the component closes"));
@@ -106,8 +135,12 @@ pub(super) fn run(
             let ctx = loops.context(gr, &x);
             // Triangles so far: each component's first, then one per symbol.
             let t = k + 1 + done;
+            let tn = t as u32;
             done += 1;
-            gate = match src.symbol(ctx)? {
+            // The triangle a symbol builds is read off the front before
+            // the front moves, and handed on once the move's checks passed.
+            let symbol = src.symbol(ctx)?;
+            let (built, next) = match symbol {
                 Symbol::C => {
                     let tip = x.len();
                     if tip >= vertices {
@@ -138,17 +171,27 @@ pub(super) fn run(
                         }
                     }
                     src.placed([vl as u32, vr as u32, behind as u32]);
-                    Some(loops.c(gr, tip as u32))
+                    let built = loops.built(gr, Symbol::C, tip as u32);
+                    (built, Some(loops.c(gr, tip as u32, tn)))
                 }
-                Symbol::L => Some(loops.l(gr)?),
-                Symbol::R => Some(loops.r(gr)?),
+                Symbol::L => {
+                    let built = loops.built(gr, Symbol::L, 0);
+                    (built, Some(loops.l(gr, tn)?))
+                }
+                Symbol::R => {
+                    let built = loops.built(gr, Symbol::R, 0);
+                    (built, Some(loops.r(gr, tn)?))
+                }
                 Symbol::S => {
                     let w = src.split(&loops, gr, t)?;
-                    let (next, remembered) = loops.s(gr, w)?;
+                    loops.check_s(gr, w)?;
+                    let built = loops.built(gr, Symbol::S, w);
+                    let (next, remembered) = loops.s(gr, w, tn)?;
                     stack.push(remembered);
-                    Some(next)
+                    (built, Some(next))
                 }
                 Symbol::E => {
+                    let built = loops.built(gr, Symbol::E, 0);
                     loops.e(gr)?;
                     // Resume at the most recent gate still open.
                     let mut next = None;
@@ -158,9 +201,12 @@ pub(super) fn run(
                             break;
                         }
                     }
-                    next
+                    (built, next)
                 }
             };
+            distinct(&built)?;
+            src.triangle(tn, &built, false)?;
+            gate = next;
         }
     }
     if done != symbols {
@@ -197,8 +243,10 @@ pub(super) struct Decoded {
     pub stretch: Option<Vec<i32>>,
     /// The positions the pass placed.
     pub positions: Vec<[f64; 3]>,
-    /// Per C tip: the GL, GR and previous tip it was placed on.
-    pub gates: Vec<[u32; 3]>,
+    /// The triangles the pass built, (tip, GL, GR) in order: the mesh.
+    pub triangles: Vec<[u32; 3]>,
+    /// `HOLE`'s bit per triangle, read in the pass (`None` without it).
+    pub mask: Option<Vec<bool>>,
 }
 
 struct Reading<'a> {
@@ -207,6 +255,7 @@ struct Reading<'a> {
     geom: residual::Reader<'a>,
     dens: Option<density::Reader<'a>>,
     rads: Option<stretch::Reader<'a>>,
+    hole: Option<hole::InPass<'a>>,
     out: Decoded,
 }
 
@@ -246,8 +295,12 @@ impl Source for Reading<'_> {
         Ok(q)
     }
 
-    fn placed(&mut self, gate: [u32; 3]) {
-        self.out.gates.push(gate);
+    fn triangle(&mut self, _t: u32, built: &Built, first: bool) -> Result<(), Error> {
+        self.out.triangles.push(built.tri);
+        match &mut self.hole {
+            Some(h) => h.next(built.parent, built.sides, first),
+            None => Ok(()),
+        }
     }
 
     fn level(&mut self, tip: usize, gl: usize, gr: usize) -> Result<Option<i8>, Error> {
@@ -273,8 +326,9 @@ impl Source for Reading<'_> {
     }
 }
 
-/// Decodes `CLRF` (`bytes`) with `GEOM` (`geom`), `DENS` (`dens`) and
-/// `RADS` (`rads`, each if the file has one): `symbols` symbols, as `TOPO` counts them, of a mesh
+/// Decodes `CLRF` (`bytes`) with `GEOM` (`geom`), `DENS` (`dens`),
+/// `RADS` (`rads`) and `HOLE` (`hole`, each if the file has one):
+/// `symbols` symbols, as `TOPO` counts them, of a mesh
 /// of `vertices` vertices with angle bits `bits`, predicted code
 /// `predicted` and first triangles `first`. Each stream must end exactly
 /// where its encoder finished it.
@@ -284,6 +338,7 @@ pub(super) fn decode(
     geom: &[u8],
     dens: Option<&[u8]>,
     rads: Option<&[u8]>,
+    hole: Option<&[u8]>,
     first: &[[[f64; 3]; 3]],
     bits: u8,
     predicted: u32,
@@ -291,6 +346,7 @@ pub(super) fn decode(
     symbols: usize,
     mut points: Option<chain::Points<'_>>,
 ) -> Result<Decoded, Error> {
+    let triangles = symbols.saturating_add(first.len());
     let mut src = Reading {
         dec: Decoder::new(bytes)?,
         models: Models::new(),
@@ -301,13 +357,15 @@ pub(super) fn decode(
         rads: rads
             .map(|b| stretch::Reader::new(b, vertices, bits))
             .transpose()?,
+        hole: hole.map(|b| hole::InPass::new(b, triangles)).transpose()?,
         out: Decoded {
             symbols: Vec::with_capacity(symbols),
             codes: Vec::new(),
             levels: dens.map(|_| Vec::new()),
             stretch: rads.map(|_| Vec::new()),
             positions: Vec::new(),
-            gates: Vec::new(),
+            triangles: Vec::with_capacity(triangles),
+            mask: None,
         },
     };
     src.out.positions = run(&mut src, first, bits, vertices, symbols, points.as_mut())?;
@@ -321,6 +379,9 @@ pub(super) fn decode(
     }
     if let Some(d) = src.rads {
         d.finish()?;
+    }
+    if let Some(h) = src.hole {
+        src.out.mask = Some(h.finish()?);
     }
     Ok(src.out)
 }

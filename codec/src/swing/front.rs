@@ -9,7 +9,10 @@
 //! what the coder needs and checks every step, as it reads hostile data).
 //! A gate is a node `gr` with `gl = next(gr)`; each node also keeps the
 //! third vertex of the decoded triangle on its edge (`behind`), which
-//! fixes the frame of a C tip and the plane of the context.
+//! fixes the frame of a C tip and the plane of the context, and that
+//! triangle's number (`face`), which makes the pass's triangles a mesh
+//! with no corner table: each new triangle's neighbours across the front
+//! edges it takes are the faces of those edges.
 //!
 //! ```text
 //!   … → prev(GR) → GR → GL → next(GL) → …      decoded region on the left
@@ -36,6 +39,7 @@
 use crate::prelude::*;
 
 use super::angle::{cross, dot, sub};
+use crate::edgebreaker::Symbol;
 use crate::{Error, FormatError, Malformed};
 
 fn bad(why: &'static str) -> Error {
@@ -49,16 +53,30 @@ pub(super) struct Loops {
     next: Vec<u32>,
     prev: Vec<u32>,
     behind: Vec<u32>,
+    face: Vec<u32>,
     alive: Vec<bool>,
 }
 
+/// The triangle a symbol builds at its gate, before the front moves:
+/// its vertices (tip, GL, GR) and its neighbours decoded before it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Built {
+    pub tri: [u32; 3],
+    /// The triangle across the gate.
+    pub parent: u32,
+    /// The triangles across the front edges the tip closes (an L's
+    /// GL → tip, an R's tip → GR, an E's both), `None` for a new edge.
+    pub sides: [Option<u32>; 2],
+}
+
 impl Loops {
-    fn push(&mut self, vertex: u32, behind: u32) -> u32 {
+    fn push(&mut self, vertex: u32, behind: u32, face: u32) -> u32 {
         let id = self.vertex.len() as u32;
         self.vertex.push(vertex);
         self.next.push(id);
         self.prev.push(id);
         self.behind.push(behind);
+        self.face.push(face);
         self.alive.push(true);
         id
     }
@@ -94,12 +112,46 @@ impl Loops {
         self.behind[n as usize]
     }
 
-    /// A component's first triangle (a, b, c), counter-clockwise; returns
-    /// its first gate, the node of c (edge c → a, facing b).
-    pub(super) fn start(&mut self, [a, b, c]: [u32; 3]) -> u32 {
-        let na = self.push(a, c);
-        let nb = self.push(b, a);
-        let nc = self.push(c, b);
+    /// The number of the decoded triangle on the edge `n → next(n)`.
+    pub(super) fn face(&self, n: u32) -> u32 {
+        self.face[n as usize]
+    }
+
+    /// The triangle that `symbol` builds at the live gate `gr`, with
+    /// `tip` the new vertex of a C and the tip node of an S (unused
+    /// otherwise); read before the front moves, and only after the
+    /// symbol's own checks passed ([`Loops::l`] and the others), which
+    /// make every node it reads live.
+    pub(super) fn built(&self, gr: u32, symbol: Symbol, tip: u32) -> Built {
+        let gl = self.next(gr);
+        let (vl, vr) = (self.vertex(gl), self.vertex(gr));
+        let (tip, sides) = match symbol {
+            Symbol::C => (tip, [None, None]),
+            Symbol::S => (self.vertex(tip), [None, None]),
+            Symbol::L => (self.vertex(self.next(gl)), [Some(self.face(gl)), None]),
+            Symbol::R => {
+                let w = self.prev(gr);
+                (self.vertex(w), [Some(self.face(w)), None])
+            }
+            Symbol::E => {
+                let w = self.next(gl);
+                (self.vertex(w), [Some(self.face(gl)), Some(self.face(w))])
+            }
+        };
+        Built {
+            tri: [tip, vl, vr],
+            parent: self.face(gr),
+            sides,
+        }
+    }
+
+    /// A component's first triangle (a, b, c), counter-clockwise, the
+    /// `t`-th triangle; returns its first gate, the node of c (edge
+    /// c → a, facing b).
+    pub(super) fn start(&mut self, [a, b, c]: [u32; 3], t: u32) -> u32 {
+        let na = self.push(a, c, t);
+        let nb = self.push(b, a, t);
+        let nc = self.push(c, b, t);
         self.link(na, nb);
         self.link(nb, nc);
         self.link(nc, na);
@@ -116,19 +168,22 @@ impl Loops {
         }
     }
 
-    /// C: new vertex `x` between GR and GL; the next gate is GR.
-    pub(super) fn c(&mut self, gr: u32, x: u32) -> u32 {
+    /// C, triangle `t`: new vertex `x` between GR and GL; the next gate
+    /// is GR.
+    pub(super) fn c(&mut self, gr: u32, x: u32, t: u32) -> u32 {
         let gl = self.next(gr);
         let (vl, vr) = (self.vertex(gl), self.vertex(gr));
-        let nx = self.push(x, vr);
+        let nx = self.push(x, vr, t);
         self.link(gr, nx);
         self.link(nx, gl);
         self.behind[gr as usize] = vl;
+        self.face[gr as usize] = t;
         gr
     }
 
-    /// L: the tip is next(GL), GL leaves the front; the next gate is GR.
-    pub(super) fn l(&mut self, gr: u32) -> Result<u32, Error> {
+    /// L, triangle `t`: the tip is next(GL), GL leaves the front; the
+    /// next gate is GR.
+    pub(super) fn l(&mut self, gr: u32, t: u32) -> Result<u32, Error> {
         let gl = self.next(gr);
         let w = self.next(gl);
         if !self.is_alive(w) || w == gr {
@@ -136,13 +191,14 @@ impl Loops {
         }
         self.alive[gl as usize] = false;
         self.behind[gr as usize] = self.vertex(gl);
+        self.face[gr as usize] = t;
         self.link(gr, w);
         Ok(gr)
     }
 
-    /// R: the tip is prev(GR), GR leaves the front; the next gate is the
-    /// tip's node.
-    pub(super) fn r(&mut self, gr: u32) -> Result<u32, Error> {
+    /// R, triangle `t`: the tip is prev(GR), GR leaves the front; the
+    /// next gate is the tip's node.
+    pub(super) fn r(&mut self, gr: u32, t: u32) -> Result<u32, Error> {
         let gl = self.next(gr);
         let w = self.prev(gr);
         if !self.is_alive(w) || w == gl {
@@ -150,6 +206,7 @@ impl Loops {
         }
         self.alive[gr as usize] = false;
         self.behind[w as usize] = self.vertex(gr);
+        self.face[w as usize] = t;
         self.link(w, gl);
         Ok(w)
     }
@@ -167,10 +224,8 @@ impl Loops {
         Ok(())
     }
 
-    /// S (or S\*: `w` on another loop, which joins this one): the tip is
-    /// node `w`. Returns the next gate (GR) and the remembered one, as its
-    /// node and the vertex its edge leads to.
-    pub(super) fn s(&mut self, gr: u32, w: u32) -> Result<(u32, (u32, u32)), Error> {
+    /// Checks that node `w` may be the tip of an S at the live gate `gr`.
+    pub(super) fn check_s(&self, gr: u32, w: u32) -> Result<(), Error> {
         let gl = self.next(gr);
         let bad_tip = !self.is_alive(w)
             || w == gr
@@ -181,13 +236,23 @@ impl Loops {
         if bad_tip {
             return Err(bad("an S whose tip is not a vertex of the front"));
         }
+        Ok(())
+    }
+
+    /// S (or S\*: `w` on another loop, which joins this one), triangle
+    /// `t`: the tip is node `w`. Returns the next gate (GR) and the
+    /// remembered one, as its node and the vertex its edge leads to.
+    pub(super) fn s(&mut self, gr: u32, w: u32, t: u32) -> Result<(u32, (u32, u32)), Error> {
+        self.check_s(gr, w)?;
+        let gl = self.next(gr);
         let (vl, vr) = (self.vertex(gl), self.vertex(gr));
         let before = self.prev(w);
-        let w2 = self.push(self.vertex(w), vr);
+        let w2 = self.push(self.vertex(w), vr, t);
         self.link(before, w2);
         self.link(w2, gl);
         self.link(gr, w);
         self.behind[gr as usize] = vl;
+        self.face[gr as usize] = t;
         Ok((gr, (w2, vl)))
     }
 
@@ -267,15 +332,15 @@ mod tests {
     #[test]
     fn a_tetrahedron_closes_and_remembered_gates_follow_their_edges() {
         let mut f = Loops::default();
-        let g = f.start([0, 1, 2]);
+        let g = f.start([0, 1, 2], 0);
         assert_eq!(f.gate(g).unwrap(), 0);
         // C: the loop becomes 0 → 1 → 2 → 3 → 0, gate 2 → 3.
-        let g = f.c(g, 3);
+        let g = f.c(g, 3, 3);
         assert_eq!((f.vertex(g), f.vertex(f.next(g))), (2, 3));
         assert_eq!(f.behind(g), 0);
         // Loop now 0 → 1 → 2 → 3 → 0; gate 2 → 3, prev(2) = 1: an R
         // makes the triangle (1, 3, 2) and the gate 1 → 3.
-        let g = f.r(g).unwrap();
+        let g = f.r(g, 9).unwrap();
         assert_eq!((f.vertex(g), f.vertex(f.next(g))), (1, 3));
         // Loop 0 → 1 → 3 → 0: an E closes it.
         f.e(g).unwrap();
@@ -285,18 +350,18 @@ mod tests {
     #[test]
     fn an_s_splits_the_loop_and_keeps_the_tip_node_edge() {
         let mut f = Loops::default();
-        let g = f.start([0, 1, 2]);
+        let g = f.start([0, 1, 2], 0);
         // Grow a loop of six: 0 → 1 → 2 → 3 → 4 → 5 → 0 (C at 2 → 0 three times).
-        let g = f.c(g, 3); // 2 → 3 → 0
+        let g = f.c(g, 3, 3); // 2 → 3 → 0
         let g2 = f.next(g); // node of 3, edge 3 → 0
-        let g2 = f.c(g2, 4); // 3 → 4 → 0
+        let g2 = f.c(g2, 4, 4); // 3 → 4 → 0
         let g3 = f.next(g2);
-        let g3 = f.c(g3, 5); // 4 → 5 → 0
+        let g3 = f.c(g3, 5, 5); // 4 → 5 → 0
         assert_eq!(f.vertex(f.next(f.next(g3))), 0);
         // Gate 4 → 5 (GR = 4, GL = 5), S with tip node of 1.
         let n1 = f.prev(f.prev(f.prev(g3)));
         assert_eq!(f.vertex(n1), 1);
-        let (next, (w2, v)) = f.s(g3, n1).unwrap();
+        let (next, (w2, v)) = f.s(g3, n1, 9).unwrap();
         assert_eq!(next, g3);
         assert_eq!((f.vertex(f.next(g3)), v, f.vertex(w2)), (1, 5, 1));
         // Right loop 4 → 1 → 2 → 3 → 4, left loop 1' → 5 → 0 → 1'.
@@ -305,7 +370,7 @@ mod tests {
         assert_eq!(f.next(f.next(f.next(w2))), w2);
         assert!(!f.consumed(w2, 5));
         // An L at gate 1' → 5 consumes it.
-        f.l(w2).unwrap();
+        f.l(w2, 9).unwrap();
         assert!(f.consumed(w2, 5));
     }
 }

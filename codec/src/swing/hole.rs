@@ -73,6 +73,75 @@ fn context(table: &CornerTable, t: usize, earlier: &[bool]) -> usize {
     }
 }
 
+/// [`context`] as the `CLRF` pass finds it, without a corner table: the
+/// pass knows, for each triangle it builds, the triangle across its gate
+/// (`parent`) and those across the front edges its tip closes (`sides`),
+/// all decoded before it; a component's first triangle has none (`first`).
+/// On a mesh the pass builds from a file swm writes, this is [`context`]
+/// of the decoded table for every triangle: the parent is `f(O[3t])`,
+/// and the earlier neighbours across `3t+1` and `3t+2` are exactly the
+/// triangles behind the front edges an L, R or E closes (a C or an S
+/// makes both edges new, so their neighbours come later).
+pub(super) fn context_in_pass(
+    mask: &[bool],
+    parent: u32,
+    sides: [Option<u32>; 2],
+    first: bool,
+) -> usize {
+    if first {
+        return 4;
+    }
+    let masked = |f: Option<u32>| f.is_some_and(|f| mask.get(f as usize) == Some(&true));
+    let sideways = masked(sides[0]) || masked(sides[1]);
+    2 * usize::from(masked(Some(parent))) + usize::from(sideways)
+}
+
+/// The `HOLE` stream read inside the `CLRF` pass, one bit per triangle
+/// as the pass builds it ([`context_in_pass`]).
+pub(super) struct InPass<'a> {
+    dec: Decoder<'a>,
+    models: ContextModel,
+    pub mask: Vec<bool>,
+}
+
+impl<'a> InPass<'a> {
+    /// The stream `bytes` of a mesh of `count` triangles, the count
+    /// checked against the stream's length first, as [`decode`] does.
+    pub(super) fn new(bytes: &'a [u8], count: usize) -> Result<Self, Error> {
+        crate::container::check_count_fits(
+            "hole mask bit",
+            count as u64,
+            bytes.len(),
+            1,
+            1 << crate::entropy::PRECISION,
+        )?;
+        Ok(InPass {
+            dec: Decoder::new(bytes)?,
+            models: ContextModel::new(CONTEXTS, 2),
+            mask: Vec::with_capacity(count),
+        })
+    }
+
+    /// Reads the bit of the next triangle.
+    pub(super) fn next(
+        &mut self,
+        parent: u32,
+        sides: [Option<u32>; 2],
+        first: bool,
+    ) -> Result<(), Error> {
+        let ctx = context_in_pass(&self.mask, parent, sides, first);
+        let bit = self.dec.decode(self.models.get(ctx))? == 1;
+        self.mask.push(bit);
+        Ok(())
+    }
+
+    /// Checks the end of the stream; returns the mask.
+    pub(super) fn finish(self) -> Result<Vec<bool>, Error> {
+        self.dec.finish()?;
+        Ok(self.mask)
+    }
+}
+
 /// Codes `mask` (one bit per triangle of the decoded `table`, in order).
 /// Mirrors [`decode`].
 #[cfg(feature = "encoder")]

@@ -2,7 +2,10 @@
 //! `CLRS`, shared with the lossless mode), then the angle codes (`GEOM`)
 //! and the one pass that rebuilds the vertices; then the hole mask
 //! (`HOLE`) drops triangles and the lossless remainder (`REST`) adds
-//! some. Every count is checked before anything sized by it is allocated.
+//! some. A file with `CLRF` instead decodes in the forward pass alone
+//! ([`super::forward`]): symbols, vertices, triangles and mask bits
+//! together. Every count is checked before anything sized by it is
+//! allocated.
 
 use crate::prelude::*;
 
@@ -101,15 +104,10 @@ pub(crate) fn read_head(bytes: &[u8], components: u32) -> Result<Head, Error> {
     })
 }
 
-/// The angle codes and levels the forward pass of `CLRF` read on its
-/// way (a `CLRS` file decodes them from the corner table instead).
+/// What the forward pass of `CLRF` read on its way that [`inspect`]
+/// reports (a `CLRS` file decodes it from the corner table instead).
 pub(super) struct Tips {
-    pub codes: Vec<u32>,
     pub levels: Option<Vec<i8>>,
-    pub stretch: Option<Vec<i32>>,
-    /// The positions the pass placed, and each C tip's GL, GR and P.
-    pub positions: Vec<[f64; 3]>,
-    pub gates: Vec<[u32; 3]>,
 }
 
 /// Reads `HEAD`, `TOPO` and `CLRS` or `CLRF` and decodes the
@@ -119,65 +117,17 @@ pub(super) fn read_connectivity(
     limits: &Limits,
 ) -> Result<(Head, Connectivity, CornerTable, Option<Tips>), Error> {
     let h = &file.header;
-    if file.find(Tag::GEOF).is_some() || file.find(Tag::CLRD).is_some() {
-        // Mode 0's positions mean nothing here (05-swing.md, check 1).
-        return Err(bad("a SwingWrapper file has a critical section of mode 0"));
-    }
-    let head = read_head(file.require(Tag::HEAD)?.bytes, h.component_count)?;
+    let head = read_checked_head(file)?;
     let (conn, dummies, tips) = match (file.find(Tag::CLRS), file.find(Tag::CLRF)) {
         (Some(_), Some(_)) => return Err(bad("a file with both CLRS and CLRF")),
         (_, None) => {
             let (conn, dummies) = crate::lossless::read_topology(file, limits)?;
             (conn, dummies, None)
         }
-        (None, Some(clrf)) => {
-            let (mut conn, dummies, count) =
-                crate::lossless::read_topo(file, limits, clrf.bytes.len())?;
-            // The counts the header declares, checked against TOPO's before
-            // anything is sized by them: T = S + C, and every vertex is a
-            // first vertex or a C tip, so V ≤ 3C + S.
-            let components = u64::from(h.component_count);
-            let triangles = count as u64 + components;
-            if triangles != u64::from(h.triangle_count) {
-                let declared = h.triangle_count.into();
-                return Err(crate::lossless::mismatch("triangles", declared, triangles));
-            }
-            if u64::from(h.vertex_count) > 3 * components + count as u64 {
-                return Err(bad("more vertices than the symbols can place"));
-            }
-            let vertices = h.vertex_count as usize;
-            // Per vertex: a position, a residual length, a level and two
-            // flags (step, radius code); per symbol: up to two nodes of
-            // 17 bytes, the symbol, a code, a level and a radius code.
-            let (v, s) = (vertices as u64, count as u64);
-            limits.check_alloc(v.saturating_mul(29).saturating_add(s.saturating_mul(44)))?;
-            let geom = file.require(Tag::GEOM)?;
-            let dens = file.find(Tag::DENS).map(|s| s.bytes);
-            let rads = file.find(Tag::RADS).map(|s| s.bytes);
-            let (list, reader) = read_loops(file, head.bits)?;
-            let points = reader.map(|r| points(&list, r, &head));
-            let d = super::forward::decode(
-                clrf.bytes,
-                geom.bytes,
-                dens,
-                rads,
-                &head.first,
-                head.bits,
-                head.predicted,
-                vertices,
-                count,
-                points,
-            )
-            .map_err(in_section(clrf.offset))?;
-            conn.symbols = d.symbols;
-            let tips = Tips {
-                codes: d.codes,
-                levels: d.levels,
-                stretch: d.stretch,
-                positions: d.positions,
-                gates: d.gates,
-            };
-            (conn, dummies, Some(tips))
+        (None, Some(_)) => {
+            let (conn, d, _) = read_forward(file, limits, &head, false)?;
+            let tips = Tips { levels: d.levels };
+            (conn, Vec::new(), Some(tips))
         }
     };
     if !dummies.is_empty() {
@@ -193,6 +143,76 @@ pub(super) fn read_connectivity(
     }
     let table = edgebreaker::decode(&conn)?;
     Ok((head, conn, table, tips))
+}
+
+/// `HEAD`, once the file is known to hold no section of mode 0.
+fn read_checked_head(file: &Container<'_>) -> Result<Head, Error> {
+    if file.find(Tag::GEOF).is_some() || file.find(Tag::CLRD).is_some() {
+        // Mode 0's positions mean nothing here (05-swing.md, check 1).
+        return Err(bad("a SwingWrapper file has a critical section of mode 0"));
+    }
+    if file.find(Tag::CLRS).is_some() && file.find(Tag::CLRF).is_some() {
+        return Err(bad("a file with both CLRS and CLRF"));
+    }
+    read_head(file.require(Tag::HEAD)?.bytes, file.header.component_count)
+}
+
+/// Reads `TOPO` for `CLRF` and runs the forward pass over `CLRF`, `GEOM`,
+/// `DENS`, `RADS` and `LOOP` (and `HOLE` when `hole`): the symbols, and
+/// what the pass decoded on its way, the mesh's triangles among them;
+/// also `LOOP`'s list. Every count is checked before the pass allocates.
+pub(super) fn read_forward<'a>(
+    file: &Container<'a>,
+    limits: &Limits,
+    head: &Head,
+    hole: bool,
+) -> Result<(Connectivity, super::forward::Decoded, Loops), Error> {
+    let h = &file.header;
+    let clrf = file.require(Tag::CLRF)?;
+    let (mut conn, dummies, count) = crate::lossless::read_topo(file, limits, clrf.bytes.len())?;
+    if !dummies.is_empty() {
+        return Err(bad("a SwingWrapper file has no dummy vertices"));
+    }
+    // The counts the header declares, checked against TOPO's before
+    // anything is sized by them: T = S + C, and every vertex is a first
+    // vertex or a C tip, so V ≤ 3C + S.
+    let components = u64::from(h.component_count);
+    let triangles = count as u64 + components;
+    if triangles != u64::from(h.triangle_count) {
+        let declared = h.triangle_count.into();
+        return Err(crate::lossless::mismatch("triangles", declared, triangles));
+    }
+    if u64::from(h.vertex_count) > 3 * components + count as u64 {
+        return Err(bad("more vertices than the symbols can place"));
+    }
+    let vertices = h.vertex_count as usize;
+    // Per vertex: a position, a residual length, a level and two flags
+    // (step, radius code); per symbol: up to two nodes of 21 bytes, the
+    // symbol, a code, a level, a radius code, a triangle and a mask bit.
+    let (v, s) = (vertices as u64, count as u64);
+    limits.check_alloc(v.saturating_mul(29).saturating_add(s.saturating_mul(65)))?;
+    let geom = file.require(Tag::GEOM)?;
+    let dens = file.find(Tag::DENS).map(|s| s.bytes);
+    let rads = file.find(Tag::RADS).map(|s| s.bytes);
+    let hole = if hole { file.find(Tag::HOLE) } else { None };
+    let (list, reader) = read_loops(file, head.bits)?;
+    let points = reader.map(|r| points(&list, r, head));
+    let mut d = super::forward::decode(
+        clrf.bytes,
+        geom.bytes,
+        dens,
+        rads,
+        hole.map(|s| s.bytes),
+        &head.first,
+        head.bits,
+        head.predicted,
+        vertices,
+        count,
+        points,
+    )
+    .map_err(in_section(clrf.offset))?;
+    conn.symbols = core::mem::take(&mut d.symbols);
+    Ok((conn, d, list))
 }
 
 /// `LOOP`'s entries and code stream in a file of `bits` angle bits; no
@@ -295,7 +315,10 @@ fn rest_frame<'a>(
 
 /// Decodes a SwingWrapper file whose container was parsed.
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
-    let (head, conn, table, tips) = read_connectivity(file, limits)?;
+    if file.find(Tag::CLRF).is_some() {
+        return decode_forward(file, limits);
+    }
+    let (head, conn, table, _) = read_connectivity(file, limits)?;
     // REST's frame first: the whole output must fit the limits before
     // anything is decoded.
     let rest = rest_frame(file, limits)?;
@@ -314,40 +337,23 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     // and a new number per vertex.
     let (v, t) = (table.vertex_count() as u64, table.face_count() as u64);
     limits.check_alloc(v.saturating_mul(46).saturating_add(t.saturating_mul(18)))?;
-    let (codes, levels, radii, placed) = match tips {
-        Some(t) => {
-            // The pass's positions are the table's when every C tip was
-            // placed on the table's own gate and previous tip.
-            let same = super::angle::gates_match(&table, head.first.len(), &t.gates)?;
-            (t.codes, t.levels, t.stretch, same.then_some(t.positions))
-        }
-        None => (
-            residual::decode(&table, geom, count, head.bits, head.predicted)?,
-            read_levels(file, &table, count)?,
-            read_stretch(file, &table, count, head.bits)?,
-            None,
-        ),
-    };
-    let x = match placed {
-        Some(x) => x,
-        None => {
-            let (list, reader) = read_loops(file, head.bits)?;
-            let mut points = reader.map(|r| points(&list, r, &head));
-            let x = super::angle::rebuild_positions(
-                &table,
-                &head.first,
-                head.bits,
-                &codes,
-                levels.as_deref(),
-                radii.as_deref(),
-                points.as_mut(),
-            )?;
-            if let Some(p) = points {
-                p.finish()?;
-            }
-            x
-        }
-    };
+    let codes = residual::decode(&table, geom, count, head.bits, head.predicted)?;
+    let levels = read_levels(file, &table, count)?;
+    let radii = read_stretch(file, &table, count, head.bits)?;
+    let (list, reader) = read_loops(file, head.bits)?;
+    let mut points = reader.map(|r| points(&list, r, &head));
+    let x = super::angle::rebuild_positions(
+        &table,
+        &head.first,
+        head.bits,
+        &codes,
+        levels.as_deref(),
+        radii.as_deref(),
+        points.as_mut(),
+    )?;
+    if let Some(p) = points {
+        p.finish()?;
+    }
     let positions = x.iter().map(|p| p.map(|c| c as f32)).collect();
     let triangles = table.triangles();
     if triangles.len() != file.header.triangle_count as usize {
@@ -378,9 +384,61 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     if let Some(mask) = mask {
         mesh = hole::drop_masked(mesh, &mask)?;
     }
+    append_rest(mesh, rest, limits)
+}
+
+/// Decodes a file with `CLRF` in one pass (format-spec/05-swing.md,
+/// "CLRF"): the forward pass reads the symbols, places every vertex,
+/// builds every triangle and reads `HOLE`'s bits as it goes, so there is
+/// no corner table to build and no second walk over the triangles.
+fn decode_forward(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
+    let head = read_checked_head(file)?;
+    let (conn, d, loops) = read_forward(file, limits, &head, true)?;
+    // REST's frame first: the whole output must fit the limits before
+    // it is decoded.
+    let rest = rest_frame(file, limits)?;
+    let geom = file.require(Tag::GEOM)?.bytes;
+    let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
+    check_count_fits(
+        "angle",
+        count as u64,
+        geom.len(),
+        u64::from(head.bits),
+        1 << crate::entropy::PRECISION,
+    )?;
+    // f32 positions, and a new number per vertex when some are dropped.
+    limits.check_alloc((d.positions.len() as u64).saturating_mul(16))?;
+    let positions = d.positions.iter().map(|p| p.map(|c| c as f32)).collect();
+    let mut mesh = TriMesh {
+        positions,
+        triangles: d.triangles,
+    };
+    // Dropped: the triangles HOLE masks, and the fans of the loops.
+    let mut mask = d.mask;
+    if !loops.entries.is_empty() {
+        let fans = chain::fans_of(&mesh.triangles, &loops);
+        let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
+        for (m, f) in m.iter_mut().zip(fans) {
+            *m |= f;
+        }
+    }
+    if let Some(mask) = mask {
+        mesh = hole::drop_masked(mesh, &mask)?;
+    }
+    append_rest(mesh, rest, limits)
+}
+
+/// Appends `REST`'s mesh (if any) to the retiled one, its vertex numbers
+/// moved past the retiled mesh's.
+fn append_rest(
+    mut mesh: TriMesh,
+    rest: Option<(Container<'_>, usize)>,
+    limits: &Limits,
+) -> Result<TriMesh, Error> {
     if let Some((rest, offset)) = &rest {
         let kept = crate::lossless::decode(rest, limits).map_err(in_section(*offset))?;
-        // Checked against the limits above: both counts are below 2^32.
+        // Checked against the limits (`rest_frame`): both counts are
+        // below 2^32.
         let first = mesh.positions.len() as u32;
         mesh.positions.extend_from_slice(&kept.positions);
         mesh.triangles

@@ -370,39 +370,43 @@ fn front_coded_symbols_decode_to_the_clrs_mesh() {
     }
 }
 
-/// The pass's positions are kept only because they are the rebuilding
-/// pass's: on every emulated mesh each C tip's gate matches the table's
-/// and the positions agree bit for bit.
+/// The `CLRF` pass is the whole decoder of a `CLRF` file: on every
+/// emulated mesh, handles and a masked disk included, the triangles it
+/// builds are those of connectivity decoding (`CLRS`'s corner table) in
+/// the same order, its positions those of the rebuilding pass, and the
+/// `HOLE` bits it reads in place (contexts from the front) those the
+/// table's contexts give.
 #[test]
-fn the_pass_places_the_tips_where_the_rebuilding_pass_does() {
+fn the_pass_builds_the_tables_mesh_and_reads_the_mask_in_place() {
+    use crate::edgebreaker::tests_support::torus;
     let limits = crate::Limits::default();
-    for (name, mesh) in test_meshes() {
-        let r = emulate(&mesh, 8);
+    let mut meshes = test_meshes();
+    meshes.push(("torus-8x5", torus(8, 5)));
+    let mut masked_files = 0;
+    for (name, mesh) in meshes {
+        let mut r = emulate(&mesh, 8);
+        r.hole_mask = disk_mask(&r, [0.3, -0.5, 0.8], 40.0);
         let bytes = write(&r, Clers::Front, Default::default()).unwrap().0;
         let file = crate::container::parse_container(&bytes, &limits).unwrap();
-        let (head, _, table, tips) = read::read_connectivity(&file, &limits).unwrap();
-        let tips = tips.expect("a CLRF file");
-        assert!(
-            super::angle::gates_match(&table, head.first.len(), &tips.gates).unwrap(),
-            "{name}"
-        );
-        let rebuilt = super::angle::rebuild_positions(
-            &table,
-            &head.first,
-            head.bits,
-            &tips.codes,
-            tips.levels.as_deref(),
-            tips.stretch.as_deref(),
-            None,
-        )
-        .unwrap();
+        assert!(file.find(Tag::CLRF).is_some(), "{name}: the pass did not follow");
+        let hole = file.find(Tag::HOLE);
+        masked_files += usize::from(hole.is_some());
+        let (head, _, table, _) = read::read_connectivity(&file, &limits).unwrap();
+        let (_, pass, _) = read::read_forward(&file, &limits, &head, true).unwrap();
+        assert_eq!(pass.triangles, table.triangles(), "{name}");
+        assert_eq!(pass.triangles, r.triangles, "{name}");
         let bits = |x: &[[f64; 3]]| x.iter().flatten().map(|c| c.to_bits()).collect::<Vec<_>>();
-        assert_eq!(bits(&rebuilt), bits(&tips.positions), "{name}");
-        // A gate that differs is noticed.
-        let mut wrong = tips.gates.clone();
-        wrong[0][2] = wrong[0][0];
-        assert!(!super::angle::gates_match(&table, head.first.len(), &wrong).unwrap());
+        assert_eq!(bits(&pass.positions), bits(&r.positions), "{name}");
+        let from_table = hole.map(|s| super::hole::decode(&table, s.bytes).unwrap());
+        assert_eq!(pass.mask, from_table, "{name}");
+        let plain = write(&r, Clers::Plain, Default::default()).unwrap().0;
+        assert_eq!(
+            decode_bytes(&bytes).unwrap(),
+            decode_bytes(&plain).unwrap(),
+            "{name}: CLRF and CLRS decode differently"
+        );
     }
+    assert!(masked_files >= 3, "only {masked_files} files had a HOLE");
 }
 
 /// A file may carry its symbols in one section only.

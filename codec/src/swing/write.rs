@@ -61,7 +61,9 @@ pub(crate) enum Clers {
 }
 
 /// `CLRF` for `retiled`, if the forward pass follows it and its bytes
-/// decode back to the same symbols, codes and levels.
+/// decode back to the same symbols, codes, levels, positions, triangles
+/// and (`hole`, `HOLE`'s bytes) mask bits: a `CLRF` file decodes in that
+/// one pass, with no corner table.
 #[allow(clippy::too_many_arguments)]
 fn front_coded(
     retiled: &Retiled,
@@ -72,6 +74,7 @@ fn front_coded(
     geom: &[u8],
     dens: Option<&[u8]>,
     loop_bytes: Option<&[u8]>,
+    hole: Option<&[u8]>,
     bits: u8,
 ) -> Option<Vec<u8>> {
     let nv = retiled.positions.len();
@@ -98,6 +101,7 @@ fn front_coded(
         geom,
         dens,
         radii.map(|r| r.1),
+        hole,
         &head.first,
         head.bits,
         head.predicted,
@@ -110,7 +114,9 @@ fn front_coded(
         && back.codes == codes
         && back.levels.as_deref() == levels
         && back.stretch.as_deref() == radii.map(|r| r.0)
-        && same_bits(&back.positions, &retiled.positions);
+        && same_bits(&back.positions, &retiled.positions)
+        && back.triangles == retiled.triangles
+        && (hole.is_none() || back.mask.as_deref() == Some(&retiled.hole_mask[..]));
     same.then_some(bytes)
 }
 
@@ -299,26 +305,6 @@ pub(crate) fn write(
     let head_bytes = write_head(&head);
     let topo = write_topo(&conn, &[]);
     let geom = residual::encode(&decoded, &codes, bits, head.predicted)?;
-    let clrf = match clers {
-        Clers::Plain => None,
-        Clers::Front | Clers::Smaller => front_coded(
-            retiled,
-            &codes,
-            &head,
-            levels.as_deref(),
-            radii.as_deref().zip(rads.as_deref()),
-            &geom,
-            dens.as_deref(),
-            loop_bytes.as_deref(),
-            bits,
-        ),
-    };
-    let clrs = (clers != Clers::Front || clrf.is_none()).then(|| write_clers(&conn.symbols));
-    let (clers_tag, clers) = match (clrf, clrs) {
-        (Some(f), Some(s)) if s.len() <= f.len() => (Tag::CLRS, s),
-        (Some(f), _) => (Tag::CLRF, f),
-        (None, s) => (Tag::CLRS, s.unwrap_or_default()),
-    };
     // The loops' fans are dropped without a bit (`chain::fans`); HOLE
     // only when some patch triangle is masked too.
     let fans = chain::fans(&decoded, &retiled.loops);
@@ -330,6 +316,27 @@ pub(crate) fn write(
         .filter(|&t| masked_at(t) && !fans[t])
         .count() as u64;
     let hole_bytes = (masked > 0).then(|| hole::encode(&decoded, mask));
+    let clrf = match clers {
+        Clers::Plain => None,
+        Clers::Front | Clers::Smaller => front_coded(
+            retiled,
+            &codes,
+            &head,
+            levels.as_deref(),
+            radii.as_deref().zip(rads.as_deref()),
+            &geom,
+            dens.as_deref(),
+            loop_bytes.as_deref(),
+            hole_bytes.as_deref(),
+            bits,
+        ),
+    };
+    let clrs = (clers != Clers::Front || clrf.is_none()).then(|| write_clers(&conn.symbols));
+    let (clers_tag, clers) = match (clrf, clrs) {
+        (Some(f), Some(s)) if s.len() <= f.len() => (Tag::CLRS, s),
+        (Some(f), _) => (Tag::CLRF, f),
+        (None, s) => (Tag::CLRS, s.unwrap_or_default()),
+    };
     let (rest_bytes, rest_counts) = match &retiled.rest {
         Some((mesh, qp)) if mesh.face_count() > 0 => {
             let table = CornerTable::new(&mesh.triangles, mesh.vertex_count())?;
