@@ -60,13 +60,13 @@ pub(super) fn longest_loop(s: &Surface) -> Option<Rim> {
     // starts two of them (a pinched loop).
     let mut rims: HashMap<u32, Option<HashMap<u32, u32>>> = HashMap::new();
     for f in 0..s.face_count() as u32 {
-        let h = s.patch[f as usize];
+        let h = s.patch(f);
         if h == NONE {
             continue;
         }
         for c in Surface::corners(f) {
             let o = s.opp[c as usize];
-            if o == NONE || s.patch[face(o) as usize] != NONE {
+            if o == NONE || s.patch(face(o)) != NONE {
                 continue;
             }
             let (u, w) = (s.v[next(c) as usize], s.v[prev(c) as usize]);

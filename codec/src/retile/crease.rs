@@ -69,7 +69,7 @@ impl Retiler<'_> {
     fn is_crease(&self, c: u32) -> bool {
         let s = &self.s;
         let o = s.opp[c as usize];
-        let cos = s.normal[face(c) as usize].dot(s.normal[face(o) as usize]);
+        let cos = s.normal(face(c)).dot(s.normal(face(o)));
         cos < CREASE_ANGLE.to_radians().cos()
     }
 

@@ -77,7 +77,7 @@ impl Field {
                 continue;
             }
             let f = face(k);
-            if s.patch[f as usize] != NONE {
+            if s.patch(f) != NONE {
                 continue;
             }
             let a = s.double_area(f);
@@ -108,7 +108,7 @@ impl Field {
             return self.cache[x as usize];
         }
         let k = s.corner_of[x as usize];
-        let level = if k == NONE || s.patch[face(k) as usize] != NONE {
+        let level = if k == NONE || s.patch(face(k)) != NONE {
             // Nothing to measure (a hole patch is the encoder's own
             // filling): keep the gate's level.
             f32::INFINITY

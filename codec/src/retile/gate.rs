@@ -79,9 +79,8 @@ impl Retiler<'_> {
         // snaps T can sit beside the gate rather than behind it, so the
         // side is first judged by the surface itself: the free side of
         // GR → GL is on its right, seen along the normal of M.
-        let free_side = |(p, f): (DVec3, u32)| {
-            (p - centre).dot((xl - xr).cross(self.s.normal[f as usize])) > 0.0
-        };
+        let free_side =
+            |(p, f): (DVec3, u32)| (p - centre).dot((xl - xr).cross(self.s.normal(f))) > 0.0;
         let sides = hits.map(|h| h.map(free_side));
         let tip_point = match (hits, sides) {
             ([Some(a), _], [Some(true), Some(false) | None]) => Some(a),

@@ -155,7 +155,7 @@ fn retile_piece(
     let opposites: Vec<u32> = table.opposites().iter().map(|c| c.0).collect();
     let mut s = Surface::new(&positions, &mesh.triangles, &opposites);
     if let Some(p) = patch {
-        s.patch.copy_from_slice(p);
+        s.set_patches(p);
     }
     let l = fixed.unwrap_or(opt.edge_length);
     let area = mesh.area();
@@ -404,7 +404,7 @@ impl Retiler<'_> {
             }
             let area = 0.5 * s.double_area(f);
             total[o as usize] += area;
-            let h = s.patch[f as usize];
+            let h = s.patch(f);
             if h != NONE {
                 *on.entry((o, h)).or_default() += area;
             }
@@ -569,7 +569,7 @@ impl Retiler<'_> {
             normal: x2 - x1,
         };
         let (cands, _) = self.circle(0, 2, plane, centre);
-        let orient = |p: DVec3, f: u32| (p - x1).cross(x2 - x1).dot(self.s.normal[f as usize]);
+        let orient = |p: DVec3, f: u32| (p - x1).cross(x2 - x1).dot(self.s.normal(f));
         let (p3, f3) = cands
             .into_iter()
             .flatten()
@@ -712,13 +712,13 @@ fn start_vertex(s: &Surface, rank: u32, by_shape: bool, l: f64) -> u32 {
     // A closed input has no rim to keep away from; there the ring's own
     // flatness was measured better (rd generated table: the wider score
     // made 21 of 29 swing rows worse, by 2-37%).
-    let patched = s.patch.iter().any(|&p| p != NONE);
+    let patched = s.has_patches();
     let hops = if patched { patch_hops(s) } else { Vec::new() };
     let far = hops.iter().copied().max().unwrap_or(0).min(RIM_HOPS);
     let ring_flatness = |x: u32| {
         let (mut sum, mut n) = (DVec3::ZERO, 0u32);
         for k in s.fan(x) {
-            sum += s.normal[surface::face(k) as usize];
+            sum += s.normal(surface::face(k));
             n += 1;
         }
         (n >= 5).then(|| sum.length() / n as f64)
@@ -811,11 +811,11 @@ fn flatness_around(s: &Surface, x: u32, radius: f64, mark: &mut [u32], stamp: u3
     let mut visited = stack.len();
     let (mut sum, mut area) = (DVec3::ZERO, 0.0);
     while let Some(f) = stack.pop() {
-        if s.patch[f as usize] != NONE {
+        if s.patch(f) != NONE {
             return -1.0;
         }
         let a = s.double_area(f);
-        sum += s.normal[f as usize] * a;
+        sum += s.normal(f) * a;
         area += a;
         if visited >= START_FACES {
             continue;
@@ -844,8 +844,8 @@ const RIM_HOPS: u32 = 8;
 fn patch_hops(s: &Surface) -> Vec<u32> {
     let mut hops = vec![u32::MAX; s.vertex_count()];
     let mut queue = std::collections::VecDeque::new();
-    for (f, &p) in s.patch.iter().enumerate() {
-        if p == NONE {
+    for f in 0..s.face_count() {
+        if s.patch(f as u32) == NONE {
             continue;
         }
         for c in Surface::corners(f as u32) {

@@ -77,7 +77,7 @@ pub(super) fn offset(s: &Surface, f: u32, v: DVec3, l: f64, sc: &mut Scratch) ->
     // A hole patch is the encoder's own filling, masked away in the file:
     // its shape says nothing about the input's curvature, and a tip on it
     // is not worth the bits of an offset.
-    if s.patch[f as usize] != NONE {
+    if s.patch(f) != NONE {
         return DVec3::ZERO;
     }
     let Some((n, coherence)) = sample_disk(s, f, v, l, sc) else {
@@ -163,7 +163,7 @@ pub(super) fn sample_disk(
         let g = sc.queue[head];
         head += 1;
         s.tick(1);
-        if s.patch[g as usize] != NONE {
+        if s.patch(g) != NONE {
             continue;
         }
         let [a, b, c] = Surface::corners(g).map(|k| s.p(k));
@@ -174,7 +174,7 @@ pub(super) fn sample_disk(
             let d = m - v;
             if d.length_squared() <= reach2 {
                 sc.samples.push((w, d));
-                normal += w * s.normal[g as usize];
+                normal += w * s.normal(g);
                 weight += w;
                 near = true;
             }
@@ -248,7 +248,9 @@ mod tests {
         // A disk that wraps most of the sphere: incoherent normals, no
         // offset at all.
         assert_eq!(offset(&s, 5, v, 1.5, &mut sc), DVec3::ZERO);
-        s.patch[5] = 0;
+        let mut patches = vec![NONE; s.face_count()];
+        patches[5] = 0;
+        s.set_patches(&patches);
         assert_eq!(offset(&s, 5, v, 0.3, &mut sc), DVec3::ZERO);
     }
 }

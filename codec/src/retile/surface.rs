@@ -40,13 +40,19 @@ pub struct Surface {
     pub v: Vec<u32>,
     /// Corner to opposite corner.
     pub opp: Vec<u32>,
-    /// Per face: unit normal, inherited through splits.
-    pub normal: Vec<DVec3>,
+    /// Per face: the face of M it is a piece of (itself for M's own
+    /// faces): splits keep the plane and the patch of the face they cut,
+    /// so both are kept once per face of M and looked up through this
+    /// (4 bytes per face of the refined surface instead of 28: the
+    /// surface grows to several times M's faces as paths cut it; issue 22).
+    origin: Vec<u32>,
+    /// Per face of M: unit normal ([`Surface::normal`]).
+    base_normal: Vec<DVec3>,
     /// Per face: the M′ triangle whose triangloid holds it, or `NONE`.
     pub owner: Vec<u32>,
-    /// Per face: the filled hole it patches, or `NONE` for the input's
-    /// own surface; inherited through splits.
-    pub patch: Vec<u32>,
+    /// Per face of M: the filled hole it patches, or `NONE` for the
+    /// input's own surface ([`Surface::patch`]).
+    base_patch: Vec<u32>,
     /// Per corner: the edge it faces lies on a triangloid boundary path.
     pub path: Vec<bool>,
     /// Per vertex: one corner at it.
@@ -97,7 +103,7 @@ impl Surface {
                 v.push(x);
             }
         }
-        let normal = triangles
+        let normal: Vec<DVec3> = triangles
             .iter()
             .map(|t| {
                 let [a, b, c] = t.map(|i| positions[i as usize]);
@@ -107,9 +113,10 @@ impl Surface {
         Surface {
             pos: positions.to_vec(),
             opp: opposites.to_vec(),
-            normal,
+            origin: (0..triangles.len() as u32).collect(),
+            base_normal: normal,
             owner: vec![NONE; triangles.len()],
-            patch: vec![NONE; triangles.len()],
+            base_patch: vec![NONE; triangles.len()],
             path: vec![false; v.len()],
             v,
             corner_of,
@@ -121,6 +128,29 @@ impl Surface {
 
     pub fn face_count(&self) -> usize {
         self.v.len() / 3
+    }
+
+    /// The unit normal of face `f`: that of the face of M it is a piece of.
+    #[inline]
+    pub fn normal(&self, f: u32) -> DVec3 {
+        self.base_normal[self.origin[f as usize] as usize]
+    }
+
+    /// The filled hole face `f` patches, or `NONE` for the input's own
+    /// surface: that of the face of M it is a piece of.
+    #[inline]
+    pub fn patch(&self, f: u32) -> u32 {
+        self.base_patch[self.origin[f as usize] as usize]
+    }
+
+    /// Sets the patch of each face of M (`patch`, one per face of M).
+    pub fn set_patches(&mut self, patch: &[u32]) {
+        self.base_patch.copy_from_slice(patch);
+    }
+
+    /// Whether some face patches a hole.
+    pub fn has_patches(&self) -> bool {
+        self.base_patch.iter().any(|&p| p != NONE)
     }
 
     pub fn vertex_count(&self) -> usize {
@@ -137,9 +167,8 @@ impl Surface {
     pub fn memory(&self) -> u64 {
         use core::mem::size_of;
         let per_corner = self.v.capacity() * 4 + self.opp.capacity() * 4 + self.path.capacity();
-        let per_face = self.normal.capacity() * size_of::<DVec3>()
-            + self.owner.capacity() * 4
-            + self.patch.capacity() * 4;
+        let per_face = self.base_normal.capacity() * size_of::<DVec3>()
+            + (self.owner.capacity() + self.origin.capacity() + self.base_patch.capacity()) * 4;
         let per_vertex = self.pos.capacity() * size_of::<DVec3>()
             + (self.corner_of.capacity() + self.sample.capacity() + self.on_path.capacity()) * 4;
         (per_corner + per_face + per_vertex) as u64
@@ -215,7 +244,7 @@ impl Surface {
 
     /// Average of the unit normals of the faces around `x`.
     pub fn vertex_normal(&self, x: u32) -> DVec3 {
-        let sum: DVec3 = self.fan(x).map(|k| self.normal[face(k) as usize]).sum();
+        let sum: DVec3 = self.fan(x).map(|k| self.normal(face(k))).sum();
         sum.normalize_or_zero()
     }
 
@@ -236,9 +265,8 @@ impl Surface {
         self.v.extend_from_slice(&verts);
         self.opp.extend_from_slice(&[NONE; 3]);
         self.path.extend_from_slice(&[false; 3]);
-        self.normal.push(self.normal[parent as usize]);
+        self.origin.push(self.origin[parent as usize]);
         self.owner.push(self.owner[parent as usize]);
-        self.patch.push(self.patch[parent as usize]);
         f
     }
 

@@ -388,7 +388,10 @@ fn the_pass_builds_the_tables_mesh_and_reads_the_mask_in_place() {
         r.hole_mask = disk_mask(&r, [0.3, -0.5, 0.8], 40.0);
         let bytes = write(&r, Clers::Front, Default::default()).unwrap().0;
         let file = crate::container::parse_container(&bytes, &limits).unwrap();
-        assert!(file.find(Tag::CLRF).is_some(), "{name}: the pass did not follow");
+        assert!(
+            file.find(Tag::CLRF).is_some(),
+            "{name}: the pass did not follow"
+        );
         let hole = file.find(Tag::HOLE);
         masked_files += usize::from(hole.is_some());
         let (head, _, table, _) = read::read_connectivity(&file, &limits).unwrap();
