@@ -75,7 +75,12 @@ fn options(b: &mut Bytes, m: &TriMesh) -> EncodeOptions {
             } else {
                 SwingTarget::BitsPerVertex(b.range(1, 16) as f64)
             },
-            angle_bits: b.range(4, 12) as u8,
+            // One input in eight leaves the bits to rate control.
+            angle_bits: if b.u8() < 32 {
+                None
+            } else {
+                Some(b.range(4, 12) as u8)
+            },
             max_bytes: match b.u8() {
                 0..=223 => None,
                 x => Some(x as u64 * 4),

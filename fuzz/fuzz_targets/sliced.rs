@@ -19,8 +19,8 @@ const OPTIONS: DecodeOptions = DecodeOptions {
         max_alloc_bytes: 64 << 20,
         ..Limits::UNLIMITED
     },
-    sharpen: false,
-    bend_steps: 0,
+    sharpen: Some(false),
+    bend_steps: Some(0),
 };
 
 fn stream(file: &[u8], cuts: &[usize]) -> Result<TriMesh, String> {

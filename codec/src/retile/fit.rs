@@ -43,7 +43,7 @@
 //! holds it) and adds the same terms in the same order, so the codes are
 //! bit for bit those of the per-corner sum (issue 22).
 
-use super::marks::Marks;
+use super::marks::{grow_zeroed, Marks};
 use super::surface::Surface;
 use super::Retiler;
 use crate::metrics::triangle_distance2_f64;
@@ -143,9 +143,7 @@ impl Region {
         self.index.clear();
         self.points.clear();
         self.seen.clear(s.vertex_count());
-        if self.slot.len() < s.vertex_count() {
-            self.slot.resize(s.vertex_count(), 0);
-        }
+        grow_zeroed(&mut self.slot, s.vertex_count());
         for &f in faces {
             let corners = Surface::corners(f);
             self.faces.push(corners.map(|c| s.p(c).to_array()));

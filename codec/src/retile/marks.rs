@@ -4,6 +4,14 @@
 //! Invariant: an index is in the set exactly when its stamp equals the
 //! current epoch; `clear` moves to the next epoch, and wipes the stamps
 //! only when the epoch counter wraps (every 2^32 − 1 clears).
+//!
+//! The stamps, and the per-element arrays of the searches that use a
+//! set ([`grow_zeroed`]), grow into fresh zeroed allocations rather than
+//! by writing zeros: the system hands a large zeroed block over as pages
+//! that take no memory until written, so an array indexed by the whole
+//! (growing) surface costs memory only where a search wrote (issue 22:
+//! Dijkstra's arrays, 16 bytes per face, are written near the few paths
+//! that fall back to it).
 
 /// The set; see the module docs.
 #[derive(Default)]
@@ -15,9 +23,7 @@ pub struct Marks {
 impl Marks {
     /// Empties the set and makes room for the indices below `n`.
     pub fn clear(&mut self, n: usize) {
-        if self.stamp.len() < n {
-            self.stamp.resize(n, 0);
-        }
+        grow_zeroed(&mut self.stamp, n);
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == 0 {
             self.stamp.fill(0);
@@ -40,6 +46,18 @@ impl Marks {
     }
 }
 
+/// Makes `v` at least `n` long, new entries zero (`T::default()` must
+/// be all zero bits: integers, floats), growing at least twofold into a
+/// fresh zeroed allocation (see the module docs).
+pub fn grow_zeroed<T: Copy + Default>(v: &mut Vec<T>, n: usize) {
+    if v.len() >= n {
+        return;
+    }
+    let mut fresh = vec![T::default(); n.max(2 * v.len())];
+    fresh[..v.len()].copy_from_slice(v);
+    *v = fresh;
+}
+
 #[cfg(test)]
 mod tests {
     use super::Marks;
@@ -56,5 +74,14 @@ mod tests {
         assert!(m.contains(1));
         m.clear(8);
         assert!((0..8).all(|i| !m.contains(i)));
+    }
+
+    #[test]
+    fn growing_keeps_the_entries_and_zeroes_the_rest() {
+        let mut v = vec![7u32, 8, 9];
+        super::grow_zeroed(&mut v, 5);
+        assert_eq!(v, [7, 8, 9, 0, 0, 0]);
+        super::grow_zeroed(&mut v, 4);
+        assert_eq!(v.len(), 6, "long enough: unchanged");
     }
 }

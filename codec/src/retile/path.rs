@@ -18,7 +18,7 @@
 //! face of M; interior points are free (no sample, no path edge at them);
 //! no edge is crossed twice (a plane meets a segment once).
 
-use super::marks::Marks;
+use super::marks::{grow_zeroed, Marks};
 use super::surface::{face, next, prev, Surface, NONE};
 use super::walk::{leave_vertex, Plane, Walker};
 use glam::DVec3;
@@ -182,10 +182,10 @@ pub struct Scratch {
 
 impl Scratch {
     pub fn begin(&mut self, n: usize) {
-        if self.dist.len() < n {
-            self.dist.resize(n, 0.0);
-            self.from.resize(n, NONE);
-        }
+        // Read only where `seen` says they were written: zero is as good
+        // a start as any, and costs no memory where never written.
+        grow_zeroed(&mut self.dist, n);
+        grow_zeroed(&mut self.from, n);
         self.seen.clear(n);
     }
 
