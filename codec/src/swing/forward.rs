@@ -543,3 +543,45 @@ pub(super) fn encode(
     }
     Ok(enc.finish())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_triangle_that_repeats_a_vertex_is_refused() {
+        let built = |tri| Built {
+            tri,
+            parent: 0,
+            sides: [None, None],
+        };
+        assert!(distinct(&built([4, 5, 6])).is_ok());
+        for tri in [[4, 4, 6], [4, 5, 4], [4, 6, 6]] {
+            assert!(distinct(&built(tri)).is_err(), "{tri:?}");
+        }
+    }
+
+    /// Each symbol's triangle, its parent and its earlier neighbours, as
+    /// the pass reads them off the front (a tetrahedron: C, R, E).
+    #[test]
+    fn the_front_names_the_triangles_the_symbols_build() {
+        let mut f = Loops::default();
+        let g = f.start([0, 1, 2], 0);
+        // Gate 2 → 0: a C builds (3, 0, 2), its parent the first triangle.
+        let b = f.built(g, Symbol::C, 3);
+        assert_eq!((b.tri, b.parent, b.sides), ([3, 0, 2], 0, [None, None]));
+        let g = f.c(g, 3, 1);
+        // Loop 0 → 1 → 2 → 3 → 0; gate 2 → 3: an R closes (1, 3, 2) on
+        // the first triangle's edge 1 → 2.
+        let b = f.built(g, Symbol::R, 0);
+        assert_eq!((b.tri, b.parent, b.sides), ([1, 3, 2], 1, [Some(0), None]));
+        let g = f.r(g, 2).unwrap();
+        // Loop 0 → 1 → 3 → 0: an E closes (0, 3, 1) on three earlier
+        // triangles.
+        let b = f.built(g, Symbol::E, 0);
+        assert_eq!(b.tri, [0, 3, 1]);
+        assert_eq!(b.parent, 2);
+        assert_eq!(b.sides, [Some(1), Some(0)]);
+        assert!(distinct(&b).is_ok());
+    }
+}
