@@ -150,17 +150,28 @@ pub(crate) fn compact_vertices(
     positions: &[[f32; 3]],
     triangles: &mut [[u32; 3]],
 ) -> Vec<[f32; 3]> {
+    compact_vertices_as(positions, triangles, |p| p)
+}
+
+/// [`compact_vertices`] of positions of another type, each kept one made
+/// a binary32 position by `convert` (the SwingWrapper decoder keeps its
+/// vertices in binary64 until they are output).
+pub(crate) fn compact_vertices_as<P: Copy>(
+    positions: &[P],
+    triangles: &mut [[u32; 3]],
+    convert: impl Fn(P) -> [f32; 3],
+) -> Vec<[f32; 3]> {
     let mut new_id = vec![u32::MAX; positions.len()];
     for &v in triangles.iter().flatten() {
         if let Some(id) = new_id.get_mut(v as usize) {
             *id = 0;
         }
     }
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(positions.len());
     for (id, p) in new_id.iter_mut().zip(positions) {
         if *id == 0 {
             *id = out.len() as u32;
-            out.push(*p);
+            out.push(convert(*p));
         }
     }
     for v in triangles.iter_mut().flatten() {

@@ -233,8 +233,12 @@ impl Models {
     }
 }
 
-/// What [`decode`] reads: the symbols, and each C tip's code and level.
+/// What [`decode`] reads: the symbols, and each C tip's code and level
+/// (those four only when asked to record them), the positions and the
+/// triangles.
 pub(super) struct Decoded {
+    /// The number of C symbols (recorded or not).
+    pub c_tips: usize,
     pub symbols: Vec<Symbol>,
     pub codes: Vec<u32>,
     /// `None` without `DENS`.
@@ -256,6 +260,9 @@ struct Reading<'a> {
     dens: Option<density::Reader<'a>>,
     rads: Option<stretch::Reader<'a>>,
     hole: Option<hole::InPass<'a>>,
+    /// Keep the symbols, codes, levels and radius codes (`inspect`, the
+    /// encoder's check); decoding needs none of them.
+    record: bool,
     out: Decoded,
 }
 
@@ -263,7 +270,9 @@ impl Source for Reading<'_> {
     fn symbol(&mut self, ctx: usize) -> Result<Symbol, Error> {
         let code = self.dec.decode(self.models.symbol.get(ctx))?;
         let s = Symbol::from_code(code).ok_or(bad("CLERS code out of range"))?;
-        self.out.symbols.push(s);
+        if self.record {
+            self.out.symbols.push(s);
+        }
         Ok(s)
     }
 
@@ -291,7 +300,10 @@ impl Source for Reading<'_> {
 
     fn code(&mut self, tip: usize, gl: usize, gr: usize) -> Result<u32, Error> {
         let q = self.geom.get(tip, gl, gr)?;
-        self.out.codes.push(q);
+        self.out.c_tips += 1;
+        if self.record {
+            self.out.codes.push(q);
+        }
         Ok(q)
     }
 
@@ -308,7 +320,7 @@ impl Source for Reading<'_> {
             return Ok(None);
         };
         let l = d.get(tip, gl, gr)?;
-        if let Some(levels) = &mut self.out.levels {
+        if let (true, Some(levels)) = (self.record, &mut self.out.levels) {
             levels.push(l);
         }
         Ok(Some(l))
@@ -319,7 +331,7 @@ impl Source for Reading<'_> {
             return Ok(0);
         };
         let j = d.get([tip, gl, gr, behind])?;
-        if let Some(out) = &mut self.out.stretch {
+        if let (true, Some(out)) = (self.record, &mut self.out.stretch) {
             out.push(j);
         }
         Ok(j)
@@ -327,7 +339,8 @@ impl Source for Reading<'_> {
 }
 
 /// Decodes `CLRF` (`bytes`) with `GEOM` (`geom`), `DENS` (`dens`),
-/// `RADS` (`rads`) and `HOLE` (`hole`, each if the file has one):
+/// `RADS` (`rads`) and `HOLE` (`hole`, each if the file has one),
+/// keeping the symbols, codes, levels and radius codes when `record`:
 /// `symbols` symbols, as `TOPO` counts them, of a mesh
 /// of `vertices` vertices with angle bits `bits`, predicted code
 /// `predicted` and first triangles `first`. Each stream must end exactly
@@ -339,6 +352,7 @@ pub(super) fn decode(
     dens: Option<&[u8]>,
     rads: Option<&[u8]>,
     hole: Option<&[u8]>,
+    record: bool,
     first: &[[[f64; 3]; 3]],
     bits: u8,
     predicted: u32,
@@ -358,8 +372,10 @@ pub(super) fn decode(
             .map(|b| stretch::Reader::new(b, vertices, bits))
             .transpose()?,
         hole: hole.map(|b| hole::InPass::new(b, triangles)).transpose()?,
+        record,
         out: Decoded {
-            symbols: Vec::with_capacity(symbols),
+            c_tips: 0,
+            symbols: Vec::with_capacity(if record { symbols } else { 0 }),
             codes: Vec::new(),
             levels: dens.map(|_| Vec::new()),
             stretch: rads.map(|_| Vec::new()),

@@ -182,6 +182,30 @@ pub(crate) fn decode(table: &CornerTable, bytes: &[u8]) -> Result<Vec<bool>, Err
     Ok(mask)
 }
 
+/// [`drop_masked`] of the `CLRF` pass's output: binary64 positions, each
+/// kept one rounded to binary32 on the way (one pass over the vertices
+/// instead of a conversion, then a copy).
+pub(crate) fn drop_masked_from(
+    positions: &[[f64; 3]],
+    mut triangles: Vec<[u32; 3]>,
+    mask: &[bool],
+) -> Result<TriMesh, Error> {
+    if mask.len() != triangles.len() {
+        return Err(Error::Format(FormatError::new(
+            "SWM",
+            Malformed::BadSyntax("the hole mask does not have one bit per triangle"),
+        )));
+    }
+    let mut masked = mask.iter();
+    triangles.retain(|_| masked.next() == Some(&false));
+    let positions =
+        crate::mesh::compact_vertices_as(positions, &mut triangles, |p| p.map(|c| c as f32));
+    Ok(TriMesh {
+        positions,
+        triangles,
+    })
+}
+
 /// The decoded mesh rule: drops the masked triangles, then the vertices
 /// no kept triangle uses, renumbering the others in increasing order and
 /// keeping the triangles' order. `mask` has one entry per triangle.

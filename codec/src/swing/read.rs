@@ -125,7 +125,7 @@ pub(super) fn read_connectivity(
             (conn, dummies, None)
         }
         (None, Some(_)) => {
-            let (conn, d, _) = read_forward(file, limits, &head, false)?;
+            let (conn, d, _) = read_forward(file, limits, &head, false, true)?;
             let tips = Tips { levels: d.levels };
             (conn, Vec::new(), Some(tips))
         }
@@ -158,14 +158,16 @@ fn read_checked_head(file: &Container<'_>) -> Result<Head, Error> {
 }
 
 /// Reads `TOPO` for `CLRF` and runs the forward pass over `CLRF`, `GEOM`,
-/// `DENS`, `RADS` and `LOOP` (and `HOLE` when `hole`): the symbols, and
-/// what the pass decoded on its way, the mesh's triangles among them;
-/// also `LOOP`'s list. Every count is checked before the pass allocates.
+/// `DENS`, `RADS` and `LOOP` (and `HOLE` when `hole`): what the pass
+/// decoded on its way, the mesh's triangles among them (and the symbols,
+/// codes and levels when `record`); also `LOOP`'s list. Every count is
+/// checked before the pass allocates.
 pub(super) fn read_forward<'a>(
     file: &Container<'a>,
     limits: &Limits,
     head: &Head,
     hole: bool,
+    record: bool,
 ) -> Result<(Connectivity, super::forward::Decoded, Loops), Error> {
     let h = &file.header;
     let clrf = file.require(Tag::CLRF)?;
@@ -203,6 +205,7 @@ pub(super) fn read_forward<'a>(
         dens,
         rads,
         hole.map(|s| s.bytes),
+        record,
         &head.first,
         head.bits,
         head.predicted,
@@ -393,38 +396,36 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
 /// no corner table to build and no second walk over the triangles.
 fn decode_forward(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
     let head = read_checked_head(file)?;
-    let (conn, d, loops) = read_forward(file, limits, &head, true)?;
+    let (_, d, loops) = read_forward(file, limits, &head, true, false)?;
     // REST's frame first: the whole output must fit the limits before
     // it is decoded.
     let rest = rest_frame(file, limits)?;
     let geom = file.require(Tag::GEOM)?.bytes;
-    let count = conn.symbols.iter().filter(|&&s| s == Symbol::C).count();
     check_count_fits(
         "angle",
-        count as u64,
+        d.c_tips as u64,
         geom.len(),
         u64::from(head.bits),
         1 << crate::entropy::PRECISION,
     )?;
     // f32 positions, and a new number per vertex when some are dropped.
     limits.check_alloc((d.positions.len() as u64).saturating_mul(16))?;
-    let positions = d.positions.iter().map(|p| p.map(|c| c as f32)).collect();
-    let mut mesh = TriMesh {
-        positions,
-        triangles: d.triangles,
-    };
     // Dropped: the triangles HOLE masks, and the fans of the loops.
     let mut mask = d.mask;
     if !loops.entries.is_empty() {
-        let fans = chain::fans_of(&mesh.triangles, &loops);
+        let fans = chain::fans_of(&d.triangles, &loops);
         let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
         for (m, f) in m.iter_mut().zip(fans) {
             *m |= f;
         }
     }
-    if let Some(mask) = mask {
-        mesh = hole::drop_masked(mesh, &mask)?;
-    }
+    let mesh = match mask {
+        Some(mask) => hole::drop_masked_from(&d.positions, d.triangles, &mask)?,
+        None => TriMesh {
+            positions: d.positions.iter().map(|p| p.map(|c| c as f32)).collect(),
+            triangles: d.triangles,
+        },
+    };
     append_rest(mesh, rest, limits)
 }
 

@@ -395,7 +395,7 @@ fn the_pass_builds_the_tables_mesh_and_reads_the_mask_in_place() {
         let hole = file.find(Tag::HOLE);
         masked_files += usize::from(hole.is_some());
         let (head, _, table, _) = read::read_connectivity(&file, &limits).unwrap();
-        let (_, pass, _) = read::read_forward(&file, &limits, &head, true).unwrap();
+        let (_, pass, _) = read::read_forward(&file, &limits, &head, true, false).unwrap();
         assert_eq!(pass.triangles, table.triangles(), "{name}");
         assert_eq!(pass.triangles, r.triangles, "{name}");
         let bits = |x: &[[f64; 3]]| x.iter().flatten().map(|c| c.to_bits()).collect::<Vec<_>>();

@@ -102,6 +102,7 @@ fn front_coded(
         dens,
         radii.map(|r| r.1),
         hole,
+        true,
         &head.first,
         head.bits,
         head.predicted,
