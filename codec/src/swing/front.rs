@@ -118,10 +118,12 @@ impl Loops {
     }
 
     /// The triangle that `symbol` builds at the live gate `gr`, with
-    /// `tip` the new vertex of a C and the tip node of an S (unused
-    /// otherwise); read before the front moves, and only after the
-    /// symbol's own checks passed ([`Loops::l`] and the others), which
-    /// make every node it reads live.
+    /// `tip` the new vertex of a C and the tip node of an S (checked by
+    /// [`Loops::check_s`] first; unused otherwise). Read before the front
+    /// moves, so for an L, R or E before that move's own checks: the
+    /// caller uses it only once they passed. Every node it reads exists
+    /// (links only name nodes already made), so a hostile front cannot
+    /// make it panic.
     pub(super) fn built(&self, gr: u32, symbol: Symbol, tip: u32) -> Built {
         let gl = self.next(gr);
         let (vl, vr) = (self.vertex(gl), self.vertex(gr));
