@@ -259,7 +259,7 @@ struct Reading<'a> {
     geom: residual::Reader<'a>,
     dens: Option<density::Reader<'a>>,
     rads: Option<stretch::Reader<'a>>,
-    hole: Option<hole::InPass<'a>>,
+    hole: Option<hole::Reader<'a>>,
     /// Keep the symbols, codes, levels and radius codes (`inspect`, the
     /// encoder's check); decoding needs none of them.
     record: bool,
@@ -310,7 +310,7 @@ impl Source for Reading<'_> {
     fn triangle(&mut self, _t: u32, built: &Built, first: bool) -> Result<(), Error> {
         self.out.triangles.push(built.tri);
         match &mut self.hole {
-            Some(h) => h.next(built.parent, built.sides, first),
+            Some(h) => h.read_in_pass(built.parent, built.sides, first),
             None => Ok(()),
         }
     }
@@ -371,7 +371,7 @@ pub(super) fn decode(
         rads: rads
             .map(|b| stretch::Reader::new(b, vertices, bits))
             .transpose()?,
-        hole: hole.map(|b| hole::InPass::new(b, triangles)).transpose()?,
+        hole: hole.map(|b| hole::Reader::new(b, triangles)).transpose()?,
         record,
         out: Decoded {
             c_tips: 0,

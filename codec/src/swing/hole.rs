@@ -96,18 +96,23 @@ pub(super) fn context_in_pass(
     2 * usize::from(masked(Some(parent))) + usize::from(sideways)
 }
 
-/// The `HOLE` stream read inside the `CLRF` pass, one bit per triangle
-/// as the pass builds it ([`context_in_pass`]).
-pub(super) struct InPass<'a> {
+/// A `HOLE` stream being read, one bit per triangle in order, each with
+/// the context its caller found: [`context`] on a corner table
+/// ([`decode`]) or [`context_in_pass`] inside the `CLRF` pass.
+pub(super) struct Reader<'a> {
     dec: Decoder<'a>,
     models: ContextModel,
+    /// The bits read so far.
     pub mask: Vec<bool>,
 }
 
-impl<'a> InPass<'a> {
-    /// The stream `bytes` of a mesh of `count` triangles, the count
-    /// checked against the stream's length first, as [`decode`] does.
+impl<'a> Reader<'a> {
+    /// The stream `bytes` of a mesh of `count` triangles. The count was
+    /// checked against the limits; this checks it against the stream's
+    /// own length as well.
     pub(super) fn new(bytes: &'a [u8], count: usize) -> Result<Self, Error> {
+        // A bit costs at least −log2(1 − 2^−16) > 2^−16 bits: each of the
+        // two symbols keeps a frequency of at least 1 in 2^16.
         crate::container::check_count_fits(
             "hole mask bit",
             count as u64,
@@ -115,27 +120,32 @@ impl<'a> InPass<'a> {
             1,
             1 << crate::entropy::PRECISION,
         )?;
-        Ok(InPass {
+        Ok(Reader {
             dec: Decoder::new(bytes)?,
             models: ContextModel::new(CONTEXTS, 2),
             mask: Vec::with_capacity(count),
         })
     }
 
-    /// Reads the bit of the next triangle.
-    pub(super) fn next(
-        &mut self,
-        parent: u32,
-        sides: [Option<u32>; 2],
-        first: bool,
-    ) -> Result<(), Error> {
-        let ctx = context_in_pass(&self.mask, parent, sides, first);
+    /// Reads the next triangle's bit in context `ctx`.
+    pub(super) fn read(&mut self, ctx: usize) -> Result<(), Error> {
         let bit = self.dec.decode(self.models.get(ctx))? == 1;
         self.mask.push(bit);
         Ok(())
     }
 
-    /// Checks the end of the stream; returns the mask.
+    /// Reads the bit of the triangle the `CLRF` pass just built.
+    pub(super) fn read_in_pass(
+        &mut self,
+        parent: u32,
+        sides: [Option<u32>; 2],
+        first: bool,
+    ) -> Result<(), Error> {
+        self.read(context_in_pass(&self.mask, parent, sides, first))
+    }
+
+    /// Checks that the stream ends exactly after the last bit; returns
+    /// the mask.
     pub(super) fn finish(self) -> Result<Vec<bool>, Error> {
         self.dec.finish()?;
         Ok(self.mask)
@@ -161,25 +171,11 @@ pub(crate) fn encode(table: &CornerTable, mask: &[bool]) -> Vec<u8> {
 /// `CLRS`; this checks it against the section's own length as well,
 /// then that the stream ends exactly after the last bit.
 pub(crate) fn decode(table: &CornerTable, bytes: &[u8]) -> Result<Vec<bool>, Error> {
-    let count = table.face_count();
-    // A bit costs at least −log2(1 − 2^−16) > 2^−16 bits: each of the
-    // two symbols keeps a frequency of at least 1 in 2^16.
-    crate::container::check_count_fits(
-        "hole mask bit",
-        count as u64,
-        bytes.len(),
-        1,
-        1 << crate::entropy::PRECISION,
-    )?;
-    let mut models = ContextModel::new(CONTEXTS, 2);
-    let mut dec = Decoder::new(bytes)?;
-    let mut mask = Vec::with_capacity(count);
-    for t in 0..count {
-        let ctx = context(table, t, &mask);
-        mask.push(dec.decode(models.get(ctx))? == 1);
+    let mut r = Reader::new(bytes, table.face_count())?;
+    for t in 0..table.face_count() {
+        r.read(context(table, t, &r.mask))?;
     }
-    dec.finish()?;
-    Ok(mask)
+    r.finish()
 }
 
 /// [`drop_masked`] of the `CLRF` pass's output: binary64 positions, each

@@ -118,13 +118,13 @@ pub(super) fn read_connectivity(
 ) -> Result<(Head, Connectivity, CornerTable, Option<Tips>), Error> {
     let h = &file.header;
     let head = read_checked_head(file)?;
-    let (conn, dummies, tips) = match (file.find(Tag::CLRS), file.find(Tag::CLRF)) {
-        (Some(_), Some(_)) => return Err(bad("a file with both CLRS and CLRF")),
-        (_, None) => {
+    // (A file with both CLRS and CLRF was refused with its head.)
+    let (conn, dummies, tips) = match file.find(Tag::CLRF) {
+        None => {
             let (conn, dummies) = crate::lossless::read_topology(file, limits)?;
             (conn, dummies, None)
         }
-        (None, Some(_)) => {
+        Some(_) => {
             let (conn, d, _) = read_forward(file, limits, &head, false, true)?;
             let tips = Tips { levels: d.levels };
             (conn, Vec::new(), Some(tips))
@@ -372,19 +372,11 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
         triangles,
     };
     // Dropped: the triangles HOLE masks, and the fans of the loops.
-    let mut mask = match file.find(Tag::HOLE) {
+    let mask = match file.find(Tag::HOLE) {
         Some(s) => Some(hole::decode(&table, s.bytes).map_err(in_section(s.offset))?),
         None => None,
     };
-    let (list, _) = read_loops(file, head.bits)?;
-    if !list.entries.is_empty() {
-        let fans = chain::fans(&table, &list);
-        let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
-        for (m, f) in m.iter_mut().zip(fans) {
-            *m |= f;
-        }
-    }
-    if let Some(mask) = mask {
+    if let Some(mask) = with_fans(mask, &mesh.triangles, &list) {
         mesh = hole::drop_masked(mesh, &mask)?;
     }
     append_rest(mesh, rest, limits)
@@ -411,15 +403,7 @@ fn decode_forward(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Erro
     // f32 positions, and a new number per vertex when some are dropped.
     limits.check_alloc((d.positions.len() as u64).saturating_mul(16))?;
     // Dropped: the triangles HOLE masks, and the fans of the loops.
-    let mut mask = d.mask;
-    if !loops.entries.is_empty() {
-        let fans = chain::fans_of(&d.triangles, &loops);
-        let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
-        for (m, f) in m.iter_mut().zip(fans) {
-            *m |= f;
-        }
-    }
-    let mesh = match mask {
+    let mesh = match with_fans(d.mask, &d.triangles, &loops) {
         Some(mask) => hole::drop_masked_from(&d.positions, d.triangles, &mask)?,
         None => TriMesh {
             positions: d.positions.iter().map(|p| p.map(|c| c as f32)).collect(),
@@ -427,6 +411,24 @@ fn decode_forward(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Erro
         },
     };
     append_rest(mesh, rest, limits)
+}
+
+/// The triangles the decoder drops: `mask` (`HOLE`'s bits, if any) with
+/// every triangle of a loop's fan added, which `HOLE` need not mark
+/// (`None`: nothing is dropped).
+fn with_fans(
+    mut mask: Option<Vec<bool>>,
+    triangles: &[[u32; 3]],
+    loops: &Loops,
+) -> Option<Vec<bool>> {
+    if !loops.entries.is_empty() {
+        let fans = chain::fans_of(triangles, loops);
+        let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
+        for (m, f) in m.iter_mut().zip(fans) {
+            *m |= f;
+        }
+    }
+    mask
 }
 
 /// Appends `REST`'s mesh (if any) to the retiled one, its vertex numbers
