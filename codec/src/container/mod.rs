@@ -67,6 +67,26 @@ pub(crate) fn overwrite_randomly(bytes: &[u8], rng: &mut crate::mesh::test_rng::
     b
 }
 
+/// Asserts that `decode` refuses every copy of `bytes` with one bit
+/// flipped and, when `cuts`, every proper prefix of it (mode tests).
+#[cfg(all(test, feature = "encoder"))]
+pub(crate) fn assert_damage_refused<T, E>(
+    bytes: &[u8],
+    cuts: bool,
+    decode: impl Fn(&[u8]) -> Result<T, E>,
+) {
+    if cuts {
+        for cut in 0..bytes.len() {
+            assert!(decode(&bytes[..cut]).is_err(), "prefix {cut} decoded");
+        }
+    }
+    for bit in 0..bytes.len() * 8 {
+        let mut b = bytes.to_vec();
+        b[bit / 8] ^= 1 << (bit % 8);
+        assert!(decode(&b).is_err(), "bit {bit} flipped and still decoded");
+    }
+}
+
 /// Rebuilds `bytes` with one section's payload replaced, keeping a valid
 /// frame and CRC: the mode tests use it to feed decoders lying sections.
 #[cfg(all(test, feature = "encoder"))]

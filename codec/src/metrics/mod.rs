@@ -41,7 +41,9 @@ pub(crate) use bvh::{Bvh as NearestTree, Scratch as NearestScratch};
 use sample::{area, carried_counts, edge_points, face_points, SplitMix};
 use triangle::Tri;
 #[cfg(feature = "encoder")]
-pub(crate) use triangle::{closest_point as closest_on_triangle, triangle_distance2_f64};
+pub(crate) use triangle::{
+    closest_point as closest_on_triangle, distance2, triangle_distance2_f64,
+};
 
 /// What to sample. Defaults are Metro's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -49,7 +49,7 @@
 use super::marks::{grow_zeroed, Marks};
 use super::surface::Surface;
 use super::Retiler;
-use crate::metrics::triangle_distance2_f64;
+use crate::metrics::{distance2, triangle_distance2_f64};
 use crate::swing::Frame;
 use glam::DVec3;
 
@@ -242,11 +242,6 @@ impl Region {
 /// [`Region::nearest_face`]): rounding moves the squared distances by a
 /// few units in 10^16.
 const SKIP_MARGIN: f64 = 1e-9;
-
-fn distance2(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-}
 
 #[cfg(test)]
 mod tests {
