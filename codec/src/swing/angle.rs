@@ -252,6 +252,59 @@ pub struct Frame {
     pub r: f64,
 }
 
+/// The part of a [`Frame`] that its radius does not change: computed
+/// from the gate and the previous tip alone, so the decoder can start
+/// it (two square roots and six divisions in a dependent chain) before
+/// it has read the symbol, the angle and the level that decide the
+/// radius and whether a tip is placed at all (issue 22: the chain then
+/// overlaps with the entropy decoding instead of following it). Same
+/// operations, same order, same bits as computing the frame at once.
+#[derive(Clone, Copy, Debug)]
+pub struct Hinge {
+    m: [f64; 3],
+    e: [f64; 3],
+    w: [f64; 3],
+    /// normalize(w) and u × e, used unless w is degenerate for the radius.
+    u: [f64; 3],
+    n: [f64; 3],
+}
+
+impl Hinge {
+    /// The hinge of the gate (gl, gr) whose previous tip is t.
+    #[inline]
+    pub fn new(gl: [f64; 3], gr: [f64; 3], t: [f64; 3]) -> Hinge {
+        let m = [
+            (gl[0] + gr[0]) * 0.5,
+            (gl[1] + gr[1]) * 0.5,
+            (gl[2] + gr[2]) * 0.5,
+        ];
+        let e = normalize(sub(gr, gl));
+        let d = sub(t, m);
+        let k = dot(d, e);
+        let w = [d[0] - k * e[0], d[1] - k * e[1], d[2] - k * e[2]];
+        // Computed even when the radius will call w degenerate (then
+        // unused): a zero w only gives non-finite values here.
+        let u = normalize(w);
+        Hinge {
+            m,
+            e,
+            w,
+            u,
+            n: cross_ue(u, e),
+        }
+    }
+}
+
+/// n = u × e, per axis (u[b]·e[c]) − (u[c]·e[b]).
+#[inline]
+fn cross_ue(u: [f64; 3], e: [f64; 3]) -> [f64; 3] {
+    [
+        u[1] * e[2] - u[2] * e[1],
+        u[2] * e[0] - u[0] * e[2],
+        u[0] * e[1] - u[1] * e[0],
+    ]
+}
+
 impl Frame {
     /// The frame of the gate (gl, gr) whose previous tip is t. Never
     /// panics; hostile input (a zero-length gate, non-finite points) gives
@@ -268,17 +321,16 @@ impl Frame {
     /// n = u × e                             per axis: (u[b]·e[c]) − (u[c]·e[b])
     /// ```
     pub fn new(gl: [f64; 3], gr: [f64; 3], t: [f64; 3], r: f64) -> Frame {
-        let m = [
-            (gl[0] + gr[0]) * 0.5,
-            (gl[1] + gr[1]) * 0.5,
-            (gl[2] + gr[2]) * 0.5,
-        ];
-        let e = normalize(sub(gr, gl));
-        let d = sub(t, m);
-        let k = dot(d, e);
-        let w = [d[0] - k * e[0], d[1] - k * e[1], d[2] - k * e[2]];
-        let u = if dot(w, w) > (r * r) * DEGENERATE {
-            normalize(w)
+        Frame::on(&Hinge::new(gl, gr, t), r)
+    }
+
+    /// The frame of `hinge` with radius `r`: the hinge's `u` and `n`,
+    /// or the fallback axis when `w` is degenerate for this radius.
+    #[inline]
+    pub fn on(hinge: &Hinge, r: f64) -> Frame {
+        let (w, e) = (hinge.w, hinge.e);
+        let (u, n) = if dot(w, w) > (r * r) * DEGENERATE {
+            (hinge.u, hinge.n)
         } else {
             let mut i = 0;
             for a in 1..3 {
@@ -287,18 +339,19 @@ impl Frame {
                 }
             }
             let unit = |a: usize| if a == i { 1.0 } else { 0.0 };
-            normalize([
+            let u = normalize([
                 unit(0) - e[i] * e[0],
                 unit(1) - e[i] * e[1],
                 unit(2) - e[i] * e[2],
-            ])
+            ]);
+            (u, cross_ue(u, e))
         };
-        let n = [
-            u[1] * e[2] - u[2] * e[1],
-            u[2] * e[0] - u[0] * e[2],
-            u[0] * e[1] - u[1] * e[0],
-        ];
-        Frame { m, u, n, r }
+        Frame {
+            m: hinge.m,
+            u,
+            n,
+            r,
+        }
     }
 
     /// The tip of angle code q: m + r·(cos δ·u − sin δ·n), δ = qΔ, as

@@ -35,7 +35,7 @@
 
 use crate::prelude::*;
 
-use super::angle::{first_edge_length, push_point, tip_radius, AngleTable, Frame};
+use super::angle::{first_edge_length, push_point, tip_radius, AngleTable, Frame, Hinge};
 use super::front::{Built, Loops, CONTEXTS};
 use super::{chain, density, hole, residual, stretch};
 use crate::edgebreaker::Symbol;
@@ -132,6 +132,12 @@ pub(super) fn run(
                 return Err(bad("the symbols end before the component closes"));
             }
             let gl = loops.gate(gr)?;
+            let (vl, vr) = (loops.vertex(gl) as usize, loops.vertex(gr) as usize);
+            let behind = loops.behind(gr) as usize;
+            // Started before the symbol is read, though only a C uses
+            // it: its dependent square roots and divisions then run
+            // beside the entropy decoding (`Hinge`).
+            let hinge = Hinge::new(x[vl], x[vr], x[behind]);
             let ctx = loops.context(gr, &x);
             // Triangles so far: each component's first, then one per symbol.
             let t = k + 1 + done;
@@ -147,7 +153,6 @@ pub(super) fn run(
                         // At least one more vertex than declared.
                         return Err(mismatch("vertices", vertices as u64, tip as u64 + 1));
                     }
-                    let (vl, vr) = (loops.vertex(gl) as usize, loops.vertex(gr) as usize);
                     let q = src.code(tip, vl, vr)?;
                     if q >= angles.codes() {
                         return Err(bad("angle code out of range"));
@@ -156,7 +161,6 @@ pub(super) fn run(
                         Some(l) => r * density::ratio(l),
                         None => r,
                     };
-                    let behind = loops.behind(gr) as usize;
                     let rk = stretch::apply(bits, rk, src.stretch(tip, vl, vr, behind)?);
                     // A boundary loop's point (`chain`), else a swing tip.
                     let point = match points.as_deref_mut() {
@@ -166,7 +170,7 @@ pub(super) fn run(
                     match point {
                         Some(tip) => push_point(&mut x, tip)?,
                         None => {
-                            let frame = Frame::new(x[vl], x[vr], x[behind], rk);
+                            let frame = Frame::on(&hinge, rk);
                             push_point(&mut x, frame.point(&angles, q))?;
                         }
                     }
