@@ -134,10 +134,6 @@ pub(super) fn run(
             let gl = loops.gate(gr)?;
             let (vl, vr) = (loops.vertex(gl) as usize, loops.vertex(gr) as usize);
             let behind = loops.behind(gr) as usize;
-            // Started before the symbol is read, though only a C uses
-            // it: its dependent square roots and divisions then run
-            // beside the entropy decoding (`Hinge`).
-            let hinge = Hinge::new(x[vl], x[vr], x[behind]);
             let ctx = loops.context(gr, &x);
             // Triangles so far: each component's first, then one per symbol.
             let t = k + 1 + done;
@@ -153,6 +149,10 @@ pub(super) fn run(
                         // At least one more vertex than declared.
                         return Err(mismatch("vertices", vertices as u64, tip as u64 + 1));
                     }
+                    // Started before the angle, level and radius code are
+                    // read: its dependent square roots and divisions then
+                    // run beside their entropy decoding (`Hinge`).
+                    let hinge = Hinge::new(x[vl], x[vr], x[behind]);
                     let q = src.code(tip, vl, vr)?;
                     if q >= angles.codes() {
                         return Err(bad("angle code out of range"));
