@@ -254,10 +254,10 @@ pub struct Frame {
 
 /// The part of a [`Frame`] that its radius does not change: computed
 /// from the gate and the previous tip alone, so the decoder can start
-/// it (two square roots and six divisions in a dependent chain) before
-/// it has read the symbol, the angle and the level that decide the
-/// radius and whether a tip is placed at all (issue 22: the chain then
-/// overlaps with the entropy decoding instead of following it). Same
+/// it (two square roots and six divisions in a dependent chain) as soon
+/// as a symbol is a C, before it has read the angle code, level and
+/// radius code that decide the tip (issue 22: the chain then overlaps
+/// with their entropy decoding instead of following it). Same
 /// operations, same order, same bits as computing the frame at once.
 #[derive(Clone, Copy, Debug)]
 pub struct Hinge {
