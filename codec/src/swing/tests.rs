@@ -307,6 +307,73 @@ fn degenerate_frames_fall_back_and_hostile_ones_give_no_panic() {
     assert!(nan.point(&table, 3).iter().any(|c| !c.is_finite()));
 }
 
+/// 05-swing.md's frame, written out in the spec's order of operations
+/// in one go, as `Frame::new` computed it before the decoder split it
+/// into a radius-free `Hinge` and `Frame::on`.
+fn frame_at_once(gl: [f64; 3], gr: [f64; 3], t: [f64; 3], r: f64) -> Frame {
+    let unit = |v: [f64; 3]| {
+        let s = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        [v[0] / s, v[1] / s, v[2] / s]
+    };
+    let m = [0, 1, 2].map(|a| (gl[a] + gr[a]) * 0.5);
+    let e = unit([0, 1, 2].map(|a| gr[a] - gl[a]));
+    let d = [0, 1, 2].map(|a| t[a] - m[a]);
+    let k = d[0] * e[0] + d[1] * e[1] + d[2] * e[2];
+    let w = [0, 1, 2].map(|a| d[a] - k * e[a]);
+    let u = if w[0] * w[0] + w[1] * w[1] + w[2] * w[2] > (r * r) * (1.0 / (1u64 << 40) as f64) {
+        unit(w)
+    } else {
+        let mut i = 0;
+        for a in 1..3 {
+            if e[a].abs() < e[i].abs() {
+                i = a;
+            }
+        }
+        unit([0, 1, 2].map(|a| if a == i { 1.0 } else { 0.0 } - e[i] * e[a]))
+    };
+    let n = [
+        u[1] * e[2] - u[2] * e[1],
+        u[2] * e[0] - u[0] * e[2],
+        u[0] * e[1] - u[1] * e[0],
+    ];
+    Frame { m, u, n, r }
+}
+
+#[test]
+fn a_hinge_finished_with_its_radius_is_the_frame_bit_for_bit() {
+    let same = |a: &Frame, b: &Frame| {
+        let bits = |f: &Frame| [f.m, f.u, f.n].map(|v| v.map(f64::to_bits));
+        bits(a) == bits(b) && a.r.to_bits() == b.r.to_bits()
+    };
+    // Pseudo-random gates (a fixed linear congruential sequence), plus
+    // previous tips on the gate's line and within 2^-20 r of it, where
+    // the radius decides between u and the fallback axis.
+    let mut x = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = || {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((x >> 11) as f64 / (1u64 << 53) as f64) * 4.0 - 2.0
+    };
+    for _ in 0..2000 {
+        let gl = [next(), next(), next()];
+        let gr = [next(), next(), next()];
+        let t = [next(), next(), next()];
+        let on_line = [0, 1, 2].map(|a| gl[a] + 0.3 * (gr[a] - gl[a]));
+        let near_line = [0, 1, 2].map(|a| on_line[a] + if a == 2 { 1e-7 } else { 0.0 });
+        for t in [t, on_line, near_line] {
+            for r in [0.01, 0.5, 1.7, 1e3] {
+                let hinge = super::angle::Hinge::new(gl, gr, t);
+                assert!(same(&Frame::on(&hinge, r), &frame_at_once(gl, gr, t, r)));
+                assert!(same(
+                    &Frame::new(gl, gr, t, r),
+                    &frame_at_once(gl, gr, t, r)
+                ));
+            }
+        }
+    }
+}
+
 // --- Files ---
 
 fn test_meshes() -> Vec<(&'static str, TriMesh)> {
