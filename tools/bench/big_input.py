@@ -120,8 +120,8 @@ def main():
     rate.add_argument("--bpv", type=float, default=None)
     rate.add_argument("--size", type=int, default=None)
     ap.add_argument("--keep", help="write the input here and keep it")
-    ap.add_argument("extra", nargs="*", help="more `swm encode` arguments (after --)")
-    args = ap.parse_args()
+    args, extra = ap.parse_known_args()
+    args.extra = [a for a in extra if a != "--"]
     src = CORPUS / "bunny-1m.ply"
     if not src.exists():
         sys.exit(f"skipped: {CORPUS} not found")
