@@ -290,19 +290,9 @@ impl Hinge {
             e,
             w,
             u,
-            n: cross_ue(u, e),
+            n: cross(u, e),
         }
     }
-}
-
-/// n = u × e, per axis (u[b]·e[c]) − (u[c]·e[b]).
-#[inline]
-fn cross_ue(u: [f64; 3], e: [f64; 3]) -> [f64; 3] {
-    [
-        u[1] * e[2] - u[2] * e[1],
-        u[2] * e[0] - u[0] * e[2],
-        u[0] * e[1] - u[1] * e[0],
-    ]
 }
 
 impl Frame {
@@ -344,7 +334,7 @@ impl Frame {
                 unit(1) - e[i] * e[1],
                 unit(2) - e[i] * e[2],
             ]);
-            (u, cross_ue(u, e))
+            (u, cross(u, e))
         };
         Frame {
             m: hinge.m,
