@@ -132,8 +132,6 @@ pub(super) fn run(
                 return Err(bad("the symbols end before the component closes"));
             }
             let gl = loops.gate(gr)?;
-            let (vl, vr) = (loops.vertex(gl) as usize, loops.vertex(gr) as usize);
-            let behind = loops.behind(gr) as usize;
             let ctx = loops.context(gr, &x);
             // Triangles so far: each component's first, then one per symbol.
             let t = k + 1 + done;
@@ -149,6 +147,8 @@ pub(super) fn run(
                         // At least one more vertex than declared.
                         return Err(mismatch("vertices", vertices as u64, tip as u64 + 1));
                     }
+                    let (vl, vr) = (loops.vertex(gl) as usize, loops.vertex(gr) as usize);
+                    let behind = loops.behind(gr) as usize;
                     // Started before the angle, level and radius code are
                     // read: its dependent square roots and divisions then
                     // run beside their entropy decoding (`Hinge`).
