@@ -1,19 +1,30 @@
 //! The encoder's automatic mode and its simplify-then-lossless method
 //! (issue 20, "method per piece", per file for now): sizes, the choice
-//! by measured error, the fallback when retiling stops, determinism.
+//! by measured error, the fallback when retiling stops, determinism. The
+//! automatic mode runs at `--effort max` here, where every method's
+//! whole search is the candidate (tests/effort.rs has the levels).
 
 mod common;
 use common::*;
-use swm::{EncodeMode, EncodeOptions, Method, SwingTarget};
+use swm::{CandidateFailure, Effort, EncodeMode, EncodeOptions, Method, SwingTarget};
 
 fn encode(mesh: &swm::TriMesh, mode: EncodeMode) -> Result<swm::Encoded, swm::Error> {
     swm::encode(
         mesh,
         &EncodeOptions {
             mode,
+            effort: Effort::Max,
             ..Default::default()
         },
     )
+}
+
+/// The measured size and error of the candidate of `method`.
+fn figure(e: &swm::Encoded, method: Method) -> Option<swm::Measured> {
+    e.stats
+        .candidate(method)
+        .and_then(|c| c.outcome.as_ref().ok())
+        .copied()
 }
 
 #[test]
@@ -33,7 +44,7 @@ fn simplified_fills_the_size_and_repeats() {
         "{n} bytes for {budget}"
     );
     assert_eq!(a.bytes, encode(&mesh, mode).unwrap().bytes);
-    let s = a.stats.simplified.expect("simplified figures");
+    let s = *a.stats.simplified().expect("simplified figures");
     let decoded = swm::decode(&a.bytes, &Default::default()).unwrap();
     assert_eq!(decoded.triangles.len() as u64, s.faces);
     assert!(s.faces < s.input_faces && (6..=16).contains(&s.qp), "{s:?}");
@@ -82,18 +93,17 @@ fn a_size_below_the_smallest_file_names_it() {
 /// The file written is the candidate of lower measured error, and its
 /// size is the one reported.
 fn check_choice(e: &swm::Encoded) -> Method {
-    let c = e.stats.choice.as_ref().expect("auto reports its choice");
-    let chosen = match c.chosen {
-        Method::Swing => c.swing.expect("swing candidate"),
-        _ => c.simplified.expect("simplified candidate"),
-    };
+    let c = &e.stats.candidates;
+    assert!(!c.is_empty(), "auto reports its candidates");
+    let chosen_method = e.stats.chosen();
+    let chosen = figure(e, chosen_method).expect("the chosen candidate");
     assert_eq!(chosen.bytes, e.bytes.len() as u64);
-    for other in [c.swing, c.simplified].into_iter().flatten() {
+    for other in c.iter().filter_map(|c| c.outcome.as_ref().ok()) {
         assert!(chosen.l2_relative <= other.l2_relative, "{c:?}");
     }
     let mode = swm::inspect(&e.bytes, &Default::default()).unwrap().mode;
-    assert_eq!(mode == swm::Mode::Swing, c.chosen == Method::Swing);
-    c.chosen
+    assert_eq!(mode == swm::Mode::Swing, chosen_method == Method::Swing);
+    chosen_method
 }
 
 #[test]
@@ -112,8 +122,7 @@ fn auto_writes_the_better_candidate() {
     // them, so the CAD part goes to the simplified method.
     let cad = auto(&swm_corpus::fandisk_like(24), 2.0);
     assert_eq!(check_choice(&cad), Method::Simplified);
-    let c = cad.stats.choice.as_ref().unwrap();
-    assert!(c.swing.is_some() && c.swing_failure.is_none(), "{c:?}");
+    assert!(figure(&cad, Method::Swing).is_some(), "{:?}", cad.stats);
     // A smooth torus: whichever wins, the report holds.
     check_choice(&auto(&swm_corpus::torus(1.0, 0.35, 48, 16), 2.0));
 }
@@ -155,14 +164,15 @@ fn auto_falls_back_when_retiling_is_stopped() {
             max_work: 1,
             ..Default::default()
         },
+        effort: Effort::Max,
         ..Default::default()
     };
     let e = swm::encode(&mesh, &options).unwrap();
     assert_eq!(check_choice(&e), Method::Simplified);
-    let c = e.stats.choice.unwrap();
+    let swing = e.stats.candidate(Method::Swing).unwrap();
     assert!(
-        matches!(c.swing_failure, Some(swm::SwingFailure::Limit(_))),
-        "{c:?}"
+        matches!(swing.outcome, Err(CandidateFailure::Limit(_))),
+        "{swing:?}"
     );
     assert!(swm::decode(&e.bytes, &Default::default()).is_ok());
 }
@@ -202,9 +212,9 @@ fn auto_with_an_edge_length_gives_both_the_retiled_size() {
     )
     .unwrap();
     check_choice(&e);
-    let c = e.stats.choice.unwrap();
-    let (swing, simplified) = (c.swing.unwrap(), c.simplified.unwrap());
-    assert!(simplified.bytes <= swing.bytes, "{c:?}");
+    let swing = figure(&e, Method::Swing).unwrap();
+    let simplified = figure(&e, Method::Simplified).unwrap();
+    assert!(simplified.bytes <= swing.bytes, "{:?}", e.stats.candidates);
 }
 
 #[test]
@@ -214,13 +224,21 @@ fn cli_defaults_to_auto_and_reports_the_method() {
     swm::io::write_mesh(&input, &swm_corpus::fandisk_like(16)).unwrap();
     let output = dir.join("part.swm");
     let (i, o) = (input.to_str().unwrap(), output.to_str().unwrap());
-    let j = json(&swm(&["encode", i, "-o", o, "--bpv", "2", "--json"]));
+    let j = json(&swm(&[
+        "encode", i, "-o", o, "--bpv", "2", "--json", "--effort", "max",
+    ]));
     assert_eq!(j["method"]["chosen"], "simplified", "{j}");
+    assert_eq!(j["method"]["effort"], "max", "{j}");
     assert!(j["method"]["swing"]["l2_rel"].as_f64().is_some(), "{j}");
     assert!(j["simplified"]["qp"].as_u64().is_some(), "{j}");
     // Text: one line says which method and why.
-    let text = ok(&swm(&["encode", i, "-o", o, "--bpv", "2"]));
-    assert!(text.contains("method: simplified (swing L2"), "{text}");
+    let text = ok(&swm(&[
+        "encode", i, "-o", o, "--bpv", "2", "--effort", "max",
+    ]));
+    assert!(
+        text.contains("method: simplified (effort max; L2 x 1e-4 of the diagonal: swing L2 "),
+        "{text}"
+    );
     // The lossless mode with a size simplifies; --qp then has no meaning.
     let j = json(&swm(&[
         "encode", i, "-o", o, "--mode", "lossless", "--size", "900", "--json",

@@ -675,7 +675,7 @@ fn write_swing_post_v1_1_golden() {
         plain.positions.len(),
         plain.triangles.len(),
         mesh_hash(&plain),
-        encoded.stats.hint
+        encoded.stats.hint()
     );
 }
 
@@ -757,7 +757,7 @@ fn write_swing_crease_v1_1_golden() {
         mesh.positions.len(),
         mesh.triangles.len(),
         mesh_hash(&mesh),
-        encoded.stats.swing.map(|s| s.sections)
+        encoded.stats.swing().map(|s| &s.sections)
     );
 }
 
@@ -818,7 +818,10 @@ fn write_lossless_dense_v1_1_golden() {
     let options = golden_dense_options();
     write_golden("lossless-dense-v1.1.swm", &golden_sphere(), &options);
     let encoded = swm::encode(&golden_sphere(), &options).unwrap();
-    println!("sections {:?}", encoded.stats.lossless.map(|s| s.sections));
+    println!(
+        "sections {:?}",
+        encoded.stats.lossless().map(|s| &s.sections)
+    );
 }
 
 /// Must hold forever: a failure means the decoder no longer reads the

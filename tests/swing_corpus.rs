@@ -35,8 +35,8 @@ fn check(name: &str, bpv: f64, valence6_at_least: Option<f64>) {
         return;
     };
     let (encoded, input) = encode(&dir.join(name), bpv);
-    let stats = encoded.stats.swing.as_ref().unwrap();
-    let rate = encoded.stats.rate.as_ref().unwrap();
+    let stats = encoded.stats.swing().unwrap();
+    let rate = encoded.stats.rate().unwrap();
     let requested = (bpv * input.vertex_count() as f64 / 8.0).round();
     let size = encoded.bytes.len() as f64;
     println!(
@@ -148,7 +148,7 @@ fn open_surfaces_mask_under_a_tenth_of_their_triangles_at_2_bpv() {
     };
     for name in ["woody.obj", "alligator.obj", "stanford-bunny.obj"] {
         let (encoded, _) = encode(&dir.join(name), 2.0);
-        let stats = encoded.stats.swing.as_ref().unwrap();
+        let stats = encoded.stats.swing().unwrap();
         println!(
             "{name}: {} of {} retiled triangles masked, {} loop(s) of {} points, {} bytes of LOOP",
             stats.holes_masked_triangles,

@@ -26,8 +26,8 @@
 //! each Bender step         + E ≤ + 3T             4T
 //! ```
 
-use crate::api::decode_container;
-use crate::container::{parse_container, Container, Mode, Tag};
+use crate::container::{parse_container, Container};
+use crate::decoder::{decode_container, for_mode};
 use crate::{DecodeOptions, Error, ParameterError, TriMesh};
 
 /// How big the output of [`decode_into`] may be.
@@ -72,12 +72,10 @@ fn bounds(file: &Container<'_>, options: &DecodeOptions) -> Result<DecodedLen, E
     let h = file.header;
     let (mut v, mut t) = (u64::from(h.vertex_count), u64::from(h.triangle_count));
     let mut exact = true;
-    if h.mode == Mode::Swing {
-        let (rv, rt) = crate::swing::rest_counts(file, &options.limits)?;
-        v += rv;
-        t += rt;
-        exact = file.find(Tag::HOLE).is_none();
-    }
+    let (rv, rt, exact_counts) = (for_mode(h.mode).extra_counts)(file, &options.limits)?;
+    v += rv;
+    t += rt;
+    exact &= exact_counts;
     let post = crate::post::hint::resolve(file, options.sharpen, options.bend_steps);
     if post.sharpen {
         v = v.saturating_add(t.saturating_mul(4));

@@ -53,7 +53,38 @@ pub enum Error {
     /// No file of the requested size can represent the mesh.
     #[error("{0}")]
     Size(#[from] SizeError),
+    /// No file within the size cap meets the requested error bound.
+    #[error("{0}")]
+    ErrorBound(#[from] ErrorBoundError),
 }
+
+/// An error bound ([`SwingTarget::MaxError`](crate::SwingTarget)) that no
+/// file the encoder can make meets (within the size cap, when one is
+/// given).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorBoundError {
+    /// The bound asked for: L2 relative to the input's bounding-box
+    /// diagonal.
+    pub requested: f64,
+    /// The lowest error measured, on the largest file tried.
+    pub lowest: f64,
+    /// That file's size in bytes.
+    pub bytes: u64,
+}
+
+impl fmt::Display for ErrorBoundError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "no file meets an L2 error of {:.3} x 1e-4 of the diagonal: the closest, {} bytes, measured {:.3}",
+            self.requested * 1e4,
+            self.bytes,
+            self.lowest * 1e4
+        )
+    }
+}
+
+impl core::error::Error for ErrorBoundError {}
 
 /// The requested size is below the smallest file the encoder can make
 /// of the mesh.

@@ -27,24 +27,22 @@ mod prelude {
 }
 
 mod api;
-#[cfg(feature = "encoder")]
-mod auto;
 mod buffers;
 pub mod container;
+mod decoder;
 pub mod edgebreaker;
+#[cfg(feature = "encoder")]
+mod encoder;
 pub mod entropy;
 mod error;
 pub mod geometry;
-#[cfg(feature = "encoder")]
-mod hinted;
 mod limits;
 mod lossless;
 mod math;
 pub mod mesh;
 #[cfg(feature = "metrics")]
 pub mod metrics;
-#[cfg(feature = "encoder")]
-mod mixed;
+mod options;
 pub mod post;
 #[cfg(feature = "encoder")]
 mod retile;
@@ -57,18 +55,18 @@ mod varint;
 #[cfg(feature = "io")]
 pub mod io;
 
-pub use api::{decode, inspect, DecodeOptions, FileInfo, LosslessStats, SwingStats};
+pub use api::{decode, inspect, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
-    encode, Attempt, Candidate, EncodeMode, EncodeOptions, EncodeStats, Encoded, Method,
-    MethodChoice, PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingFailure,
-    SwingTarget, SwingTuning, AUTO_SAMPLES, DEFAULT_ANGLE_BITS,
+    encode, Attempt, Candidate, CandidateFailure, Effort, EncodeMode, EncodeOptions, EncodeStats,
+    Encoded, ErrorBound, Measured, Method, MethodStats, PieceOutcome, PieceReport, RateReport,
+    SimplifiedStats, SwingReport, SwingTarget, SwingTuning, AUTO_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::{Framing, Mode};
 pub use error::{
-    Error, FileKind, FormatError, InputError, LimitError, Limited, Location, Malformed,
-    ParameterError, RetileError, RetileFailure, SizeError, TopologyError,
+    Error, ErrorBoundError, FileKind, FormatError, InputError, LimitError, Limited, Location,
+    Malformed, ParameterError, RetileError, RetileFailure, SizeError, TopologyError,
 };
 #[cfg(feature = "encoder")]
 pub use limits::EncodeLimits;
@@ -77,6 +75,7 @@ pub use mesh::{
     vertex_normals, vertex_normals_into, CornerId, CornerTable, FaceId, MeshStats, TriMesh,
     VertexId,
 };
+pub use options::DecodeOptions;
 pub use post::bend::{bend, Bent};
 #[cfg(feature = "encoder")]
 pub use post::hint::HintReport;

@@ -123,6 +123,7 @@ fn encode_mode(
     max_size: Option<i128>,
     angle_bits: Option<i64>,
     qp: Option<i64>,
+    max_error: Option<f64>,
 ) -> PyResult<swm::EncodeMode> {
     if !matches!(mode, "auto" | "swing" | "lossless") {
         return Err(PyValueError::new_err(format!(
@@ -135,13 +136,18 @@ fn encode_mode(
             false => Ok(()),
         }
     };
-    let targets = [bpv.is_some(), size.is_some(), edge_length.is_some()];
+    let targets = [
+        bpv.is_some(),
+        size.is_some(),
+        edge_length.is_some(),
+        max_error.is_some(),
+    ];
     if targets.iter().filter(|&&t| t).count() > 1 {
         return Err(PyValueError::new_err(
-            "give at most one of bpv, size and edge_length",
+            "give at most one of bpv, size, edge_length and max_error",
         ));
     }
-    let sized = size.is_some() || bpv.is_some();
+    let sized = size.is_some() || bpv.is_some() || max_error.is_some();
     match mode {
         "auto" => {
             refuse(
@@ -154,7 +160,13 @@ fn encode_mode(
                  (set it with mode=\"lossless\" and no size or bpv)",
             )?;
         }
-        "swing" => refuse(qp.is_some(), "takes no qp (it is for mode=\"lossless\")")?,
+        "swing" => {
+            refuse(qp.is_some(), "takes no qp (it is for mode=\"lossless\")")?;
+            refuse(
+                max_error.is_some(),
+                "takes no max_error (it is for mode=\"auto\" or \"lossless\")",
+            )?;
+        }
         _ => {
             refuse(
                 edge_length.is_some(),
@@ -179,6 +191,9 @@ fn encode_mode(
     let target = match (bpv, size, edge_length) {
         (_, Some(b), _) => swm::SwingTarget::Bytes(count("size", b).py_err(py)?),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
+        _ if max_error.is_some() => swm::SwingTarget::MaxError(swm::ErrorBound::Relative(
+            max_error.unwrap_or(f64::NAN),
+        )),
         // `swm encode`'s default target: 2 bits per input vertex.
         (bpv, _, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
     };
@@ -204,44 +219,40 @@ fn encode_mode(
 /// What `swm.encode(..., report=True)` returns beside the bytes: the
 /// method that made the file and, as `swm encode --json` reports them,
 /// the automatic mode's choice and what simplification kept.
-fn encode_report<'py>(py: Python<'py>, stats: &swm::EncodeStats) -> PyResult<Bound<'py, PyDict>> {
-    let method_name = |m: swm::Method| match m {
-        swm::Method::Swing => "swing",
-        swm::Method::Simplified => "simplified",
-        swm::Method::Mixed => "mixed",
-        _ => "other",
-    };
-    let method = match (&stats.choice, &stats.simplified, &stats.swing) {
-        (Some(c), _, _) => method_name(c.chosen),
-        (None, Some(_), _) => "simplified",
-        (None, None, Some(_)) => "swing",
-        (None, None, None) => "lossless",
-    };
-    let candidate = |c: &Option<swm::Candidate>| -> PyResult<Option<Bound<'py, PyDict>>> {
-        c.map(|c| {
-            let d = PyDict::new(py);
-            d.set_item("bytes", c.bytes)?;
-            d.set_item("l2_rel", c.l2_relative)?;
-            Ok(d)
-        })
-        .transpose()
-    };
+fn encode_report<'py>(
+    py: Python<'py>,
+    stats: &swm::EncodeStats,
+    effort: swm::Effort,
+) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    out.set_item("method", method)?;
-    match &stats.choice {
-        Some(c) => {
-            let d = PyDict::new(py);
-            d.set_item("chosen", method_name(c.chosen))?;
-            d.set_item("swing", candidate(&c.swing)?)?;
-            let failure = c.swing_failure.as_ref().map(|f| f.to_string());
-            d.set_item("swing_failure", failure)?;
-            d.set_item("simplified", candidate(&c.simplified)?)?;
-            d.set_item("mixed", candidate(&c.mixed)?)?;
-            out.set_item("choice", d)?;
+    out.set_item("method", stats.chosen().name())?;
+    if stats.candidates.is_empty() {
+        out.set_item("choice", py.None())?;
+    } else {
+        // As `swm encode --json`'s `method` object: each candidate under
+        // its method's name, and why a missing one made no file.
+        let d = PyDict::new(py);
+        d.set_item("chosen", stats.chosen().name())?;
+        d.set_item("effort", effort.name())?;
+        for c in &stats.candidates {
+            let name = c.method.name();
+            match &c.outcome {
+                Ok(m) => {
+                    let f = PyDict::new(py);
+                    f.set_item("bytes", m.bytes)?;
+                    f.set_item("l2_rel", m.l2_relative)?;
+                    d.set_item(name, f)?;
+                    d.set_item(format!("{name}_failure"), py.None())?;
+                }
+                Err(e) => {
+                    d.set_item(name, py.None())?;
+                    d.set_item(format!("{name}_failure"), e.to_string())?;
+                }
+            }
         }
-        None => out.set_item("choice", py.None())?,
+        out.set_item("choice", d)?;
     }
-    match &stats.simplified {
+    match stats.simplified() {
         Some(s) => {
             let d = PyDict::new(py);
             d.set_item("input_faces", s.input_faces)?;
@@ -258,7 +269,8 @@ fn encode_report<'py>(py: Python<'py>, stats: &swm::EncodeStats) -> PyResult<Bou
 /// See `swm/__init__.py` for the documented wrapper.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
-                    mode="auto", max_size=None, angle_bits=None, qp=None, report=false))]
+                    mode="auto", max_size=None, angle_bits=None, qp=None, report=false,
+                    effort="default", max_error=None))]
 #[allow(clippy::too_many_arguments)]
 fn encode<'py>(
     py: Python<'py>,
@@ -272,11 +284,34 @@ fn encode<'py>(
     angle_bits: Option<i64>,
     qp: Option<i64>,
     report: bool,
+    effort: &str,
+    max_error: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let mode = encode_mode(py, bpv, size, edge_length, mode, max_size, angle_bits, qp)?;
+    let effort = match effort {
+        "fast" => swm::Effort::Fast,
+        "default" => swm::Effort::Default,
+        "max" => swm::Effort::Max,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "effort must be \"fast\", \"default\" or \"max\", got {other:?}"
+            )))
+        }
+    };
+    let mode = encode_mode(
+        py,
+        bpv,
+        size,
+        edge_length,
+        mode,
+        max_size,
+        angle_bits,
+        qp,
+        max_error,
+    )?;
     let mesh = arrays::mesh(&vertices, &faces)?;
     let options = swm::EncodeOptions {
         mode,
+        effort,
         ..Default::default()
     };
     let encoded = py
@@ -288,7 +323,7 @@ fn encode<'py>(
         .py_err(py)?;
     let bytes = PyBytes::new(py, &encoded.bytes);
     if report {
-        (bytes, encode_report(py, &encoded.stats)?)
+        (bytes, encode_report(py, &encoded.stats, effort)?)
             .into_pyobject(py)
             .map(Bound::into_any)
     } else {

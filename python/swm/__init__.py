@@ -114,6 +114,8 @@ def encode(
     angle_bits: Optional[int] = None,
     qp: Optional[int] = None,
     report: Literal[False] = False,
+    effort: str = "default",
+    max_error: Optional[float] = None,
 ) -> bytes: ...
 
 
@@ -130,6 +132,8 @@ def encode(
     angle_bits: Optional[int] = None,
     qp: Optional[int] = None,
     report: Literal[True],
+    effort: str = "default",
+    max_error: Optional[float] = None,
 ) -> Tuple[bytes, "dict[str, Any]"]: ...
 
 
@@ -145,18 +149,27 @@ def encode(
     angle_bits: Optional[int] = None,
     qp: Optional[int] = None,
     report: bool = False,
+    effort: str = "default",
+    max_error: Optional[float] = None,
 ) -> Union[bytes, Tuple[bytes, "dict[str, Any]"]]:
     """Cleans and encodes a mesh into the bytes of a ``.swm`` file.
 
     The options and defaults are those of ``swm encode``. The target is
     one of ``bpv`` (bits per input vertex; 2 when no target is given),
-    ``size`` (bytes) or ``edge_length`` (the retiling edge L); ``max_size``
-    is a size in bytes never to exceed. ``mode`` is:
+    ``size`` (bytes), ``edge_length`` (the retiling edge L) or
+    ``max_error`` (the smallest file whose L2 distance to the input is at
+    most this, relative to the bounding-box diagonal: ``2e-4``; modes
+    ``"auto"`` and ``"lossless"``); ``max_size`` is a size in bytes never
+    to exceed. ``effort`` is ``"fast"``, ``"default"`` or ``"max"``, as
+    ``swm encode --effort``: which methods the automatic mode weighs and
+    how far each searches. ``mode`` is:
 
-    * ``"auto"`` (the default): both SwingWrapper retiling and quadric
-      simplification then lossless coding at the target size; each is
-      decoded and measured against the input (L2) and the closer one is
-      written. A retiling that fails falls back to the simplified file.
+    * ``"auto"`` (the default): the methods of the effort level
+      (SwingWrapper retiling where it fits the level's budget, quadric
+      simplification then lossless coding, and at ``"max"`` a method per
+      component) at the target size; each is decoded and measured against
+      the input (L2) and the closest is written. A retiling that fails
+      falls back to the simplified file.
       With ``edge_length``, the simplified candidate gets the retiled
       file's size. Takes no ``angle_bits`` and no ``qp`` (the encoder
       chooses them): a ``ValueError`` says so.
@@ -177,9 +190,10 @@ def encode(
     ``report`` a dict: ``method``, what made the file (``"swing"``,
     ``"simplified"``, ``"mixed"``, a method per component, or
     ``"lossless"``); ``choice``, in the automatic mode, the ``method``
-    object of ``swm encode --json`` (``chosen``, the ``swing``,
-    ``simplified`` and ``mixed`` candidates as ``{"bytes", "l2_rel"}`` or
-    ``None``, and ``swing_failure``, the retiling's error or ``None``),
+    object of ``swm encode --json`` (``chosen``, ``effort``, each
+    candidate of the level under its method's name as
+    ``{"bytes", "l2_rel"}`` or ``None``, and ``<name>_failure``, why it
+    made no file, or ``None``),
     else ``None``; ``simplified``, when a simplified file was written,
     ``{"input_faces", "faces", "qp"}``, else ``None``.
 
@@ -196,6 +210,8 @@ def encode(
         angle_bits=angle_bits,
         qp=qp,
         report=report,
+        effort=effort,
+        max_error=max_error,
     )
 
 

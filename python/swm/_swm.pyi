@@ -42,6 +42,8 @@ def encode(
     angle_bits: Optional[int] = None,
     qp: Optional[int] = None,
     report: Literal[False] = False,
+    effort: str = "default",
+    max_error: Optional[float] = None,
 ) -> bytes: ...
 @overload
 def encode(
@@ -56,6 +58,8 @@ def encode(
     angle_bits: Optional[int] = None,
     qp: Optional[int] = None,
     report: Literal[True],
+    effort: str = "default",
+    max_error: Optional[float] = None,
 ) -> Tuple[bytes, dict[str, Any]]: ...
 def decode(
     data: bytes,

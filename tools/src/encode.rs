@@ -45,13 +45,30 @@ pub struct Args {
     /// The codec.
     #[arg(long, value_enum, default_value = "auto")]
     mode: ModeArg,
+    /// How hard the encoder works (as Draco's -cl and zstd's levels):
+    /// `fast` simplifies with a short search (about a lossless encode's
+    /// time plus one simplification); `default` measures the simplified
+    /// file against SwingWrapper where retiling fits its work budget;
+    /// `max` runs every method's whole search (minutes on large inputs at
+    /// high rates).
+    #[arg(long, value_enum, default_value_t = EffortArg::Default)]
+    effort: EffortArg,
     /// Target file size in bytes (met within 3%; lossless: simplify to fit).
-    #[arg(long, conflicts_with_all = ["bpv", "edge_length"], value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
+    #[arg(long, conflicts_with_all = ["bpv", "edge_length", "max_error", "max_error_units"], value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
     size: Option<u64>,
     /// Target bits per input vertex (auto and swing: default 2 when no
     /// target is given; lossless: simplify to fit).
-    #[arg(long, conflicts_with = "edge_length", value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
+    #[arg(long, conflicts_with_all = ["edge_length", "max_error", "max_error_units"], value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
     bpv: Option<f64>,
+    /// The smallest file whose L2 distance to the input is at most E,
+    /// relative to the input's bounding-box diagonal as `swm distance`
+    /// reports it (2e-4 is "2 x 1e-4 of the diagonal"); auto and lossless
+    /// modes.
+    #[arg(long, value_name = "E", conflicts_with_all = ["edge_length", "max_error_units"], value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
+    max_error: Option<f64>,
+    /// The same bound in the mesh's units.
+    #[arg(long, value_name = "D", conflicts_with = "edge_length", value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
+    max_error_units: Option<f64>,
     /// Swing: the edge length L itself, in the mesh's units (auto: the
     /// simplified candidate gets the retiled file's size).
     #[arg(long, value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
@@ -166,9 +183,17 @@ impl Args {
     /// The options given that do not apply to the chosen mode, as a usage
     /// error: they would be silently ignored otherwise.
     pub fn check_mode(&self) -> Result<(), String> {
-        let sized = self.size.is_some() || self.bpv.is_some();
+        let bounded = self.max_error.is_some() || self.max_error_units.is_some();
+        let sized = self.size.is_some() || self.bpv.is_some() || bounded;
         let (mode, options) = match self.mode {
-            ModeArg::Swing => ("swing", vec![(self.qp.is_some(), "--qp")]),
+            ModeArg::Swing => (
+                "swing",
+                vec![
+                    (self.qp.is_some(), "--qp"),
+                    (self.max_error.is_some(), "--max-error"),
+                    (self.max_error_units.is_some(), "--max-error-units"),
+                ],
+            ),
             ModeArg::Auto => (
                 "auto",
                 vec![
@@ -233,11 +258,18 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let target = match (args.size, args.bpv, args.edge_length) {
         (Some(b), _, _) => swm::SwingTarget::Bytes(b),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
+        _ if args.max_error.is_some() || args.max_error_units.is_some() => {
+            swm::SwingTarget::MaxError(match (args.max_error, args.max_error_units) {
+                (Some(e), _) => swm::ErrorBound::Relative(e),
+                (_, d) => swm::ErrorBound::Absolute(d.unwrap_or(f64::NAN)),
+            })
+        }
         (_, bpv, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
     };
     let max_bytes = args.max_size;
+    let bounded = args.max_error.is_some() || args.max_error_units.is_some();
     let mode = match args.mode {
-        ModeArg::Lossless if args.size.is_none() && args.bpv.is_none() => {
+        ModeArg::Lossless if args.size.is_none() && args.bpv.is_none() && !bounded => {
             swm::EncodeMode::Lossless { qp: args.qp() }
         }
         ModeArg::Lossless => swm::EncodeMode::Simplified { target, max_bytes },
@@ -272,6 +304,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             FramingArg::Compact => swm::Framing::Compact,
             FramingArg::Fixed => swm::Framing::Fixed,
         },
+        effort: args.effort.into(),
         ..Default::default()
     };
     progress.phase("encoding");
@@ -300,7 +333,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // on a million-triangle scan the check would cost several times the
     // encode. With a size it may coarsen the quantization, so it is
     // checked.
-    let qp_only = args.mode == ModeArg::Lossless && args.size.is_none() && args.bpv.is_none();
+    let qp_only =
+        args.mode == ModeArg::Lossless && args.size.is_none() && args.bpv.is_none() && !bounded;
     let (fidelity, warning) = if qp_only {
         (None, None)
     } else {
@@ -316,12 +350,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         eprintln!("{line}");
     }
     let stats = &encoded.stats;
-    if let Some(r) = stats.rate.as_ref().filter(|r| !r.within_tolerance) {
+    if let Some(r) = stats.rate().filter(|r| !r.within_tolerance) {
         warn_missed_size(&args.input, r, encoded.bytes.len() as u64);
     }
-    let (mut json, vertices, triangles) = match (&stats.lossless, &stats.swing) {
+    let (mut json, vertices, triangles) = match (stats.lossless(), stats.swing()) {
         (Some(l), _) => (
-            crate::report::lossless_json(l, stats.simplified.map_or(args.qp(), |s| s.qp)),
+            crate::report::lossless_json(l, stats.simplified().map_or(args.qp(), |s| s.qp)),
             l.vertices,
             l.triangles,
         ),
@@ -337,7 +371,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let bytes = encoded.bytes.len() as u64;
     // The whole mesh at the simplified method's quantization, well short
     // of the request: nothing more to code (a note below, a flag in JSON).
-    let whole_short = stats.simplified.is_some_and(|s| s.faces == s.input_faces)
+    let whole_short = stats.simplified().is_some_and(|s| s.faces == s.input_faces)
         && requested.is_some_and(|r| bytes * 100 < r * 97);
     if args.json {
         if let Some(r) = requested {
@@ -350,21 +384,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         json["encode_seconds"] = seconds.into();
         json["input_vertices"] = mesh.vertex_count().into();
         json["cleaning"] = crate::report::clean_json(&stats.clean);
-        if let Some(r) = &stats.rate {
+        if let Some(r) = stats.rate() {
             json["rate_control"] = crate::report::rate_json(r);
         }
-        if !stats.pieces.is_empty() {
-            json["components"] = stats.pieces.iter().map(piece_json).collect();
+        if !stats.pieces().is_empty() {
+            json["components"] = stats.pieces().iter().map(piece_json).collect();
         }
-        if let Some(s) = &stats.simplified {
+        if let Some(s) = stats.simplified() {
             json["simplified"] = serde_json::json!({
                 "input_faces": s.input_faces, "faces": s.faces, "qp": s.qp,
             });
         }
-        if let Some(c) = &stats.choice {
-            json["method"] = crate::report::choice_json(c);
+        if !stats.candidates.is_empty() {
+            json["method"] = crate::report::choice_json(stats, options.effort);
         }
-        if let Some(h) = &stats.hint {
+        if let Some(h) = stats.hint() {
             json["hint"] = serde_json::json!({
                 "sharpen": h.chosen.sharpen,
                 "bend_steps": h.chosen.bend_steps,
@@ -405,7 +439,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if let Some(f) =
         fidelity.filter(|f| (f.vertices as u64, f.triangles as u64) != (vertices, triangles))
     {
-        let why = if stats.swing.is_some() {
+        let why = if stats.swing().is_some() {
             " (the retiled triangles less the hole masks, plus the lossless rest)"
         } else {
             ""
@@ -416,10 +450,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             f.triangles
         );
     }
-    if let Some(c) = &stats.choice {
-        say!("{}", crate::report::choice_line(c));
+    if !stats.candidates.is_empty() {
+        say!("{}", crate::report::choice_line(stats, options.effort));
     }
-    if let Some(h) = &stats.hint {
+    if let Some(h) = stats.hint() {
         let chosen = match (h.chosen.sharpen, h.chosen.bend_steps) {
             (false, 0) => "plain decoding (no hint written)",
             (true, 0) => "EdgeSharpener",
@@ -441,7 +475,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             1e4 * h.bend_l2
         );
     }
-    if let Some(s) = &stats.simplified {
+    if let Some(s) = stats.simplified() {
         say!(
             "simplified from {} to {} faces, {} bits per coordinate",
             s.input_faces,
@@ -458,7 +492,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             );
         }
     }
-    if let Some(r) = &stats.rate {
+    if let Some(r) = stats.rate() {
         let failed = r.attempts.iter().filter(|a| a.outcome.is_err()).count();
         say!(
             "edge length {:.6} after {} retilings{}{}",
@@ -484,21 +518,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let plain = |p: &swm::PieceReport| {
         p.holes == 0 && matches!(p.outcome, swm::PieceOutcome::Retiled { .. })
     };
-    if stats.pieces.len() > 1 || !stats.pieces.iter().all(plain) {
+    let pieces = stats.pieces();
+    if pieces.len() > 1 || !pieces.iter().all(plain) {
         let listed = if args.verbose {
-            stats.pieces.len()
+            pieces.len()
         } else {
             LISTED_COMPONENTS
         };
-        for (k, p) in stats.pieces.iter().enumerate().take(listed) {
+        for (k, p) in pieces.iter().enumerate().take(listed) {
             eprintln!("component {k}: {}", piece_line(p));
         }
-        if stats.pieces.len() > listed {
+        if pieces.len() > listed {
             eprintln!(
                 "... {} more components ({} in all: {}); --verbose lists them all",
-                stats.pieces.len() - listed,
-                stats.pieces.len(),
-                fates(&stats.pieces)
+                pieces.len() - listed,
+                pieces.len(),
+                fates(pieces)
             );
         }
     }
@@ -703,6 +738,28 @@ fn piece_json(p: &swm::PieceReport) -> serde_json::Value {
 enum FramingArg {
     Compact,
     Fixed,
+}
+
+/// `--effort` ([`swm::Effort`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EffortArg {
+    /// The simplified method with a short search.
+    Fast,
+    /// The simplified method's full search, and SwingWrapper where its
+    /// retiling fits the level's work budget.
+    Default,
+    /// Every method's whole search.
+    Max,
+}
+
+impl From<EffortArg> for swm::Effort {
+    fn from(e: EffortArg) -> swm::Effort {
+        match e {
+            EffortArg::Fast => swm::Effort::Fast,
+            EffortArg::Default => swm::Effort::Default,
+            EffortArg::Max => swm::Effort::Max,
+        }
+    }
 }
 
 /// `mode` with its size or rate replaced by `bytes`, if it has one and no

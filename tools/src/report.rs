@@ -145,55 +145,56 @@ pub fn clean_json(r: &swm::CleanReport) -> Value {
     })
 }
 
-/// The automatic mode's choice: both candidates' sizes and measured L2
-/// (relative to the diagonal), and why SwingWrapper failed if it did.
-pub fn choice_json(c: &swm::MethodChoice) -> Value {
-    let candidate = |c: &Option<swm::Candidate>| {
-        c.map_or(
-            Value::Null,
-            |c| serde_json::json!({"bytes": c.bytes, "l2_rel": c.l2_relative}),
-        )
-    };
-    serde_json::json!({
-        "chosen": method_name(c.chosen),
-        "swing": candidate(&c.swing),
-        "swing_failure": c.swing_failure.as_ref().map(failure_text),
-        "simplified": candidate(&c.simplified),
-        "mixed": candidate(&c.mixed),
-    })
-}
-
-/// One line: which method the automatic mode wrote, and why.
-pub fn choice_line(c: &swm::MethodChoice) -> String {
-    let figure = |c: &Option<swm::Candidate>| {
-        c.map_or("none".to_string(), |c| {
-            format!("L2 {:.3}e-4 at {} bytes", 1e4 * c.l2_relative, c.bytes)
-        })
-    };
-    let swing = match &c.swing_failure {
-        Some(f) => format!("failed ({})", failure_text(f)),
-        None => figure(&c.swing),
-    };
-    let mixed = match &c.mixed {
-        Some(_) => format!("; a method per component {}", figure(&c.mixed)),
-        None => String::new(),
-    };
-    format!(
-        "method: {} (swing {swing}; simplified {}{mixed})",
-        method_name(c.chosen),
-        figure(&c.simplified)
-    )
-}
-
-fn method_name(m: swm::Method) -> &'static str {
-    match m {
-        swm::Method::Swing => "swing",
-        swm::Method::Simplified => "simplified",
-        swm::Method::Mixed => "mixed",
-        _ => "other",
+/// The automatic mode's choice: the method written, and each candidate
+/// under its method's name: its size and measured L2 (relative to the
+/// diagonal), or `null` and, under `<name>_failure`, why it made none.
+/// `candidates` lists them in the chooser's order.
+pub fn choice_json(stats: &swm::EncodeStats, effort: swm::Effort) -> Value {
+    let mut out = serde_json::json!({
+        "chosen": stats.chosen().name(),
+        "effort": effort.name(),
+    });
+    let mut list = Vec::new();
+    for c in &stats.candidates {
+        let name = c.method.name();
+        let (figure, failure) = match &c.outcome {
+            Ok(m) => (
+                serde_json::json!({"bytes": m.bytes, "l2_rel": m.l2_relative}),
+                Value::Null,
+            ),
+            Err(f) => (Value::Null, Value::String(f.to_string())),
+        };
+        out[name] = figure.clone();
+        out[format!("{name}_failure")] = failure.clone();
+        list.push(serde_json::json!({"method": name, "file": figure, "failure": failure}));
     }
+    out["candidates"] = Value::Array(list);
+    out
 }
 
-fn failure_text(f: &swm::SwingFailure) -> String {
-    f.to_string()
+/// One line: which method the automatic mode wrote, and what each
+/// candidate measured (or why it made no file), errors in the unit used
+/// throughout: x 1e-4 of the diagonal.
+pub fn choice_line(stats: &swm::EncodeStats, effort: swm::Effort) -> String {
+    let parts: Vec<String> = stats
+        .candidates
+        .iter()
+        .filter(|c| !matches!(c.outcome, Err(swm::CandidateFailure::NotApplicable)))
+        .map(|c| {
+            let what = match &c.outcome {
+                Ok(m) => match m.l2_relative {
+                    Some(l2) => format!("L2 {:.3} at {} bytes", 1e4 * l2, m.bytes),
+                    None => format!("{} bytes, not measured", m.bytes),
+                },
+                Err(f) => format!("none: {f}"),
+            };
+            format!("{} {what}", c.method.name())
+        })
+        .collect();
+    format!(
+        "method: {} (effort {}; L2 x 1e-4 of the diagonal: {})",
+        stats.chosen().name(),
+        effort.name(),
+        parts.join("; ")
+    )
 }

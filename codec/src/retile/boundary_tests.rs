@@ -63,7 +63,7 @@ fn a_sheet_started_on_its_loop_keeps_its_border_and_drops_only_the_fan() {
         .unwrap()
         .find(Tag::LOOP)
         .is_none());
-    let stats = on.stats.swing.as_ref().unwrap();
+    let stats = on.stats.swing().unwrap();
     assert_eq!(stats.loops, 1);
     assert_eq!(stats.holes_masked_triangles, 0);
     // About perimeter / L points.
@@ -75,7 +75,7 @@ fn a_sheet_started_on_its_loop_keeps_its_border_and_drops_only_the_fan() {
     );
     // Started inside, the patch over the sheet's one hole costs about as
     // many triangles as the sheet itself.
-    let inside_stats = inside.stats.swing.as_ref().unwrap();
+    let inside_stats = inside.stats.swing().unwrap();
     assert!(inside_stats.holes_masked_triangles as f64 > 0.5 * inside_stats.triangles as f64);
     assert!(stats.triangles < inside_stats.triangles);
 

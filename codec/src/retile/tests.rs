@@ -403,6 +403,6 @@ fn swing_encoding_through_the_api_is_deterministic() {
     let a = crate::encode(&m, &options).unwrap();
     let b = crate::encode(&m, &options).unwrap();
     assert_eq!(a.bytes, b.bytes);
-    let stats = a.stats.swing.unwrap();
+    let stats = a.stats.swing().unwrap().clone();
     assert!(stats.cr_share > 0.85, "C+R share {}", stats.cr_share);
 }

@@ -25,7 +25,7 @@ pub fn run(
         target: swm::SwingTarget::Bytes(budget),
         max_bytes: Some(budget),
     };
-    coded(case, mode, samples)
+    coded(case, mode, swm::Effort::Max, samples)
 }
 
 /// The automatic mode at one budget; `None` if nothing fits it.
@@ -38,7 +38,7 @@ pub fn run_auto(
         target: swm::SwingTarget::Bytes(budget),
         max_bytes: Some(budget),
     };
-    coded(case, mode, samples)
+    coded(case, mode, swm::Effort::Max, samples)
 }
 
 /// Encodes (timed), decodes and measures; the row's `qp` is the
@@ -46,10 +46,12 @@ pub fn run_auto(
 fn coded(
     case: &crate::rd::case::Case,
     mode: swm::EncodeMode,
+    effort: swm::Effort,
     samples: u64,
 ) -> Result<Option<Coded>, CliError> {
     let options = swm::EncodeOptions {
         mode,
+        effort,
         ..Default::default()
     };
     let start = Instant::now();
@@ -60,7 +62,7 @@ fn coded(
     };
     let encode_s = start.elapsed().as_secs_f64();
     let stats = &encoded.stats;
-    let qp = match (&stats.simplified, &stats.swing) {
+    let qp = match (stats.simplified(), stats.swing()) {
         (Some(s), _) => s.qp,
         (_, Some(s)) => s.angle_bits,
         _ => 0,
@@ -73,11 +75,8 @@ fn coded(
         encode_s,
         &Default::default(),
     )?;
-    let mixed = stats
-        .choice
-        .as_ref()
-        .is_some_and(|c| c.chosen == swm::Method::Mixed);
-    coded.method = match (&stats.simplified, &stats.swing) {
+    let mixed = stats.chosen() == swm::Method::Mixed;
+    coded.method = match (stats.simplified(), stats.swing()) {
         (Some(s), _) if s.faces >= s.input_faces => "whole",
         (Some(_), _) => "simplified",
         (_, Some(_)) if mixed => "mixed",

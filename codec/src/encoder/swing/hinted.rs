@@ -28,7 +28,7 @@
 //!
 //! Tips on creases (`retile::crease`, `RADS`) are tried only where the
 //! caller allows them and the input's creases total at least its
-//! bounding-box diagonal (`api::encode_swing_pieces`); they cost bytes
+//! bounding-box diagonal (`encoder::swing::encode_pieces`); they cost bytes
 //! (a radius code per crease tip) and on coarse retilings of rounded
 //! parts can place tips on creases too small to matter, so the measure
 //! decides, as for the aim.
@@ -44,8 +44,8 @@
 //! deterministic measures (seeded samples), never on the thread count;
 //! the hint's bytes count against the request like any other section.
 
-use crate::api::AUTO_SAMPLES;
 use crate::metrics::Surface;
+use crate::options::AUTO_SAMPLES;
 use crate::post::hint::{self, HintReport, PostProcessing};
 use crate::retile::rate::{self, Chosen, Knobs, Prior};
 use crate::retile::{fill::Piece, Budget};

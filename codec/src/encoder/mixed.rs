@@ -36,11 +36,13 @@
 //! neither method can code alone at its share is left to the file's own
 //! rule (retiled, or kept whole when too small for the edge length).
 
-use crate::api::{encode_swing_pieces, EncodeOptions, Encoded, SwingTarget};
+use super::method::{Ask, CodingMethod, Job, Made};
+use super::stats::{Method, MethodStats};
 use crate::metrics::Surface;
+use crate::options::{EncodeOptions, SwingTarget};
 use crate::retile::fill::Piece;
 use crate::simplify::{best_fit, file_distance, Simplifier};
-use crate::{Cleaned, Error, TriMesh};
+use crate::{Error, TriMesh};
 use rayon::prelude::*;
 
 /// Components measured one by one, the largest by area; smaller ones
@@ -88,15 +90,36 @@ struct Measured<'a> {
     surface: Surface,
 }
 
+/// The per-component chooser, as a candidate of the per-file one.
+pub(crate) struct Mixed;
+
+impl CodingMethod for Mixed {
+    fn method(&self) -> Method {
+        Method::Mixed
+    }
+
+    fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
+        let budget =
+            super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "mixed")?;
+        Ok(
+            encode(job, budget, ask.max_bytes)?.map(|(bytes, report)| Made {
+                bytes,
+                stats: MethodStats::Mixed(report),
+                l2_relative: None,
+                whole: false,
+            }),
+        )
+    }
+}
+
 /// The mixed file for `budget` bytes, or `None` when the mesh has one
 /// component or every measured component chose the same method.
-pub(crate) fn encode(
-    cleaned: &Cleaned,
-    input_vertices: usize,
-    options: &EncodeOptions,
+fn encode(
+    job: &Job<'_, '_>,
     budget: u64,
     max_bytes: Option<u64>,
-) -> Result<Option<Encoded>, Error> {
+) -> Result<Option<(Vec<u8>, super::stats::SwingReport)>, Error> {
+    let (cleaned, options) = (job.cleaned, job.options);
     let mut pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     if pieces.len() < 2 {
         return Ok(None);
@@ -188,13 +211,13 @@ pub(crate) fn encode(
     for (i, f) in kept {
         pieces[i].keep = Some((f.mesh, f.qp));
     }
-    let request = crate::api::swing_request(
+    let request = super::swing::request(
         SwingTarget::Bytes(budget),
-        input_vertices,
+        job.input_vertices,
         None,
         max_bytes.or(Some(budget)),
     )?;
-    let encoded = encode_swing_pieces(&pieces, &cleaned.mesh, &cleaned.report, options, request)?;
+    let encoded = super::swing::encode_pieces(&pieces, &cleaned.mesh, options, request)?;
     Ok(Some(encoded))
 }
 
@@ -203,15 +226,12 @@ fn trial(m: &Measured<'_>, bytes: u64, options: &EncodeOptions) -> Result<Verdic
     let simplified = fit_at(m, bytes)?;
     let alone = crate::clean(&m.piece.original, &options.clean)?;
     // A retiling that fails or misses the share is no candidate.
-    let swing = match crate::api::encode_swing(
-        &alone,
-        alone.mesh.vertex_count(),
-        options,
-        SwingTarget::Bytes(bytes),
-        None,
-        Some(bytes),
-    ) {
-        Ok(e) => Some(file_distance(&e.bytes, &m.surface, TRIAL_SAMPLES)?.l2()),
+    let ask = Ask {
+        target: SwingTarget::Bytes(bytes),
+        max_bytes: Some(bytes),
+    };
+    let swing = match super::swing::encode(&alone, alone.mesh.vertex_count(), options, ask, None) {
+        Ok((file, _)) => Some(file_distance(&file, &m.surface, TRIAL_SAMPLES)?.l2()),
         Err(Error::Retile(_) | Error::LimitExceeded(_) | Error::Size(_)) => None,
         Err(e) => return Err(e),
     };

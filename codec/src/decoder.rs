@@ -1,0 +1,162 @@
+//! One decode table (after Draco's decoder factory): the container's
+//! mode selects a [`ModeDecoder`], which gives that mode's decode, its
+//! inspection and the counts its sections add to the header's. `decode`,
+//! `inspect`, the buffer bounds (`buffers`) and the streaming decoder
+//! (`stream`, through `decode`) all go through [`for_mode`]; a new mode
+//! is one new entry here and its own module.
+//!
+//! After the mode's decode, the optional post-processing (EdgeSharpener,
+//! then Bender with the edges it tagged) is common to every mode.
+
+use crate::container::{parse_container, Container, Mode};
+use crate::options::DecodeOptions;
+use crate::{Error, Limits, LosslessStats, SwingStats, TriMesh};
+
+/// What the inspection of one mode reads without decoding geometry.
+pub(crate) struct Inspected {
+    /// Quantization bits (0 where the mode has none).
+    pub qp: u8,
+    /// Counts, CLERS histogram and sections.
+    pub stats: LosslessStats,
+    /// The SwingWrapper figures, for mode 1.
+    pub swing: Option<SwingStats>,
+}
+
+/// One mode's decoder.
+pub(crate) struct ModeDecoder {
+    /// The mesh of a checked container.
+    pub decode: fn(&Container<'_>, &Limits) -> Result<TriMesh, Error>,
+    /// Its figures without geometry; `usize` is the file's length.
+    pub inspect: fn(&Container<'_>, &Limits, usize) -> Result<Inspected, Error>,
+    /// Vertices and triangles its sections add to the header's counts,
+    /// and whether the total is exact (no mask that may drop some).
+    pub extra_counts: fn(&Container<'_>, &Limits) -> Result<(u64, u64, bool), Error>,
+}
+
+/// Mode 0: the input's own connectivity and quantized positions.
+static LOSSLESS: ModeDecoder = ModeDecoder {
+    decode: crate::lossless::decode,
+    inspect: |file, limits, len| {
+        let (q, conn, dummies, table) = crate::lossless::read_connectivity(file, limits)?;
+        // As strict as `decode` about the counts (issue 18): the
+        // connectivity is decoded and checked against the header.
+        crate::lossless::decode_topology(file, &conn, &dummies, table)?;
+        let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
+        let stats = LosslessStats::new(&file.header, &conn, dummies.len(), sections, len);
+        Ok(Inspected {
+            qp: q.bits,
+            stats,
+            swing: None,
+        })
+    },
+    extra_counts: |_, _| Ok((0, 0, true)),
+};
+
+/// Mode 1: SwingWrapper.
+static SWING: ModeDecoder = ModeDecoder {
+    decode: crate::swing::decode,
+    inspect: |file, limits, len| {
+        let (conn, swing) = crate::swing::inspect(file, limits, len)?;
+        let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
+        let stats = LosslessStats::new(&file.header, &conn, 0, sections, len);
+        Ok(Inspected {
+            qp: 0,
+            stats,
+            swing: Some(swing),
+        })
+    },
+    extra_counts: |file, limits| {
+        let (v, t) = crate::swing::rest_counts(file, limits)?;
+        Ok((v, t, file.find(crate::container::Tag::HOLE).is_none()))
+    },
+};
+
+/// The decoder of `mode`.
+pub(crate) fn for_mode(mode: Mode) -> &'static ModeDecoder {
+    match mode {
+        Mode::Lossless => &LOSSLESS,
+        Mode::Swing => &SWING,
+    }
+}
+
+/// [`crate::decode`] of a container already parsed (and checked) with
+/// `options.limits`.
+pub(crate) fn decode_container(
+    file: &Container<'_>,
+    options: &DecodeOptions,
+) -> Result<TriMesh, Error> {
+    let mesh = (for_mode(file.header.mode).decode)(file, &options.limits)?;
+    let post = crate::post::hint::resolve(file, options.sharpen, options.bend_steps);
+    sharpen_and_bend(mesh, post, &options.limits)
+}
+
+/// The decoder's optional post-processing: EdgeSharpener, then Bender
+/// with the edges it tagged.
+fn sharpen_and_bend(
+    mesh: TriMesh,
+    post: crate::post::hint::PostProcessing,
+    limits: &Limits,
+) -> Result<TriMesh, Error> {
+    if post.is_plain() {
+        return Ok(mesh);
+    }
+    let (mesh, sharp) = if post.sharpen {
+        let s = crate::post::sharpen::sharpen(&mesh, &Default::default())?;
+        (s.mesh, s.sharp)
+    } else {
+        (mesh, crate::post::SharpEdges::default())
+    };
+    let mesh = if post.bend_steps == 0 {
+        mesh
+    } else {
+        crate::post::bend::bend(&mesh, &sharp, post.bend_steps, limits)?.mesh
+    };
+    // A hostile file can place vertices near f32's limit (L about 1e38);
+    // snaps and stencils there overflow to infinity. The caller gets an
+    // error, never a mesh with non-finite positions.
+    mesh.validate()?;
+    Ok(mesh)
+}
+
+/// What `swm info` shows of a `.swm` file, read without decoding geometry.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FileInfo {
+    /// Format version (major, minor).
+    pub version: (u8, u8),
+    /// How its header and section table are laid out.
+    pub framing: crate::container::Framing,
+    /// Bytes that are not section payload: preamble, header, section
+    /// table and CRC (what the framing costs).
+    pub frame_bytes: usize,
+    /// The codec that wrote it.
+    pub mode: Mode,
+    /// Quantization bits (lossless mode; 0 in other modes).
+    pub qp: u8,
+    /// Figures common to every mode (counts, CLERS histogram, sections),
+    /// as the encoder reports them.
+    pub stats: LosslessStats,
+    /// The SwingWrapper figures (edge length, angle bits, regularity,
+    /// bits per triangle of connectivity and geometry); `None` for other
+    /// modes.
+    pub swing: Option<SwingStats>,
+    /// The encoder's post-processing hint (what a default decode runs),
+    /// when the file has one this version understands.
+    pub post: Option<crate::post::hint::PostProcessing>,
+}
+
+/// [`crate::inspect`].
+pub(crate) fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> {
+    let file = parse_container(bytes, limits)?;
+    let h = &file.header;
+    let seen = (for_mode(h.mode).inspect)(&file, limits, bytes.len())?;
+    Ok(FileInfo {
+        version: (h.major, h.minor),
+        framing: h.framing(),
+        frame_bytes: file.frame_len() + 4,
+        mode: h.mode,
+        qp: seen.qp,
+        stats: seen.stats,
+        swing: seen.swing,
+        post: crate::post::hint::read(&file),
+    })
+}

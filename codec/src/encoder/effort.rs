@@ -1,0 +1,65 @@
+//! Effort levels (`swm encode --effort`, [`Effort`]): each is the list of
+//! methods the automatic mode's chooser runs, in the order that breaks
+//! ties, and the work budget of each, as Draco's compression levels and
+//! zstd's levels let a user trade time for size.
+//!
+//! | level     | methods (first wins a tie)                         | work                       |
+//! |-----------|----------------------------------------------------|----------------------------|
+//! | `fast`    | simplified, quick search                           | one collapse sequence, two size searches |
+//! | `default` | SwingWrapper (within [`swing_budget`]), simplified | + a retiling of small outputs |
+//! | `max`     | mixed, SwingWrapper, simplified: every search      | unbounded by the level     |
+//!
+//! Invariants: `max` is the automatic mode as it was before levels
+//! existed (its files are byte for byte those); every level's work grows
+//! at most linearly with the input's triangles and the output's bytes
+//! (the simplified method's collapse sequence is made once and its size
+//! searches replay it; a retiling under the level's budget is bounded by
+//! `cut` of it, counted in deterministic steps, so the bytes never
+//! depend on the machine). The budgets and the predicted work are
+//! measured figures (BENCHMARKS.md, "Effort levels").
+
+use super::choose::Entry;
+use super::mixed::Mixed;
+use super::simplified::Simplified;
+use super::swing::Swing;
+use crate::options::Effort;
+
+/// Retiling steps the `default` level always allows SwingWrapper (about
+/// a quarter of a second of retiling on the machines measured: 7-8 M
+/// steps per second).
+const SWING_STEPS_FLOOR: u64 = 2_000_000;
+/// And per triangle of the cleaned input: the level's time bar is a
+/// multiple of a lossless encode's, which is linear in the input.
+const SWING_STEPS_PER_FACE: u64 = 40;
+/// A budgeted retiling is cut at this multiple of its budget: the
+/// prediction is within a factor of two on the corpus, and a run that
+/// goes past that is running away.
+const CUT: u64 = 2;
+
+/// The `default` level's budget for SwingWrapper on an input of `faces`
+/// triangles.
+pub(crate) fn swing_budget(faces: usize) -> u64 {
+    SWING_STEPS_FLOOR.saturating_add(SWING_STEPS_PER_FACE.saturating_mul(faces as u64))
+}
+
+/// The work limit a budgeted method runs under.
+pub(crate) fn cut(budget: u64) -> u64 {
+    budget.saturating_mul(CUT)
+}
+
+/// The chooser's list at `effort` for an input of `faces` triangles.
+pub(crate) fn methods(effort: Effort, faces: usize) -> Vec<Entry> {
+    let entry = |method: &'static dyn super::method::CodingMethod, work| Entry { method, work };
+    match effort {
+        Effort::Fast => vec![entry(&Simplified::QUICK, None)],
+        Effort::Default => vec![
+            entry(&Swing::AUTO, Some(swing_budget(faces))),
+            entry(&Simplified::FULL, None),
+        ],
+        Effort::Max => vec![
+            entry(&Mixed, None),
+            entry(&Swing::AUTO, None),
+            entry(&Simplified::FULL, None),
+        ],
+    }
+}

@@ -1,0 +1,53 @@
+//! The lossless method: the cleaned input's own triangles, positions
+//! quantized to `qp` bits (mode 0, `crate::lossless`). It answers no
+//! size: the automatic mode weighs it through the simplified method,
+//! which ends at the whole mesh.
+
+use super::method::{Ask, CodingMethod, Job, Made};
+use super::stats::{Method, MethodStats};
+use crate::{Error, ParameterError};
+
+/// The lossless method at `qp` bits per coordinate.
+pub(crate) struct Lossless {
+    /// Bits per coordinate, `geometry::MIN_BITS..=MAX_BITS`.
+    pub qp: u8,
+}
+
+impl Lossless {
+    /// `qp` checked against the format's range.
+    pub fn new(qp: u8) -> Result<Lossless, Error> {
+        use crate::geometry::{MAX_BITS, MIN_BITS};
+        if !(MIN_BITS..=MAX_BITS).contains(&qp) {
+            return Err(ParameterError::OutOfRange {
+                name: "qp",
+                value: qp as f64,
+                min: MIN_BITS as f64,
+                max: MAX_BITS as f64,
+            }
+            .into());
+        }
+        Ok(Lossless { qp })
+    }
+}
+
+impl CodingMethod for Lossless {
+    fn method(&self) -> Method {
+        Method::Lossless
+    }
+
+    fn runs_when_whole_fits(&self) -> bool {
+        true
+    }
+
+    fn encode(&self, job: &Job<'_, '_>, _ask: Ask) -> Result<Option<Made>, Error> {
+        let c = job.cleaned;
+        let (bytes, stats, _) =
+            crate::lossless::encode(&c.table, &c.mesh, self.qp, job.options.framing)?;
+        Ok(Some(Made {
+            bytes,
+            stats: MethodStats::Lossless(stats),
+            l2_relative: None,
+            whole: true,
+        }))
+    }
+}

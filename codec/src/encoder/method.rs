@@ -1,0 +1,148 @@
+//! The seam every coding method implements ([`CodingMethod`]), after
+//! Draco's encoder/decoder factories: a method is one module under
+//! `encoder/` that turns a job and a request into a file with its
+//! figures, and the choosers above (`choose` per file, `mixed` per
+//! component) take a list of them. Methods never call a chooser; rate
+//! control (`retile::rate`), the post-processing hint (`post::hint`) and
+//! the distance measure (`metrics`, [`Job::measure`]) are services they
+//! call.
+//!
+//! ```text
+//!   api::encode ─► encoder::encode ─► choose (a list of methods, by effort)
+//!                                     │            │
+//!                        forced mode ─┘            ▼
+//!                         Lossless  Simplified  Swing  Mixed   (CodingMethod)
+//!                              │        │         │      │
+//!          services:  lossless::encode, simplify, retile::rate, post::hint, metrics
+//! ```
+//!
+//! Adding a method: one module implementing [`CodingMethod`], one variant
+//! of [`Method`] and of [`MethodStats`](super::MethodStats), and one line
+//! in an effort level's list (`effort`).
+
+use super::stats::{Method, MethodStats};
+use crate::metrics::Surface;
+use crate::options::{EncodeOptions, SwingTarget};
+use crate::simplify::Simplifier;
+use crate::{Cleaned, Error};
+use std::sync::OnceLock;
+
+/// What the methods of one encode share, each made on first use: the
+/// simplifier of the cleaned input (its collapse sequence made once for
+/// every method that simplifies) and the surface every candidate is
+/// measured against (the cleaned input, or the same surface with its
+/// high-valence fans rebuilt, [`Simplifier::reference`]).
+pub(crate) struct Services<'a> {
+    cleaned: &'a Cleaned,
+    framing: crate::container::Framing,
+    simplifier: OnceLock<Simplifier<'a>>,
+    reference: OnceLock<Surface>,
+}
+
+impl<'a> Services<'a> {
+    /// Nothing made yet.
+    pub fn new(cleaned: &'a Cleaned, framing: crate::container::Framing) -> Services<'a> {
+        Services {
+            cleaned,
+            framing,
+            simplifier: OnceLock::new(),
+            reference: OnceLock::new(),
+        }
+    }
+}
+
+/// One encode's input and the services its methods share.
+#[derive(Clone, Copy)]
+pub(crate) struct Job<'a, 's> {
+    /// The cleaned input.
+    pub cleaned: &'a Cleaned,
+    /// Vertices of the mesh as given (what bits per vertex count).
+    pub input_vertices: usize,
+    /// The caller's options (the chooser may lower a candidate's limits).
+    pub options: &'a EncodeOptions,
+    /// The shared services.
+    pub services: &'a Services<'s>,
+}
+
+impl<'a, 's> Job<'a, 's> {
+    /// The simplifier of the cleaned input.
+    pub fn simplifier(&self) -> &'a Simplifier<'s> {
+        let s = self.services;
+        s.simplifier
+            .get_or_init(|| Simplifier::new(&s.cleaned.mesh, s.framing))
+    }
+
+    /// The surface every candidate is measured against.
+    pub fn reference(&self) -> Result<&'a Surface, Error> {
+        let s = self.services;
+        if let Some(r) = s.reference.get() {
+            return Ok(r);
+        }
+        // Two threads may both build it; one is kept (they are equal).
+        let made = Surface::new(self.simplifier().reference())?;
+        Ok(s.reference.get_or_init(|| made))
+    }
+
+    /// The L2 distance of the file `bytes` to the reference, relative to
+    /// its diagonal, with the chooser's samples
+    /// ([`AUTO_SAMPLES`](crate::AUTO_SAMPLES)).
+    pub fn measure(&self, bytes: &[u8]) -> Result<f64, Error> {
+        let d = crate::simplify::file_distance(bytes, self.reference()?, crate::AUTO_SAMPLES)?;
+        Ok(d.l2_relative())
+    }
+}
+
+/// What a method is asked for: a size, a rate or an edge length, and a
+/// cap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Ask {
+    /// The target.
+    pub target: SwingTarget,
+    /// Never more than this many bytes.
+    pub max_bytes: Option<u64>,
+}
+
+/// A method's file, before the chooser weighs it.
+pub(crate) struct Made {
+    /// The file.
+    pub bytes: Vec<u8>,
+    /// The method's figures.
+    pub stats: MethodStats,
+    /// Its L2 relative to [`Job::reference`] when the method measured it
+    /// already with the chooser's samples (the simplified method does,
+    /// to choose its quantization).
+    pub l2_relative: Option<f64>,
+    /// It holds the whole cleaned mesh: short of the request, there is
+    /// nothing more to code.
+    pub whole: bool,
+}
+
+/// A coding method. Deterministic: the same job and ask give the same
+/// bytes at any thread count.
+pub(crate) trait CodingMethod: Sync {
+    /// Which method it is.
+    fn method(&self) -> Method;
+
+    /// Whether it still runs when the whole mesh at the finest
+    /// quantization fits the request (a retiling would then work far
+    /// below the input's edge length and come nowhere near that file).
+    fn runs_when_whole_fits(&self) -> bool {
+        false
+    }
+
+    /// Whether it can answer an edge-length request (and so give the
+    /// others their size).
+    fn takes_edge_length(&self) -> bool {
+        false
+    }
+
+    /// The work it predicts for `ask`, in the retiler's steps, for an
+    /// effort level's budget; `None` when it has no retiling to bound.
+    fn predicted_work(&self, _job: &Job<'_, '_>, _ask: Ask, _bytes: u64) -> Option<u64> {
+        None
+    }
+
+    /// Its file for `ask`; `Ok(None)` when it has nothing to add for this
+    /// input (the chooser records it as not applicable).
+    fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error>;
+}

@@ -1,0 +1,116 @@
+//! The encoder: one seam for every coding method ([`method`]), the
+//! methods each in their own module ([`lossless`], [`simplified`],
+//! [`swing`], [`mixed`]), the per-file chooser above them ([`choose`]),
+//! the effort levels that give it its list ([`effort`]) and the error
+//! target that searches over its sizes ([`target`]).
+//!
+//! A mode that names a method runs that method alone; the automatic mode
+//! runs the chooser. Either way the input is cleaned once and every
+//! method shares the job's services (the simplifier's collapse sequence,
+//! the reference surface).
+
+pub(crate) mod choose;
+pub(crate) mod effort;
+pub(crate) mod lossless;
+pub(crate) mod method;
+pub(crate) mod mixed;
+pub(crate) mod request;
+pub(crate) mod simplified;
+pub(crate) mod stats;
+pub(crate) mod swing;
+pub(crate) mod target;
+
+use crate::options::{EncodeMode, EncodeOptions, SwingTarget};
+use crate::{Error, TriMesh};
+use method::{Ask, CodingMethod, Job, Services};
+use stats::{EncodeStats, Encoded};
+
+/// Cleans and encodes `mesh` (see [`crate::encode`]).
+pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error> {
+    // A parameter error comes before any work.
+    let lossless = match options.mode {
+        EncodeMode::Lossless { qp } => Some(lossless::Lossless::new(qp)?),
+        _ => None,
+    };
+    let cleaned = crate::clean(mesh, &options.clean)?;
+    let services = Services::new(&cleaned, options.framing);
+    let job = Job {
+        cleaned: &cleaned,
+        input_vertices: mesh.vertex_count(),
+        options,
+        services: &services,
+    };
+    let forced = |m: &dyn CodingMethod, ask: Ask| -> Result<Encoded, Error> {
+        let made = m
+            .encode(&job, ask)?
+            .expect("a method run alone always has something to add");
+        Ok(Encoded {
+            bytes: made.bytes,
+            stats: EncodeStats {
+                clean: cleaned.report.clone(),
+                method: made.stats,
+                candidates: Vec::new(),
+            },
+        })
+    };
+    match options.mode {
+        EncodeMode::Lossless { .. } => {
+            let m = lossless.expect("checked above");
+            // Its file needs no size: any ask will do.
+            let ask = Ask {
+                target: SwingTarget::Bytes(1),
+                max_bytes: None,
+            };
+            forced(&m, ask)
+        }
+        EncodeMode::Swing {
+            target,
+            angle_bits,
+            max_bytes,
+        } => forced(&swing::Swing { angle_bits }, Ask { target, max_bytes }),
+        EncodeMode::Simplified { target, max_bytes } => {
+            let ask = Ask { target, max_bytes };
+            let search = match options.effort {
+                crate::Effort::Fast => simplified::Search::Quick,
+                _ => simplified::Search::Full,
+            };
+            if let SwingTarget::MaxError(bound) = target {
+                let list = [choose::Entry {
+                    method: if search == simplified::Search::Quick {
+                        &simplified::Simplified::QUICK
+                    } else {
+                        &simplified::Simplified::FULL
+                    },
+                    work: None,
+                }];
+                return finish(
+                    &cleaned,
+                    target::smallest_within(&job, bound, max_bytes, &list)?,
+                );
+            }
+            forced(&simplified::Simplified { search }, ask)
+        }
+        EncodeMode::Auto { target, max_bytes } => {
+            let list = effort::methods(options.effort, cleaned.mesh.triangles.len());
+            let chosen = match target {
+                SwingTarget::MaxError(bound) => {
+                    target::smallest_within(&job, bound, max_bytes, &list)?
+                }
+                _ => choose::choose(&job, Ask { target, max_bytes }, &list)?,
+            };
+            finish(&cleaned, chosen)
+        }
+    }
+}
+
+/// The chooser's file as the encoder's result.
+fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<Encoded, Error> {
+    Ok(Encoded {
+        bytes: chosen.bytes,
+        stats: EncodeStats {
+            clean: cleaned.report.clone(),
+            method: chosen.stats,
+            candidates: chosen.candidates,
+        },
+    })
+}

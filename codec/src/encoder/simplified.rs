@@ -1,0 +1,94 @@
+//! The simplified method: quadric simplification of the cleaned input,
+//! then the lossless mode (`crate::simplify`): the largest face count and
+//! the quantization of lowest measured error whose file fits the budget.
+//!
+//! Two searches ([`Search`]): the full one climbs over quantizations and
+//! measures each file against the input (`simplify::best_fit`); the
+//! quick one (effort `fast`) fits two quantizations, the start and the
+//! one its face count predicts, and measures nothing
+//! (`simplify::quick_fit`). Both return a file that fits the budget.
+
+use super::method::{Ask, CodingMethod, Job, Made};
+use super::stats::{Method, MethodStats, SimplifiedStats};
+use crate::{CleanOptions, Error};
+
+/// How far the simplified method searches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Search {
+    /// Every promising quantization, each file measured.
+    Full,
+    /// The predicted quantization only, nothing measured.
+    Quick,
+}
+
+/// The simplified method.
+pub(crate) struct Simplified {
+    /// Its search.
+    pub search: Search,
+}
+
+impl Simplified {
+    /// The full search (effort `default` and `max`).
+    pub const FULL: Simplified = Simplified {
+        search: Search::Full,
+    };
+    /// The quick search (effort `fast`).
+    pub const QUICK: Simplified = Simplified {
+        search: Search::Quick,
+    };
+}
+
+impl CodingMethod for Simplified {
+    fn method(&self) -> Method {
+        Method::Simplified
+    }
+
+    fn runs_when_whole_fits(&self) -> bool {
+        true
+    }
+
+    fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
+        let budget =
+            super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "simplified")?;
+        encode_at(job, budget, self.search).map(Some)
+    }
+}
+
+/// The simplified file at `budget` bytes.
+pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Result<Made, Error> {
+    let s = job.simplifier();
+    let found = match search {
+        Search::Full => {
+            crate::simplify::best_fit(s, budget, job.reference()?, crate::AUTO_SAMPLES)?
+                .map(|(fit, l2)| (fit, Some(l2)))
+        }
+        Search::Quick => crate::simplify::quick_fit(s, budget)?.map(|fit| (fit, None)),
+    };
+    let Some((fit, l2_relative)) = found else {
+        return Err(crate::SizeError {
+            requested: budget,
+            smallest: crate::simplify::smallest_bytes(s)?,
+        }
+        .into());
+    };
+    // The winner's figures, from the same deterministic encode.
+    let cleaned = crate::clean(&fit.mesh, &CleanOptions::default())?;
+    let (bytes, lossless, _) =
+        crate::lossless::encode(&cleaned.table, &cleaned.mesh, fit.qp, s.framing())?;
+    debug_assert_eq!(bytes, fit.bytes, "lossless encoding is deterministic");
+    let simplified = SimplifiedStats {
+        input_faces: s.faces() as u64,
+        faces: cleaned.mesh.triangles.len() as u64,
+        qp: fit.qp,
+        l2_relative,
+    };
+    Ok(Made {
+        bytes,
+        whole: simplified.faces >= simplified.input_faces,
+        stats: MethodStats::Simplified {
+            lossless,
+            simplified,
+        },
+        l2_relative,
+    })
+}

@@ -1,0 +1,265 @@
+//! What [`encode`](crate::encode) reports: the method that wrote the
+//! file with its own figures (one variant per method, [`MethodStats`]),
+//! and every candidate the chooser weighed ([`Candidate`]). A new method
+//! adds a variant here and nothing else to the report.
+
+use crate::{CleanReport, LimitError, LosslessStats, RetileError, SizeError, SwingStats};
+
+pub use crate::post::hint::HintReport;
+pub use crate::retile::compose::{PieceOutcome, PieceReport};
+pub use crate::retile::rate::{Attempt, RateReport};
+
+/// A coding method of the encoder.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Method {
+    /// The input's own triangles, positions quantized (mode 0).
+    Lossless,
+    /// Quadric simplification, then the lossless mode (mode 0).
+    Simplified,
+    /// SwingWrapper retiling (mode 1).
+    Swing,
+    /// Each component by the method measured closer at its share of the
+    /// size: a SwingWrapper file (mode 1) whose `REST` holds the
+    /// simplified components.
+    Mixed,
+}
+
+impl Method {
+    /// Its name in reports and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Lossless => "lossless",
+            Method::Simplified => "simplified",
+            Method::Swing => "swing",
+            Method::Mixed => "mixed",
+        }
+    }
+}
+
+/// What the simplified method kept.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SimplifiedStats {
+    /// Faces of the cleaned input.
+    pub input_faces: u64,
+    /// Faces of the simplified mesh written.
+    pub faces: u64,
+    /// Its bits per coordinate.
+    pub qp: u8,
+    /// The decoded file's L2 distance to the cleaned input, relative to
+    /// its bounding-box diagonal, as the encoder measured it to choose
+    /// `qp` ([`AUTO_SAMPLES`](crate::AUTO_SAMPLES) samples each way);
+    /// `None` when the search measured nothing ([`Effort::Fast`](crate::Effort)).
+    pub l2_relative: Option<f64>,
+}
+
+/// The figures of a SwingWrapper file (also of a mixed one, whose
+/// simplified components sit in its `REST`).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SwingReport {
+    /// Its sections, counts and regularity.
+    pub stats: SwingStats,
+    /// How rate control chose the edge length.
+    pub rate: RateReport,
+    /// What happened to each connected component of the cleaned input,
+    /// in order.
+    pub pieces: Vec<PieceReport>,
+    /// What the encoder measured for the post-processing hint, and what
+    /// it recommends (`None` when the hint was not measured).
+    pub hint: Option<HintReport>,
+}
+
+/// The method that wrote a file, with its own figures.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum MethodStats {
+    /// The lossless mode at a given quantization.
+    Lossless(LosslessStats),
+    /// Simplified, then the lossless mode.
+    Simplified {
+        /// The lossless file's figures.
+        lossless: LosslessStats,
+        /// What simplification kept.
+        simplified: SimplifiedStats,
+    },
+    /// SwingWrapper.
+    Swing(SwingReport),
+    /// A method per component, in a SwingWrapper file.
+    Mixed(SwingReport),
+}
+
+impl MethodStats {
+    /// Which method this is.
+    pub fn method(&self) -> Method {
+        match self {
+            MethodStats::Lossless(_) => Method::Lossless,
+            MethodStats::Simplified { .. } => Method::Simplified,
+            MethodStats::Swing(_) => Method::Swing,
+            MethodStats::Mixed(_) => Method::Mixed,
+        }
+    }
+}
+
+/// Why a candidate of the chooser made no file it could weigh.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum CandidateFailure {
+    /// No edge length retiled the surface (within the size cap).
+    Retile(RetileError),
+    /// The encoder's limits (or the effort level's work budget) stopped
+    /// it.
+    Limit(LimitError),
+    /// Its smallest file is larger than the request.
+    TooSmall(SizeError),
+    /// Its nearest file missed the requested size by more than rate
+    /// control's 3% (it was `bytes` long) while another candidate fits.
+    Oversized {
+        /// Its size.
+        bytes: u64,
+    },
+    /// Not tried: the whole cleaned mesh at the finest quantization of
+    /// the simplified method (16 bits) fits the request, and no retiling
+    /// comes near its error (a request far above what the mesh needs,
+    /// such as 100 MB for a 13,000-vertex part, would only make the
+    /// retiler work at an edge length far below the input's).
+    Unneeded {
+        /// The size of that whole-mesh file.
+        whole_bytes: u64,
+    },
+    /// Not tried at this effort level: its predicted work is above the
+    /// level's budget for this input and size.
+    OverBudget {
+        /// The work predicted, in the retiler's steps.
+        predicted: u64,
+        /// The level's budget.
+        budget: u64,
+    },
+    /// The method has nothing to add for this input: a method per
+    /// component on a mesh of one component, or one whose components all
+    /// chose the same method (the file would be another candidate's).
+    NotApplicable,
+}
+
+impl core::fmt::Display for CandidateFailure {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            CandidateFailure::Retile(e) => write!(f, "{e}"),
+            CandidateFailure::Limit(e) => write!(f, "{e}"),
+            CandidateFailure::TooSmall(e) => write!(f, "{e}"),
+            CandidateFailure::Oversized { bytes } => write!(
+                f,
+                "its nearest file, {bytes} bytes, missed the size by more than 3%"
+            ),
+            CandidateFailure::Unneeded { whole_bytes } => write!(
+                f,
+                "not tried: the whole mesh at 16 bits per coordinate fits in {whole_bytes} bytes"
+            ),
+            CandidateFailure::OverBudget { predicted, budget } => write!(
+                f,
+                "not tried at this effort: about {predicted} steps of retiling predicted, above the level's {budget} (--effort max tries it)"
+            ),
+            CandidateFailure::NotApplicable => write!(f, "nothing to add for this mesh"),
+        }
+    }
+}
+
+/// One candidate of the chooser, as measured by the encoder.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Candidate {
+    /// Its method.
+    pub method: Method,
+    /// Its file's size and measured error, or why there is none.
+    pub outcome: Result<Measured, CandidateFailure>,
+}
+
+/// A candidate file's size and error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Measured {
+    /// Its file size.
+    pub bytes: u64,
+    /// Its L2 distance to the cleaned input, relative to the input's
+    /// bounding-box diagonal; `None` for a lone candidate, which the
+    /// chooser does not measure ([`Effort::Fast`](crate::Effort)).
+    pub l2_relative: Option<f64>,
+}
+
+/// What [`encode`](crate::encode) learnt while encoding.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct EncodeStats {
+    /// What cleaning changed in the input.
+    pub clean: CleanReport,
+    /// The method that wrote the file, with its figures.
+    pub method: MethodStats,
+    /// Every candidate the automatic mode weighed, in the order of its
+    /// list (empty when the mode named one method).
+    pub candidates: Vec<Candidate>,
+}
+
+impl EncodeStats {
+    /// The method that wrote the file.
+    pub fn chosen(&self) -> Method {
+        self.method.method()
+    }
+
+    /// The lossless file's figures (lossless and simplified methods).
+    pub fn lossless(&self) -> Option<&LosslessStats> {
+        match &self.method {
+            MethodStats::Lossless(l) | MethodStats::Simplified { lossless: l, .. } => Some(l),
+            _ => None,
+        }
+    }
+
+    /// What the simplified method kept, when it wrote the file.
+    pub fn simplified(&self) -> Option<&SimplifiedStats> {
+        match &self.method {
+            MethodStats::Simplified { simplified, .. } => Some(simplified),
+            _ => None,
+        }
+    }
+
+    /// The SwingWrapper figures of a retiled (or mixed) file.
+    pub fn swing_report(&self) -> Option<&SwingReport> {
+        match &self.method {
+            MethodStats::Swing(r) | MethodStats::Mixed(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// [`SwingReport::stats`] of a retiled file.
+    pub fn swing(&self) -> Option<&SwingStats> {
+        self.swing_report().map(|r| &r.stats)
+    }
+
+    /// How rate control chose the edge length of a retiled file.
+    pub fn rate(&self) -> Option<&RateReport> {
+        self.swing_report().map(|r| &r.rate)
+    }
+
+    /// What the retiler did with each component (empty for mode 0).
+    pub fn pieces(&self) -> &[PieceReport] {
+        self.swing_report().map_or(&[], |r| &r.pieces)
+    }
+
+    /// The measured post-processing hint of a retiled file.
+    pub fn hint(&self) -> Option<&HintReport> {
+        self.swing_report().and_then(|r| r.hint.as_ref())
+    }
+
+    /// The chooser's candidate of `method`, when it weighed one.
+    pub fn candidate(&self, method: Method) -> Option<&Candidate> {
+        self.candidates.iter().find(|c| c.method == method)
+    }
+}
+
+/// A `.swm` file and the statistics of its making.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Encoded {
+    /// The file.
+    pub bytes: Vec<u8>,
+    /// How it was made.
+    pub stats: EncodeStats,
+}

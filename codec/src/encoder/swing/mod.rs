@@ -1,0 +1,202 @@
+//! The SwingWrapper method's encoder (thesis ch. 7): retile each
+//! component (`retile`), code the CLERS symbols and one angle per vertex
+//! (`swing::write`), the edge length chosen by rate control
+//! (`retile::rate`) and the file finished for the post-processing its
+//! decoder will run ([`hinted`]). Its decoder is `crate::swing`; the
+//! retiler is `crate::retile`.
+//!
+//! Invariants: the bytes depend only on the cleaned input, the request
+//! and the options (never on the limits, which only decide whether a
+//! file is written, nor on the thread count); a file is never above the
+//! request's cap.
+
+pub(crate) mod hinted;
+
+use super::method::{Ask, CodingMethod, Job, Made};
+use super::request::{bytes_for, positive};
+use super::stats::{Method, MethodStats, SwingReport};
+use crate::options::{EncodeOptions, SwingTarget, DEFAULT_ANGLE_BITS};
+use crate::retile::fill::Piece;
+use crate::{Cleaned, Error, ParameterError, TriMesh};
+use hinted::Request;
+
+/// Retiling steps predicted per retiled triangle and run (measured on
+/// spot, bunny, horse and fandisk at 1-4 b/v: 240-410 per triangle and
+/// run, the rate control plus the hint's trials taking 2-3 runs), for an
+/// effort level's budget.
+const STEPS_PER_TRIANGLE: u64 = 350;
+/// Runs predicted for one encode (rate control and the hint's trials).
+const PREDICTED_RUNS: u64 = 2;
+/// Bits per retiled triangle assumed when predicting its count from a
+/// size (files take 1.3-2.3; rate control's own first guess).
+const BITS_PER_TRIANGLE: u64 = 2;
+
+/// SwingWrapper, with the angle bits asked for (`None`: rate control
+/// chooses).
+pub(crate) struct Swing {
+    /// Bits per dihedral angle.
+    pub angle_bits: Option<u8>,
+}
+
+impl Swing {
+    /// Rate control chooses the angle bits (the automatic mode's).
+    pub const AUTO: Swing = Swing { angle_bits: None };
+}
+
+impl CodingMethod for Swing {
+    fn method(&self) -> Method {
+        Method::Swing
+    }
+
+    fn takes_edge_length(&self) -> bool {
+        true
+    }
+
+    fn predicted_work(&self, _job: &Job<'_, '_>, _ask: Ask, bytes: u64) -> Option<u64> {
+        let triangles = bytes.saturating_mul(8) / BITS_PER_TRIANGLE;
+        Some(
+            triangles
+                .saturating_mul(STEPS_PER_TRIANGLE)
+                .saturating_mul(PREDICTED_RUNS),
+        )
+    }
+
+    fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
+        let (bytes, report) = encode(
+            job.cleaned,
+            job.input_vertices,
+            job.options,
+            ask,
+            self.angle_bits,
+        )?;
+        Ok(Some(Made {
+            bytes,
+            stats: MethodStats::Swing(report),
+            l2_relative: None,
+            whole: false,
+        }))
+    }
+}
+
+/// The SwingWrapper file of `cleaned` for `ask`, with its figures.
+pub(crate) fn encode(
+    cleaned: &Cleaned,
+    input_vertices: usize,
+    options: &EncodeOptions,
+    ask: Ask,
+    angle_bits: Option<u8>,
+) -> Result<(Vec<u8>, SwingReport), Error> {
+    use crate::swing::{MAX_ANGLE_BITS, MIN_ANGLE_BITS};
+    if let Some(angle_bits) = angle_bits.filter(|k| !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(k))
+    {
+        return Err(ParameterError::OutOfRange {
+            name: "angle bits",
+            value: angle_bits as f64,
+            min: MIN_ANGLE_BITS as f64,
+            max: MAX_ANGLE_BITS as f64,
+        }
+        .into());
+    }
+    let request = request(ask.target, input_vertices, angle_bits, ask.max_bytes)?;
+    let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
+    encode_pieces(&pieces, &cleaned.mesh, options, request)
+}
+
+/// What a SwingWrapper encode must answer, its numbers checked: bytes
+/// from a size or a rate over `input_vertices` vertices, or an edge
+/// length.
+pub(crate) fn request(
+    target: SwingTarget,
+    input_vertices: usize,
+    angle_bits: Option<u8>,
+    max_bytes: Option<u64>,
+) -> Result<Request, Error> {
+    Ok(Request {
+        target: match target {
+            SwingTarget::EdgeLength(l) => Err(positive("edge length", l)?),
+            SwingTarget::Bytes(b) => Ok(positive("size", b as f64)? as u64),
+            SwingTarget::BitsPerVertex(bpv) => {
+                Ok(bytes_for(positive("bits per vertex", bpv)?, input_vertices))
+            }
+            SwingTarget::MaxError(_) => {
+                return Err(ParameterError::NotApplicable {
+                    name: "error bound",
+                    mode: "swing",
+                }
+                .into())
+            }
+        },
+        max_bytes,
+        angle_bits,
+    })
+}
+
+/// The file of the components `pieces` (some of them perhaps marked to be
+/// kept simplified, `Piece::keep`) of `input`, the cleaned mesh the
+/// post-processing hint is measured against.
+pub(crate) fn encode_pieces(
+    pieces: &[Piece],
+    input: &TriMesh,
+    options: &EncodeOptions,
+    request: Request,
+) -> Result<(Vec<u8>, SwingReport), Error> {
+    let (angle_bits, max_bytes) = (request.angle_bits, request.max_bytes);
+    use crate::retile::rate;
+    // Tips on creases where the input has enough of them: tried against
+    // the plain retiling for a size request whose hint is measured (the
+    // measure decides), used outright otherwise.
+    let creased =
+        options.swing.crease_tips && crate::retile::crease_length(pieces) >= input.bbox_diagonal();
+    let measured = options.swing.post_hint && request.target.is_ok();
+    let budget = crate::retile::Budget::new(options.limits);
+    let knobs = rate::Knobs {
+        angle_bits: angle_bits.unwrap_or(DEFAULT_ANGLE_BITS),
+        approximate_tips: options.swing.approximate_tips,
+        fit_tips: options.swing.fit_tips,
+        adaptive_density: options.swing.adaptive_density,
+        front_contexts: options.swing.front_contexts,
+        loop_start: options.swing.loop_start,
+        crease_tips: creased && !measured,
+        framing: options.framing,
+    };
+    let mut chosen = request.run(pieces, knobs, &budget, None)?;
+    let mut hint = None;
+    if options.swing.post_hint {
+        let (c, h) = hinted::finish(
+            pieces,
+            input,
+            chosen,
+            knobs,
+            request,
+            creased && measured,
+            &budget,
+        )?;
+        chosen = c;
+        hint = Some(h);
+    }
+    if let Some(cap) = max_bytes {
+        if chosen.bytes.len() as u64 > cap {
+            return Err(crate::RetileError {
+                attempts: chosen.report.attempts.len() as u32,
+                successes: chosen
+                    .report
+                    .attempts
+                    .iter()
+                    .filter(|a| a.outcome.is_ok())
+                    .count() as u32,
+                smallest_edge_length: chosen.report.edge_length,
+                failure: None,
+            }
+            .into());
+        }
+    }
+    Ok((
+        chosen.bytes,
+        SwingReport {
+            stats: chosen.stats,
+            rate: chosen.report,
+            pieces: chosen.pieces,
+            hint,
+        },
+    ))
+}

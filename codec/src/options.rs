@@ -1,0 +1,282 @@
+//! The options of [`encode`](crate::encode) and [`decode`](crate::decode):
+//! plain types at the bottom of the crate, which every encoder and
+//! decoder module may import and which import nothing of theirs (the
+//! layers are drawn in ARCHITECTURE.md).
+
+#[cfg(feature = "encoder")]
+use crate::CleanOptions;
+use crate::Limits;
+
+#[cfg(feature = "encoder")]
+/// Which codec an encoder uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum EncodeMode {
+    /// Keep the input's triangles; quantize positions to `qp` bits.
+    Lossless {
+        /// Bits per coordinate, 6..=24. Default 12.
+        qp: u8,
+    },
+    /// SwingWrapper: retile into near-equilateral triangles of edge L,
+    /// one quantized dihedral angle per vertex.
+    Swing {
+        /// What to aim at: a size, a rate or an edge length.
+        target: SwingTarget,
+        /// Bits per dihedral angle K, 4..=12. `None` (what `swm encode`
+        /// does without `--angle-bits`): [`DEFAULT_ANGLE_BITS`] for a given
+        /// edge length; for a size or a rate, chosen by rate control (6,
+        /// or 5 when the 6-bit file's angles spread so widely that the
+        /// sampling, not the angles, limits the error).
+        angle_bits: Option<u8>,
+        /// A size in bytes never to exceed. Default none.
+        max_bytes: Option<u64>,
+    },
+    /// Quadric simplification, then the lossless mode: the largest face
+    /// count and the quantization (7..=14 bits) of lowest measured error
+    /// whose file fits the size ([`simplify`](crate::simplify)).
+    Simplified {
+        /// A size or a rate; an edge length is refused (this method has
+        /// none).
+        target: SwingTarget,
+        /// A size in bytes never to exceed. Default none.
+        max_bytes: Option<u64>,
+    },
+    /// The methods of [`EncodeOptions::effort`]'s level at the same size
+    /// (at [`Effort::Max`]: SwingWrapper, [`Simplified`](EncodeMode::Simplified)
+    /// and a method per component), each decoded and measured against
+    /// the cleaned input with the encoder's own distance (L2,
+    /// [`AUTO_SAMPLES`] area-uniform samples each way); the lower error
+    /// wins, and a method that fails (or whose nearest file misses the
+    /// size by more than 3%) drops out. With an edge length, the SwingWrapper file's size is
+    /// the size both get. A size below both methods' smallest files is an
+    /// [`Error::Size`](crate::Error::Size) naming the smaller.
+    Auto {
+        /// What to aim at.
+        target: SwingTarget,
+        /// A size in bytes never to exceed. Default none.
+        max_bytes: Option<u64>,
+    },
+}
+
+#[cfg(feature = "encoder")]
+/// Area-uniform face samples per direction with which the automatic mode
+/// and the simplified method's choice of quantization measure their
+/// candidates: enough to tell apart errors 2-3% apart on the corpus.
+pub const AUTO_SAMPLES: u64 = 30_000;
+
+#[cfg(feature = "encoder")]
+/// The angle bits K of a SwingWrapper encode at a given edge length when
+/// none is given: the edge length fixes the triangles, so the angles get
+/// the precision that keeps their error well under the retiling's (a
+/// size or a rate instead lets rate control choose, see
+/// [`EncodeMode::Swing`]).
+pub const DEFAULT_ANGLE_BITS: u8 = 8;
+
+#[cfg(feature = "encoder")]
+/// What the SwingWrapper encoder aims at; the edge length L follows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SwingTarget {
+    /// A file size in bytes, met within 3%.
+    Bytes(u64),
+    /// Bits per vertex of the input mesh (as given to `encode`).
+    BitsPerVertex(f64),
+    /// The edge length L itself, in the mesh's units.
+    EdgeLength(f64),
+    /// The smallest file whose L2 distance to the input, as the encoder
+    /// measures it, is at most this bound ([`EncodeMode::Auto`] and
+    /// [`EncodeMode::Simplified`] only).
+    MaxError(ErrorBound),
+}
+
+#[cfg(feature = "encoder")]
+/// An error bound for [`SwingTarget::MaxError`]: the symmetric L2
+/// (root mean square) surface distance between the input and the
+/// decoded file, as `swm distance` reports it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ErrorBound {
+    /// Relative to the input's bounding-box diagonal (`2e-4`: the
+    /// "x 1e-4 of the diagonal" figure 2).
+    Relative(f64),
+    /// In the mesh's units.
+    Absolute(f64),
+}
+
+#[cfg(feature = "encoder")]
+/// How hard the encoder works, as Draco's compression levels and zstd's
+/// levels let a user say it: each level is a set of candidate methods
+/// and a work budget for the automatic mode's chooser
+/// (`encoder::effort`). The work of every level grows at most linearly
+/// with the input's triangles and the output's bytes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Effort {
+    /// The simplified method alone, with a short search (one
+    /// quantization predicted from the face count, no distance
+    /// measured): about the time of a lossless encode plus one quadric
+    /// simplification.
+    Fast,
+    /// The simplified method with its full search, and SwingWrapper
+    /// where its retiling fits the level's work budget (small outputs);
+    /// the chooser measures both.
+    #[default]
+    Default,
+    /// Every method with its whole search: SwingWrapper's rate control,
+    /// crease and hint trials, the simplified method, and a method per
+    /// component. Files are those the automatic mode wrote before effort
+    /// levels existed.
+    Max,
+}
+
+#[cfg(feature = "encoder")]
+impl Effort {
+    /// The level's name, as `swm encode --effort` takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Effort::Fast => "fast",
+            Effort::Default => "default",
+            Effort::Max => "max",
+        }
+    }
+}
+
+#[cfg(feature = "encoder")]
+impl Default for EncodeMode {
+    fn default() -> Self {
+        EncodeMode::Lossless { qp: 12 }
+    }
+}
+
+#[cfg(feature = "encoder")]
+/// Options for [`encode`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct EncodeOptions {
+    /// The codec and its parameters. Default: lossless, 12 bits.
+    pub mode: EncodeMode,
+    /// How hard the encoder works for a smaller error at the same size:
+    /// which methods [`EncodeMode::Auto`] weighs and how far each
+    /// searches. Default: [`Effort::Default`].
+    pub effort: Effort,
+    /// How the input is cleaned first. Default: everything on.
+    pub clean: CleanOptions,
+    /// Caps on the encoder's work, memory and time. Default: see
+    /// [`EncodeLimits`].
+    pub limits: crate::EncodeLimits,
+    /// Encoder-side choices of the SwingWrapper mode. Default: all on.
+    pub swing: SwingTuning,
+    /// How the file's header and section table are laid out. Default:
+    /// [`Framing::Compact`](crate::container::Framing::Compact) (format
+    /// 1.1: about 30 bytes fewer per file, 34 per nested remainder);
+    /// `Framing::Fixed` writes 1.0's layout, for decoders older than 1.1
+    /// (with `SwingTuning::front_contexts` off, the whole file is then
+    /// 1.0).
+    pub framing: crate::container::Framing,
+}
+
+#[cfg(feature = "encoder")]
+/// Choices of the SwingWrapper encoder, each switchable to measure what
+/// it buys (BENCHMARKS.md, issue 19's ablation). Every decoder of the
+/// format reads the result: approximating tips only change which angle
+/// codes are sent, and adaptive density adds a `DENS` section (format
+/// 1.1) only when some edge length differs from the base.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SwingTuning {
+    /// Aim each new vertex off the surface by the offset that cancels the
+    /// mean chord error of the triangles around it (about H·L²/8 along
+    /// the normal, H the mean curvature at the scale of L), rather than
+    /// on the surface as the thesis does. Default `true`.
+    pub approximate_tips: bool,
+    /// Choose each tip's angle code, among those near the aimed one, by
+    /// the two-sided distance between its triangle and the surface the
+    /// triangle covers, instead of the code nearest the aim (`retile::fit`;
+    /// issue 19, "error-aware geometry"). Default `true`.
+    pub fit_tips: bool,
+    /// Let the edge length follow the shape: shorter where the surface
+    /// bends, is thin or creased, longer where it is flat (L ∝ κ^(−1/3)
+    /// for the curvature κ at the scale of L; the file then carries one
+    /// level step per vertex in a `DENS` section, format 1.1). Default
+    /// `false`: on the shared corpus it does not yet pay for its section
+    /// everywhere (BENCHMARKS.md, "Adaptive sampling").
+    pub adaptive_density: bool,
+    /// Code the CLERS symbols with the shape of the front at each gate as
+    /// context (`CLRF`, format 1.1): about a fifth as many bits for the
+    /// connectivity. `false` writes `CLRS` as format 1.0 does, for
+    /// decoders older than 1.1. Default `true`.
+    pub front_contexts: bool,
+    /// On a component with holes, start the retiling on its longest
+    /// boundary loop (a fan over the hole, its points coded in a `LOOP`
+    /// section, format 1.1) instead of inside, where the front crosses
+    /// every hole's patch with triangles the decoder then drops. Default
+    /// `true`: on open surfaces it keeps the boundary exact to the angle
+    /// precision and spends the file on the surface (BENCHMARKS.md,
+    /// "Starting on a boundary loop").
+    pub loop_start: bool,
+    /// Decode the file plain, sharpened, and sharpened and bent once,
+    /// measure each against the input, and record the best in the file
+    /// (the ancillary `post` section, written only when it is not plain)
+    /// for decoders to follow ([`crate::post::hint`]); where
+    /// EdgeSharpener helps, also retile with every tip on the surface
+    /// (as `approximate_tips` and `fit_tips` off) and keep the file
+    /// closer to the input after its hint. Default `true`.
+    pub post_hint: bool,
+    /// Where the input has sharp edges, also try tips on them: a tip
+    /// whose gate's bisecting plane crosses a crease near its circle sits
+    /// on the crossing, off the circle by a radius code (`RADS`, format
+    /// 1.1; `retile::crease`), so the retiled mesh has edges along the
+    /// crease instead of chamfering it. Only where the input's creases
+    /// (edges turning by more than 45°) total at least its bounding-box
+    /// diagonal: then a size or rate request with `post_hint` on is
+    /// encoded both ways and the file that decodes closer after its hint
+    /// is kept (`crate::hinted`); an edge-length request, or one without
+    /// the hint, uses them. Default `true`.
+    pub crease_tips: bool,
+}
+
+#[cfg(feature = "encoder")]
+impl Default for SwingTuning {
+    fn default() -> Self {
+        SwingTuning {
+            approximate_tips: true,
+            fit_tips: true,
+            adaptive_density: false,
+            front_contexts: true,
+            loop_start: true,
+            crease_tips: true,
+            post_hint: true,
+        }
+    }
+}
+
+/// Options for [`decode`].
+///
+/// Post-processing follows the file's hint (the encoder's measured
+/// choice, [`crate::post::hint`]) in every field left `None`; a file
+/// without a hint decodes plain.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DecodeOptions {
+    /// Caps on what the file may make the decoder allocate (Bender's
+    /// output included).
+    pub limits: Limits,
+    /// Run EdgeSharpener on the decoded mesh: restore the sharp edges and
+    /// corners that retiling chamfered (thesis §8.3). Default `None`:
+    /// as the file's hint says (off without one).
+    pub sharpen: Option<bool>,
+    /// Bender steps after that (crease-preserving butterfly subdivision,
+    /// thesis §8.4); each multiplies the triangles by four. Without
+    /// sharpening, no edge is kept sharp. Default `None`: as the file's
+    /// hint says (0 without one).
+    pub bend_steps: Option<u32>,
+}
+
+impl DecodeOptions {
+    /// Plain decoding whatever the file's hint: neither EdgeSharpener
+    /// nor Bender.
+    pub fn plain() -> Self {
+        DecodeOptions {
+            sharpen: Some(false),
+            bend_steps: Some(0),
+            ..Default::default()
+        }
+    }
+}
