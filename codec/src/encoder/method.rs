@@ -33,20 +33,35 @@ use std::sync::OnceLock;
 /// measured against (the cleaned input, or the same surface with its
 /// high-valence fans rebuilt, [`Simplifier::reference`]).
 pub(crate) struct Services<'a> {
+    /// The mesh as the caller gave it.
+    input: &'a crate::TriMesh,
     cleaned: &'a Cleaned,
     framing: crate::container::Framing,
+    /// Simplify with meshoptimizer (effort `fast`).
+    quick: bool,
     simplifier: OnceLock<Simplifier<'a>>,
     reference: OnceLock<Surface>,
+    /// The input as given, as `swm distance` measures against it.
+    given: OnceLock<Surface>,
 }
 
 impl<'a> Services<'a> {
-    /// Nothing made yet.
-    pub fn new(cleaned: &'a Cleaned, framing: crate::container::Framing) -> Services<'a> {
+    /// Nothing made yet; `quick`: the simplifier is meshoptimizer's
+    /// (effort `fast`) rather than the quadric collapse sequence.
+    pub fn new(
+        input: &'a crate::TriMesh,
+        cleaned: &'a Cleaned,
+        framing: crate::container::Framing,
+        quick: bool,
+    ) -> Services<'a> {
         Services {
+            input,
             cleaned,
             framing,
+            quick,
             simplifier: OnceLock::new(),
             reference: OnceLock::new(),
+            given: OnceLock::new(),
         }
     }
 }
@@ -68,8 +83,16 @@ impl<'a, 's> Job<'a, 's> {
     /// The simplifier of the cleaned input.
     pub fn simplifier(&self) -> &'a Simplifier<'s> {
         let s = self.services;
-        s.simplifier
-            .get_or_init(|| Simplifier::new(&s.cleaned.mesh, s.framing))
+        s.simplifier.get_or_init(|| match s.quick {
+            true => Simplifier::quick(&s.cleaned.mesh, s.framing),
+            false => Simplifier::new(&s.cleaned.mesh, s.framing),
+        })
+    }
+
+    /// The bounding-box diagonal of the input as given (what relative
+    /// errors are relative to, as `swm distance` reports them).
+    pub fn services_input_diagonal(&self) -> f64 {
+        self.services.input.bbox_diagonal()
     }
 
     /// The surface every candidate is measured against.
@@ -81,6 +104,27 @@ impl<'a, 's> Job<'a, 's> {
         // Two threads may both build it; one is kept (they are equal).
         let made = Surface::new(self.simplifier().reference())?;
         Ok(s.reference.get_or_init(|| made))
+    }
+
+    /// The L2 distance between the input as given and what the file
+    /// `bytes` decodes to, relative to the input's diagonal, as
+    /// `swm distance` measures it (Metro's samples: every vertex, points
+    /// along every edge, ten per face of the larger mesh). Several times
+    /// the cost of [`Job::measure`]; the error target checks its answer
+    /// with it.
+    pub fn metro(&self, bytes: &[u8]) -> Result<f64, Error> {
+        let s = self.services;
+        let given = match s.given.get() {
+            Some(g) => g,
+            None => {
+                let made = Surface::new(s.input)?;
+                s.given.get_or_init(|| made)
+            }
+        };
+        let decoded = crate::decode(bytes, &Default::default())?;
+        let d =
+            crate::metrics::distance_between(given, &Surface::new(&decoded)?, &Default::default())?;
+        Ok(d.l2_relative())
     }
 
     /// The L2 distance of the file `bytes` to the reference, relative to

@@ -33,7 +33,12 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
         _ => None,
     };
     let cleaned = crate::clean(mesh, &options.clean)?;
-    let services = Services::new(&cleaned, options.framing);
+    let services = Services::new(
+        mesh,
+        &cleaned,
+        options.framing,
+        options.effort == crate::Effort::Fast,
+    );
     let job = Job {
         cleaned: &cleaned,
         input_vertices: mesh.vertex_count(),

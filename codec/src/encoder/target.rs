@@ -11,15 +11,21 @@
 //! the bracket is within [`PRECISION`], or after [`MAX_PROBES`] probes,
 //! with the smallest file that met the bound.
 //!
-//! The bound is met against the encoder's own measure (the reference
-//! surface, [`AUTO_SAMPLES`](crate::AUTO_SAMPLES) samples each way),
-//! aiming [`MARGIN`] under E so that an independent measure with other
-//! samples (`swm distance`) also finds the file within E.
+//! The search runs on the chooser's own measure (the reference surface,
+//! [`AUTO_SAMPLES`](crate::AUTO_SAMPLES) area-uniform samples each way),
+//! aiming [`MARGIN`] under E; its answer is then measured as
+//! `swm distance` measures it (Metro's samples against the input as
+//! given, [`Job::metro`](super::method::Job::metro)), and when that is
+//! above E the aim is lowered by the ratio of the two measures and the
+//! search goes on from the probes it has ([`ROUNDS`] at most). Metro's
+//! vertex and edge samples weigh the chords of a coarse mesh, so its L2
+//! is 5-10% above the area-uniform one on simplified scans.
 //!
 //! Invariants: every probe is a deterministic chooser run, so the file
 //! depends only on the input, E and the options; the work is at most
-//! [`MAX_PROBES`] chooser runs sharing one collapse sequence and one
-//! reference surface; the file is never above the cap.
+//! [`ROUNDS`] x [`MAX_PROBES`] chooser runs (in practice 5-9) sharing one
+//! collapse sequence and one reference surface, and [`ROUNDS`] Metro
+//! measures; the file is never above the cap.
 
 use super::choose::{choose, Chosen, Entry};
 use super::method::{Ask, Job};
@@ -40,12 +46,17 @@ const MAX_PROBES: usize = 12;
 /// corpus at the errors archives ask for (1e-4 to 1e-3 of the diagonal).
 const FIRST_BPV: f64 = 2.0;
 
-/// A probed size and what it gave.
+/// A probed size and what it gave: the chooser's file and its L2 by the
+/// chooser's measure, or `None` when no file is that small.
 struct Probe {
     bytes: u64,
-    /// Its file's measured L2 (relative); `None`: no file that small.
-    l2: Option<f64>,
+    file: Option<(Chosen, f64)>,
 }
+
+/// Calibration rounds at most: after each, the answer is measured as
+/// `swm distance` measures it and, when that is above the bound, the aim
+/// is lowered by the ratio of the two measures.
+const ROUNDS: usize = 3;
 
 /// The smallest file of the chooser over `list` whose L2 relative to the
 /// input's diagonal is at most `bound`, never above `max_bytes`.
@@ -55,12 +66,11 @@ pub(crate) fn smallest_within(
     max_bytes: Option<u64>,
     list: &[Entry],
 ) -> Result<Chosen, Error> {
-    let diagonal = job.simplifier().reference().bbox_diagonal();
+    let diagonal = job.services_input_diagonal();
     let e = match bound {
         ErrorBound::Relative(r) => positive("max error", r)?,
         ErrorBound::Absolute(a) => positive("max error", a)? / diagonal,
     };
-    let aim = e / MARGIN;
     // Above the whole mesh at the finest quantization nothing improves
     // (the simplified method returns that mesh); never above the cap.
     let c = job.cleaned;
@@ -69,88 +79,117 @@ pub(crate) fn smallest_within(
         .0
         .len() as u64;
     let ceiling = max_bytes.map_or(whole, |cap| cap.min(whole)).max(1);
-    let run = |bytes: u64| -> Result<(Option<Chosen>, Probe), Error> {
-        let ask = Ask {
-            target: SwingTarget::Bytes(bytes),
-            max_bytes,
+    let mut probes: Vec<Probe> = Vec::new();
+    let mut aim = e / MARGIN;
+    let mut closest: Option<(u64, f64)> = None;
+    for _ in 0..ROUNDS {
+        let Some(i) = search(job, aim, max_bytes, list, ceiling, &mut probes)? else {
+            break;
         };
-        match choose(job, ask, list) {
-            Ok(chosen) => {
-                let l2 = l2_of(job, &chosen)?;
-                Ok((
-                    Some(chosen),
+        let (chosen, cheap) = probes[i].file.as_ref().expect("a file met the aim");
+        let metro = job.metro(&chosen.bytes)?;
+        if closest.is_none_or(|(_, l)| metro < l) {
+            closest = Some((chosen.bytes.len() as u64, metro));
+        }
+        if metro <= e {
+            let Probe { file, .. } = probes.swap_remove(i);
+            return Ok(file.expect("a file met the aim").0);
+        }
+        // The two measures differ by the sampling (Metro's vertices and
+        // edges weigh the chords of a coarse mesh): aim lower by their
+        // ratio, a little more than it says.
+        aim = e * (cheap / metro) / MARGIN;
+    }
+    // Nothing met it: the closest file tried says how far.
+    let (bytes, lowest) = match closest {
+        Some(c) => c,
+        None => probes
+            .iter()
+            .filter_map(|p| p.file.as_ref().map(|f| (p.bytes, f.1)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap_or((ceiling, f64::INFINITY)),
+    };
+    Err(ErrorBoundError {
+        requested: e,
+        lowest,
+        bytes,
+    }
+    .into())
+}
+
+/// The bracketed search for `aim` by the chooser's measure, reusing and
+/// extending `probes`; the index of the smallest probe that meets it, or
+/// `None` when none does up to `ceiling`.
+fn search(
+    job: &Job<'_, '_>,
+    aim: f64,
+    max_bytes: Option<u64>,
+    list: &[Entry],
+    ceiling: u64,
+    probes: &mut Vec<Probe>,
+) -> Result<Option<usize>, Error> {
+    let meets = |p: &Probe| p.file.as_ref().is_some_and(|f| f.1 <= aim);
+    let mut next = match probes.is_empty() {
+        true => Some(bytes_for(FIRST_BPV, job.input_vertices).clamp(1, ceiling)),
+        false => None,
+    };
+    for _ in 0..MAX_PROBES {
+        if let Some(bytes) = next {
+            let ask = Ask {
+                target: SwingTarget::Bytes(bytes),
+                max_bytes,
+            };
+            let probe = match choose(job, ask, list) {
+                Ok(chosen) => {
+                    let l2 = l2_of(job, &chosen)?;
                     Probe {
                         bytes,
-                        l2: Some(l2),
-                    },
-                ))
-            }
-            Err(Error::Size(s)) => Ok((
-                None,
+                        file: Some((chosen, l2)),
+                    }
+                }
                 // No file below the smallest: everything under it is out.
-                Probe {
+                Err(Error::Size(s)) => Probe {
                     bytes: s.smallest.saturating_sub(1).max(bytes),
-                    l2: None,
+                    file: None,
                 },
-            )),
-            Err(e) => Err(e),
+                Err(e) => return Err(e),
+            };
+            probes.push(probe);
         }
-    };
-    // `lo`: the largest size known not to meet the aim; `hi`: the
-    // smallest known to, with its file.
-    let mut lo: Option<Probe> = None;
-    let mut hi: Option<(Probe, Chosen)> = None;
-    let mut fitted: Vec<(f64, f64)> = Vec::new();
-    let mut next = bytes_for(FIRST_BPV, job.input_vertices).clamp(1, ceiling);
-    for _ in 0..MAX_PROBES {
-        let (chosen, probe) = run(next)?;
-        match (chosen, probe.l2) {
-            (Some(chosen), Some(l2)) if l2 <= aim => {
-                fitted.push(((probe.bytes as f64).ln(), l2.ln()));
-                if hi.as_ref().is_none_or(|h| probe.bytes < h.0.bytes) {
-                    hi = Some((probe, chosen));
-                }
-            }
-            (_, l2) => {
-                if let Some(l2) = l2 {
-                    fitted.push(((probe.bytes as f64).ln(), l2.ln()));
-                }
-                if lo.as_ref().is_none_or(|l| probe.bytes > l.bytes) {
-                    lo = Some(probe);
-                }
-            }
-        }
-        let (lo_b, hi_b) = (lo.as_ref().map(|l| l.bytes), hi.as_ref().map(|h| h.0.bytes));
-        if let (Some(l), Some(h)) = (lo_b, hi_b) {
+        // `lo`: the largest size known not to meet the aim; `hi`: the
+        // smallest known to.
+        let lo = probes.iter().filter(|p| !meets(p)).map(|p| p.bytes).max();
+        let hi = probes
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| meets(p))
+            .min_by_key(|(_, p)| p.bytes)
+            .map(|(i, p)| (i, p.bytes));
+        if let (Some(l), Some((i, h))) = (lo, hi) {
             if h as f64 <= l as f64 * PRECISION {
-                break;
+                return Ok(Some(i));
             }
         }
-        if hi_b.is_none() && lo_b.is_some_and(|l| l >= ceiling) {
-            break;
+        if hi.is_none() && lo.is_some_and(|l| l >= ceiling) {
+            return Ok(None);
         }
-        next = guess(&fitted, aim, lo_b, hi_b, ceiling);
-        if Some(next) == lo_b || Some(next) == hi_b {
-            break;
+        let fitted: Vec<(f64, f64)> = probes
+            .iter()
+            .filter_map(|p| p.file.as_ref().map(|f| ((p.bytes as f64).ln(), f.1.ln())))
+            .collect();
+        let guess = guess(&fitted, aim, lo, hi.map(|h| h.1), ceiling);
+        if Some(guess) == lo || Some(guess) == hi.map(|h| h.1) {
+            return Ok(hi.map(|h| h.0));
         }
+        next = Some(guess);
     }
-    match hi {
-        Some((_, chosen)) => Ok(chosen),
-        None => {
-            // Nothing met it: the closest file tried says how far.
-            let (bytes, lowest) = fitted
-                .iter()
-                .map(|&(b, l)| (b.exp().round() as u64, l.exp()))
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .unwrap_or((ceiling, f64::INFINITY));
-            Err(ErrorBoundError {
-                requested: e,
-                lowest,
-                bytes,
-            }
-            .into())
-        }
-    }
+    let hi = probes
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| meets(p))
+        .min_by_key(|(_, p)| p.bytes)
+        .map(|(i, _)| i);
+    Ok(hi)
 }
 
 /// The measured L2 of the chooser's file (its candidate's, or measured
