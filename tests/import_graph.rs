@@ -106,25 +106,6 @@ const ALLOWED_FOR_NOW: &[&[&str]] = &[
         "codec/src/swing/stretch.rs",
         "codec/src/swing/write.rs",
     ],
-    &[
-        "tools/src/decode.rs",
-        "tools/src/distance.rs",
-        "tools/src/encode.rs",
-        "tools/src/fidelity.rs",
-        "tools/src/info.rs",
-        "tools/src/main.rs",
-        "tools/src/pipe.rs",
-        "tools/src/rd/baseline.rs",
-        "tools/src/rd/case.rs",
-        "tools/src/rd/check.rs",
-        "tools/src/rd/config.rs",
-        "tools/src/rd/mod.rs",
-        "tools/src/rd/plot.rs",
-        "tools/src/rd/source.rs",
-        "tools/src/rd/table.rs",
-        "tools/src/render.rs",
-        "tools/src/sharpen.rs",
-    ],
 ];
 
 type Module = Vec<String>;
@@ -292,11 +273,22 @@ fn tokens(code: &str) -> Vec<(String, usize)> {
     out
 }
 
-const ITEM_KEYWORDS: &[&str] =
-    &["fn", "struct", "enum", "trait", "type", "const", "static", "union", "macro_rules"];
+const ITEM_KEYWORDS: &[&str] = &[
+    "fn",
+    "struct",
+    "enum",
+    "trait",
+    "type",
+    "const",
+    "static",
+    "union",
+    "macro_rules",
+];
 
 fn is_ident(t: &str) -> bool {
-    t.chars().next().is_some_and(|c| c.is_alphabetic() || c == '_')
+    t.chars()
+        .next()
+        .is_some_and(|c| c.is_alphabetic() || c == '_')
 }
 
 impl Crate {
@@ -309,16 +301,24 @@ impl Crate {
         paths.sort();
         for path in &paths {
             let rel = path.strip_prefix(root).unwrap();
-            let mut module: Module =
-                rel.with_extension("").iter().map(|s| s.to_string_lossy().into_owned()).collect();
-            if matches!(module.last().map(String::as_str), Some("mod" | "lib" | "main")) {
+            let mut module: Module = rel
+                .with_extension("")
+                .iter()
+                .map(|s| s.to_string_lossy().into_owned())
+                .collect();
+            if matches!(
+                module.last().map(String::as_str),
+                Some("mod" | "lib" | "main")
+            ) {
                 module.pop();
             }
             krate.modules.insert(module, krate.files.len());
             krate.files.push(format!("{label}/{}", rel.display()));
         }
-        let sources: Vec<String> =
-            paths.iter().map(|p| strip(&std::fs::read_to_string(p).unwrap())).collect();
+        let sources: Vec<String> = paths
+            .iter()
+            .map(|p| strip(&std::fs::read_to_string(p).unwrap()))
+            .collect();
         let file_modules: Vec<Module> = {
             let mut v = vec![Module::new(); paths.len()];
             for (m, &f) in &krate.modules {
@@ -377,15 +377,27 @@ impl Crate {
                     i = use_tree(toks, i + 1, Vec::new(), &mut entries);
                     for (path, name, glob) in entries {
                         if glob {
-                            self.globs.entry(here.clone()).or_default().push((path.clone(), public));
+                            self.globs
+                                .entry(here.clone())
+                                .or_default()
+                                .push((path.clone(), public));
                         } else if let Some(name) = name {
-                            self.bindings.entry(here.clone()).or_default().push(Binding {
-                                name,
-                                path: path.clone(),
-                                public,
-                            });
+                            self.bindings
+                                .entry(here.clone())
+                                .or_default()
+                                .push(Binding {
+                                    name,
+                                    path: path.clone(),
+                                    public,
+                                });
                         }
-                        self.refs.push(Reference { file, module: here.clone(), line, path, glob });
+                        self.refs.push(Reference {
+                            file,
+                            module: here.clone(),
+                            line,
+                            path,
+                            glob,
+                        });
                     }
                     public = false;
                     continue;
@@ -393,7 +405,11 @@ impl Crate {
                 w if at_item_level && ITEM_KEYWORDS.contains(&w) => {
                     self.defines_items.insert(here.clone());
                 }
-                w if is_ident(w) && t(i + 1) == "::" && is_ident(t(i + 2)) && (i == 0 || t(i - 1) != "::") => {
+                w if is_ident(w)
+                    && t(i + 1) == "::"
+                    && is_ident(t(i + 2))
+                    && (i == 0 || t(i - 1) != "::") =>
+                {
                     let line = toks[i].1;
                     let mut path = vec![w.to_string()];
                     i += 1;
@@ -401,7 +417,13 @@ impl Crate {
                         path.push(t(i + 1).to_string());
                         i += 2;
                     }
-                    self.refs.push(Reference { file, module: here, line, path, glob: false });
+                    self.refs.push(Reference {
+                        file,
+                        module: here,
+                        line,
+                        path,
+                        glob: false,
+                    });
                     public = false;
                     continue;
                 }
@@ -489,13 +511,21 @@ impl Crate {
         const BUDGET: usize = 24;
         let mut edges = BTreeMap::new();
         for r in &self.refs {
-            let Some(abs) = self.absolute(&r.module, &r.path, BUDGET) else { continue };
+            let Some(abs) = self.absolute(&r.module, &r.path, BUDGET) else {
+                continue;
+            };
             let mut targets = Vec::new();
             if r.glob && self.is_module(&abs) {
                 if self.defines_items.contains(&abs) {
                     targets.push(self.modules[&abs]);
                 }
-                for b in self.bindings.get(&abs).into_iter().flatten().filter(|b| b.public) {
+                for b in self
+                    .bindings
+                    .get(&abs)
+                    .into_iter()
+                    .flatten()
+                    .filter(|b| b.public)
+                {
                     let target = self.absolute(&abs, &b.path, BUDGET);
                     targets.extend(target.and_then(|t| self.resolve(&t, BUDGET)));
                 }
@@ -504,8 +534,13 @@ impl Crate {
             }
             for to in targets {
                 if to != r.file {
-                    let why = format!("{}:{}: {}{}", self.files[r.file], r.line, r.path.join("::"),
-                        if r.glob { "::*" } else { "" });
+                    let why = format!(
+                        "{}:{}: {}{}",
+                        self.files[r.file],
+                        r.line,
+                        r.path.join("::"),
+                        if r.glob { "::*" } else { "" }
+                    );
                     edges.entry((r.file, to)).or_insert(why);
                 }
             }
@@ -670,16 +705,25 @@ fn no_import_cycles() {
                 used[k] = true;
             }
             failed |= allowed.is_none();
-            let verdict = if allowed.is_some() { "allowed for now" } else { "NOT ALLOWED" };
+            let verdict = if allowed.is_some() {
+                "allowed for now"
+            } else {
+                "NOT ALLOWED"
+            };
             report += &format!("cycle ({verdict}): {}\n", names.join(", "));
             for ((a, b), why) in &edges {
                 if comp.contains(a) && comp.contains(b) {
-                    report += &format!("    {} -> {}   ({why})\n", krate.files[*a], krate.files[*b]);
+                    report +=
+                        &format!("    {} -> {}   ({why})\n", krate.files[*a], krate.files[*b]);
                 }
             }
         }
     }
-    for (k, set) in ALLOWED_FOR_NOW.iter().enumerate().filter(|(k, _)| !used[*k]) {
+    for (k, set) in ALLOWED_FOR_NOW
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| !used[*k])
+    {
         failed = true;
         report += &format!("allowlist entry {k} meets no cycle any more, remove it: {set:?}\n");
     }
@@ -700,8 +744,10 @@ fn scanner_reads_code_only() {
     let mut out = Vec::new();
     let toks = tokens("use crate::a::{self, b::{C as D, *}, e};");
     use_tree(&toks, 1, Vec::new(), &mut out);
-    let got: Vec<(String, Option<String>, bool)> =
-        out.into_iter().map(|(p, n, g)| (p.join("::"), n, g)).collect();
+    let got: Vec<(String, Option<String>, bool)> = out
+        .into_iter()
+        .map(|(p, n, g)| (p.join("::"), n, g))
+        .collect();
     assert_eq!(
         got,
         vec![
