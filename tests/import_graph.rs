@@ -42,15 +42,6 @@ use std::path::{Path, PathBuf};
 /// so that it is removed as soon as it can be.
 const ALLOWED_FOR_NOW: &[&[&str]] = &[
     &[
-        "codec/src/container/compact.rs",
-        "codec/src/container/count.rs",
-        "codec/src/container/header.rs",
-        "codec/src/container/meta.rs",
-        "codec/src/container/mod.rs",
-        "codec/src/container/read.rs",
-        "codec/src/container/write.rs",
-    ],
-    &[
         "codec/src/mesh/mod.rs",
         "codec/src/mesh/normals.rs",
         "codec/src/mesh/test_shapes.rs",
