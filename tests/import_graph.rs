@@ -20,10 +20,15 @@
 //!   `crate::prelude::*`, which only re-exports `alloc`, is no edge).
 //! - `mod foo;` alone is no edge: a parent declaring a child imports
 //!   nothing from it.
-//! - Test code counts like any other code (`#[cfg(test)]` modules and
-//!   test files): a test helper that one module's tests take from another
-//!   module ties the two files together for a reader just the same. The
-//!   cure is a test-support module below both, not an exception here.
+//! - Test code counts, as a node of its own: a `#[cfg(test)]` module,
+//!   inline (`codec/src/io/obj.rs#tests`) or a file (`retile/tests.rs`),
+//!   is a separate node whose imports are edges like any other. A module's
+//!   own tests may call the API above it (`obj.rs`'s tests read through
+//!   `io::read_mesh_bytes`) without that making the module import its
+//!   caller; and since no production code can import test code, a cycle
+//!   through tests is one among test modules (helpers that import each
+//!   other). Shared test helpers belong in test-support modules low
+//!   enough for every test that takes them (`mesh/test_shapes.rs`).
 //! - Comments, doc comments, string and character literals are blanked
 //!   before scanning; lifetimes are dropped. Macro names (`say!`) and
 //!   `pub(in path)` visibilities are not imports.
@@ -42,12 +47,6 @@ use std::path::{Path, PathBuf};
 /// so that it is removed as soon as it can be.
 const ALLOWED_FOR_NOW: &[&[&str]] = &[
     &[
-        "codec/src/mesh/mod.rs",
-        "codec/src/mesh/normals.rs",
-        "codec/src/mesh/test_shapes.rs",
-        "codec/src/mesh/topology.rs",
-    ],
-    &[
         "codec/src/io/gltf/read.rs",
         "codec/src/io/mod.rs",
         "codec/src/io/obj.rs",
@@ -55,11 +54,6 @@ const ALLOWED_FOR_NOW: &[&[&str]] = &[
         "codec/src/io/ply.rs",
         "codec/src/io/stl.rs",
         "codec/src/io/tests.rs",
-    ],
-    &[
-        "codec/src/edgebreaker/holes.rs",
-        "codec/src/edgebreaker/tests.rs",
-        "codec/src/mesh/clean.rs",
     ],
     &[
         "codec/src/api.rs",
@@ -276,6 +270,40 @@ const ITEM_KEYWORDS: &[&str] = &[
     "macro_rules",
 ];
 
+/// Whether the `mod` at token `i` carries `#[cfg(test)]` or
+/// `#[cfg(all(test, …))]` among the attributes before it.
+fn cfg_test_before(toks: &[(String, usize)], mut i: usize) -> bool {
+    let t = |i: usize| toks[i].0.as_str();
+    if i > 0 && t(i - 1) == ")" {
+        while i > 0 && t(i - 1) != "(" {
+            i -= 1;
+        }
+        i = i.saturating_sub(1);
+    }
+    if i > 0 && t(i - 1) == "pub" {
+        i -= 1;
+    }
+    // Each attribute before: `# [ … ]`.
+    while i > 0 && t(i - 1) == "]" {
+        let end = i - 1;
+        let mut start = end;
+        while start > 0 && t(start) != "#" {
+            start -= 1;
+        }
+        let inner: Vec<&str> = toks[start + 2..end].iter().map(|t| t.0.as_str()).collect();
+        let cfg_test = match inner.as_slice() {
+            ["cfg", "(", "test", ")"] => true,
+            ["cfg", "(", "all", "(", rest @ ..] => rest.contains(&"test") && !rest.contains(&"not"),
+            _ => false,
+        };
+        if cfg_test {
+            return true;
+        }
+        i = start;
+    }
+    false
+}
+
 fn is_ident(t: &str) -> bool {
     t.chars()
         .next()
@@ -327,13 +355,14 @@ impl Crate {
     /// paths in code.
     fn scan(&mut self, file: usize, top: Module, toks: &[(String, usize)]) {
         let t = |i: usize| toks.get(i).map_or("", |x| x.0.as_str());
-        let mut stack: Vec<(Module, usize)> = vec![(top, 0)];
+        // (module, depth of its body, node its references belong to)
+        let mut stack: Vec<(Module, usize, usize)> = vec![(top, 0, file)];
         let mut depth = 0;
         let mut public = false;
         let mut i = 0;
         while i < toks.len() {
-            let here = stack.last().unwrap().0.clone();
-            let at_item_level = depth == stack.last().unwrap().1;
+            let (here, body, node) = stack.last().unwrap().clone();
+            let at_item_level = depth == body;
             match t(i) {
                 "{" => depth += 1,
                 "}" => {
@@ -355,9 +384,17 @@ impl Crate {
                 "mod" if is_ident(t(i + 1)) && t(i + 2) == "{" => {
                     let mut inner = here.clone();
                     inner.push(t(i + 1).to_string());
-                    self.modules.insert(inner.clone(), file);
+                    // An inline test module is a node of its own.
+                    let inner_node = if cfg_test_before(toks, i) {
+                        self.files
+                            .push(format!("{}#{}", self.files[node], t(i + 1)));
+                        self.files.len() - 1
+                    } else {
+                        node
+                    };
+                    self.modules.insert(inner.clone(), inner_node);
                     depth += 1;
-                    stack.push((inner, depth));
+                    stack.push((inner, depth, inner_node));
                     i += 3;
                     public = false;
                     continue;
@@ -383,7 +420,7 @@ impl Crate {
                                 });
                         }
                         self.refs.push(Reference {
-                            file,
+                            file: node,
                             module: here.clone(),
                             line,
                             path,
@@ -409,7 +446,7 @@ impl Crate {
                         i += 2;
                     }
                     self.refs.push(Reference {
-                        file,
+                        file: node,
                         module: here,
                         line,
                         path,
