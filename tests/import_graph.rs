@@ -47,15 +47,6 @@ use std::path::{Path, PathBuf};
 /// so that it is removed as soon as it can be.
 const ALLOWED_FOR_NOW: &[&[&str]] = &[
     &[
-        "codec/src/io/gltf/read.rs",
-        "codec/src/io/mod.rs",
-        "codec/src/io/obj.rs",
-        "codec/src/io/off.rs",
-        "codec/src/io/ply.rs",
-        "codec/src/io/stl.rs",
-        "codec/src/io/tests.rs",
-    ],
-    &[
         "codec/src/api.rs",
         "codec/src/auto.rs",
         "codec/src/hinted.rs",

@@ -28,7 +28,8 @@
 //!   gives errors their line numbers.
 
 use super::text::{self, Text};
-use super::{limit, Attributes, Builder};
+use super::builder::{limit, Builder};
+use super::Attributes;
 use crate::{Error, FormatError, Limited, Limits, Location, Malformed, TriMesh};
 use std::io::{self, BufRead, Read, Write};
 

@@ -20,7 +20,8 @@
 //! errors carry the line number.
 
 use super::text::{self, Text};
-use super::{Attributes, Builder};
+use super::builder::Builder;
+use super::Attributes;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 

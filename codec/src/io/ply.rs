@@ -28,7 +28,8 @@
 //! declared vertex count as they are read, so faces may precede vertices.
 
 use super::text::{self, Text};
-use super::{Attributes, Builder};
+use super::builder::Builder;
+use super::Attributes;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 

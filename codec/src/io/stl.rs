@@ -28,7 +28,8 @@
 //! [`Limits`] before allocation; ASCII growth is checked facet by facet.
 
 use super::text::{self, Text};
-use super::{Attributes, Builder};
+use super::builder::Builder;
+use super::Attributes;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 
