@@ -27,8 +27,8 @@
 //!   triangles for the [`Limits`] before tobj allocates anything, and
 //!   gives errors their line numbers.
 
-use super::text::{self, Text};
 use super::builder::{limit, Builder};
+use super::text::{self, Text};
 use super::Attributes;
 use crate::{Error, FormatError, Limited, Limits, Location, Malformed, TriMesh};
 use std::io::{self, BufRead, Read, Write};

@@ -27,8 +27,8 @@
 //! [`Malformed::Truncated`]); vertex indices are checked against the
 //! declared vertex count as they are read, so faces may precede vertices.
 
-use super::text::{self, Text};
 use super::builder::Builder;
+use super::text::{self, Text};
 use super::Attributes;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
