@@ -17,7 +17,7 @@
 //!   lossless (mode 0) file, whose mesh follows the retiled one.
 //!
 //! The decoder rebuilds the corner table, then every vertex in one pass
-//! over the triangles ([`angle::rebuild_positions`]); the encoder runs the same
+//! over the triangles ([`rebuild::rebuild_positions`]); the encoder runs the same
 //! pass on the retiler's output before writing, so the file decodes to
 //! exactly the retiler's positions. Then masked triangles and the
 //! vertices only they used are dropped, and `REST`'s mesh appended.
@@ -37,6 +37,7 @@ mod forward;
 mod front;
 mod hole;
 mod read;
+mod rebuild;
 mod residual;
 mod stretch;
 #[cfg(feature = "encoder")]

@@ -345,7 +345,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let radii = read_stretch(file, &table, count, head.bits)?;
     let (list, reader) = read_loops(file, head.bits)?;
     let mut points = reader.map(|r| points(&list, r, &head));
-    let x = super::angle::rebuild_positions(
+    let x = super::rebuild::rebuild_positions(
         &table,
         &head.first,
         head.bits,
