@@ -40,47 +40,38 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 
-/// Cycles tolerated until the encoder refactor of issue 45 lands (the
-/// `api ↔ auto ↔ hinted ↔ mixed ↔ post/hint` knot). Each entry is a set of
-/// files; a cycle passes when all its files lie in one entry. This list
-/// must end empty; the test fails when an entry no longer meets any cycle,
-/// so that it is removed as soon as it can be.
+/// Cycles tolerated for now. Each entry is a set of files; a cycle passes
+/// when all its files lie in one entry. This list must end empty: the
+/// test fails when an entry no longer meets any cycle, so that it is
+/// removed as soon as it can be, and no entry may be added.
 const ALLOWED_FOR_NOW: &[&[&str]] = &[
+    // The encoder's knot, which the encoder refactor of issue 45 (the
+    // method seam, api.rs as a facade only) removes: api dispatches to
+    // auto, hinted and mixed, which call back into api; post/hint takes
+    // DecodeOptions from api. simplify/mod.rs is in it because it decodes
+    // its candidates through api's `crate::decode` (and takes
+    // retile::rate's TOLERANCE) while api calls the simplifier.
     &[
         "codec/src/api.rs",
         "codec/src/auto.rs",
         "codec/src/hinted.rs",
         "codec/src/mixed.rs",
-        "codec/src/post/bend/classify.rs",
-        "codec/src/post/bend/mod.rs",
-        "codec/src/post/bend/step.rs",
-        "codec/src/post/bend/tests.rs",
         "codec/src/post/hint.rs",
-        "codec/src/post/mod.rs",
-        "codec/src/post/sharpen/cleanup.rs",
-        "codec/src/post/sharpen/mod.rs",
-        "codec/src/post/sharpen/split.rs",
+        "codec/src/simplify/mod.rs",
+    ],
+    // Not broken yet (branch `cycles` ran out of time): the retiler's
+    // state, `Retiler` in retile/mod.rs, has its impl spread over
+    // boundary, crease, fit and gate, which import it while mod.rs calls
+    // them, and its fields hold their types (fit::Region). The cure is
+    // the state in a file of its own below the passes, with the passes'
+    // scratch types below it; retile/ moves under the encoder in the
+    // same refactor, so it is left to that.
+    &[
         "codec/src/retile/boundary.rs",
-        "codec/src/retile/compose.rs",
         "codec/src/retile/crease.rs",
-        "codec/src/retile/density.rs",
         "codec/src/retile/fit.rs",
         "codec/src/retile/gate.rs",
         "codec/src/retile/mod.rs",
-        "codec/src/retile/offset.rs",
-        "codec/src/retile/rate.rs",
-        "codec/src/retile/tests.rs",
-        "codec/src/simplify/mod.rs",
-        "codec/src/swing/angle.rs",
-        "codec/src/swing/chain.rs",
-        "codec/src/swing/density.rs",
-        "codec/src/swing/forward.rs",
-        "codec/src/swing/front.rs",
-        "codec/src/swing/mod.rs",
-        "codec/src/swing/read.rs",
-        "codec/src/swing/residual.rs",
-        "codec/src/swing/stretch.rs",
-        "codec/src/swing/write.rs",
     ],
 ];
 
