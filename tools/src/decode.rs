@@ -3,7 +3,7 @@
 //! [--max-input BYTES] [--json]`. IN and OUT may be `-` (standard input
 //! and output, see `pipe`).
 
-use crate::CliError;
+use crate::error::CliError;
 use std::ops::Deref;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -54,7 +54,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
-    crate::refuse_same_file(&args.input, &args.output)?;
+    crate::same_file::refuse_same_file(&args.input, &args.output)?;
     crate::pipe::data_on_stdout(&args.output);
     // Refuse an unknown or unwritable output format before doing any
     // work (bad usage).

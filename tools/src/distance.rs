@@ -10,7 +10,7 @@
 //! `--samples N`. The meshes are measured as read, without cleaning:
 //! distance is a property of the surfaces, whatever their connectivity.
 
-use crate::CliError;
+use crate::error::CliError;
 use serde_json::json;
 use std::path::PathBuf;
 use swm::metrics::{DistanceOptions, OneSided, Surface};

@@ -9,7 +9,7 @@
 //! with `-o -`); warnings, what cleaning changed and each component's
 //! fate go to stderr. IN and OUT may be `-` (standard input and output, see `pipe`).
 
-use crate::CliError;
+use crate::error::CliError;
 use std::path::PathBuf;
 use std::time::Instant;
 

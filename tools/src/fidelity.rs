@@ -165,26 +165,6 @@ mod tests {
         assert!(Fidelity::measure(&small, &bytes[..bytes.len() / 2]).is_err());
     }
 
-    /// `encode --help` and the README state the thresholds and the
-    /// sample count in words: they follow the constants.
-    #[test]
-    fn the_help_and_the_readme_state_the_thresholds() {
-        use clap::CommandFactory as _;
-        let mut cli = crate::Cli::command();
-        let encode = cli.find_subcommand_mut("encode").expect("encode");
-        let help = encode.render_long_help().to_string();
-        let readme = include_str!("../../README.md");
-        let readme = readme.split_whitespace().collect::<Vec<_>>().join(" ");
-        let area = format!("under {:.0}% of the input's", 100.0 * MIN_AREA_RATIO);
-        let far = format!("over {:.0}% of the", 100.0 * MAX_HAUSDORFF);
-        assert_eq!(SAMPLES, 30_000, "the texts say 30,000");
-        for text in [&help, &readme] {
-            assert!(text.contains(&area), "{area}");
-            assert!(text.contains(&far), "{far}");
-            assert!(text.contains("30,000 area-uniform samples"));
-        }
-    }
-
     #[test]
     fn thresholds() {
         assert!(fidelity(1.0, Some(0.01)).problems().is_empty());

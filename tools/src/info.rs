@@ -6,7 +6,7 @@
 //! loops and genus are those of the cleaned, manifold mesh the encoder
 //! would see.
 
-use crate::CliError;
+use crate::error::CliError;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]

@@ -28,6 +28,7 @@ mod args;
 mod decode;
 mod distance;
 mod encode;
+mod error;
 mod fidelity;
 mod info;
 mod pipe;
@@ -35,11 +36,14 @@ mod progress;
 mod rd;
 mod render;
 mod report;
+mod same_file;
 mod sharpen;
 mod signals;
 
 use clap::{CommandFactory, Parser, Subcommand};
-use std::path::{Path, PathBuf};
+// `encode` still names it `crate::refuse_same_file`; the other commands
+// name its module.
+use same_file::refuse_same_file;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -77,71 +81,6 @@ enum Command {
     Render(render::Args),
 }
 
-/// A failure tied to the file it concerns.
-pub struct CliError {
-    path: PathBuf,
-    error: swm::Error,
-    /// The exit status: 1, or 2 for bad usage.
-    code: u8,
-}
-
-impl CliError {
-    /// Wraps a library error with the file it came from.
-    pub fn new(path: impl Into<PathBuf>, error: impl Into<swm::Error>) -> Self {
-        CliError {
-            path: path.into(),
-            error: error.into(),
-            code: 1,
-        }
-    }
-
-    /// A usage error about `path` found after parsing (such as an output
-    /// extension no writer has): exit status 2, as clap's own.
-    pub fn usage(path: impl Into<PathBuf>, error: impl Into<swm::Error>) -> Self {
-        CliError {
-            code: 2,
-            ..CliError::new(path, error)
-        }
-    }
-}
-
-/// Refuses to write `output` when it names the same file as `input`: the
-/// output is written in full before it replaces anything, but a command
-/// that replaced its own input would still destroy the original.
-pub fn refuse_same_file(input: &Path, output: &Path) -> Result<(), CliError> {
-    // `-` is a pipe, whatever a file named `-` may be.
-    if !pipe::is_stdio(input) && !pipe::is_stdio(output) && same_file(input, output) {
-        let e = std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "the output is the input file; refusing to overwrite it",
-        );
-        return Err(CliError::new(output, e));
-    }
-    Ok(())
-}
-
-/// Whether two paths name the same existing file: on Unix the same device
-/// and inode, which sees through `./a.obj`, symbolic links and hard
-/// links; elsewhere the same canonical path. An output that does not
-/// exist yet cannot be the input.
-fn same_file(a: &Path, b: &Path) -> bool {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        match (std::fs::metadata(a), std::fs::metadata(b)) {
-            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
-            _ => false,
-        }
-    }
-    #[cfg(not(unix))]
-    {
-        match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-            (Ok(a), Ok(b)) => a == b,
-            _ => false,
-        }
-    }
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     signals::install();
@@ -176,6 +115,34 @@ fn main() -> ExitCode {
             let msg = e.error.to_string().replace('\n', " ");
             eprintln!("swm: error: {}: {msg}", e.path.display());
             ExitCode::from(e.code)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use crate::fidelity::{MAX_HAUSDORFF, MIN_AREA_RATIO, SAMPLES};
+
+    /// `encode --help` and the README state the thresholds and the
+    /// sample count in words: they follow the constants. (Here rather
+    /// than in `fidelity`, which would otherwise import `main`'s `Cli`
+    /// while `main` imports it: a cycle.)
+    #[test]
+    fn the_help_and_the_readme_state_the_thresholds() {
+        use clap::CommandFactory as _;
+        let mut cli = Cli::command();
+        let encode = cli.find_subcommand_mut("encode").expect("encode");
+        let help = encode.render_long_help().to_string();
+        let readme = include_str!("../../README.md");
+        let readme = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+        let area = format!("under {:.0}% of the input's", 100.0 * MIN_AREA_RATIO);
+        let far = format!("over {:.0}% of the", 100.0 * MAX_HAUSDORFF);
+        assert_eq!(SAMPLES, 30_000, "the texts say 30,000");
+        for text in [&help, &readme] {
+            assert!(text.contains(&area), "{area}");
+            assert!(text.contains(&far), "{far}");
+            assert!(text.contains("30,000 area-uniform samples"));
         }
     }
 }

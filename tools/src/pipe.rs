@@ -13,7 +13,7 @@
 //!   there (text and `--json`) go to standard error instead, so that the
 //!   bytes on standard output are the file and nothing else.
 
-use crate::CliError;
+use crate::error::CliError;
 use std::io::{Read, Write};
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -28,7 +28,7 @@
 //! one path of about 50 bytes per front face, so a million-triangle mesh
 //! makes tens of MB: draw a decoded or simplified version of it instead.
 
-use crate::CliError;
+use crate::error::CliError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -79,7 +79,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
-    crate::refuse_same_file(&args.input, &args.output)?;
+    crate::same_file::refuse_same_file(&args.input, &args.output)?;
     let is_svg = args
         .output
         .extension()

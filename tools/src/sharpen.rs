@@ -3,7 +3,7 @@
 //! as to SwingWrapper's). The input is cleaned first, as the encoder
 //! cleans it, since EdgeSharpener needs an oriented manifold.
 
-use crate::CliError;
+use crate::error::CliError;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -23,7 +23,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
-    crate::refuse_same_file(&args.input, &args.output)?;
+    crate::same_file::refuse_same_file(&args.input, &args.output)?;
     swm::io::MeshFormat::from_path(&args.output).map_err(|e| CliError::usage(&args.output, e))?;
     let err = |e| CliError::new(&args.input, e);
     let mesh = swm::io::read_mesh(&args.input).map_err(err)?;

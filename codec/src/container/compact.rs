@@ -2,7 +2,7 @@
 //! "Compact framing"): the same header fields and section table as the
 //! fixed framing, written with varints and one-byte tag codes.
 //!
-//! A file that sets the required flag bit 0 ([`FLAG_COMPACT`]) lays out
+//! A file that sets the required flag bit 0 ([`FLAG_COMPACT`](super::header::FLAG_COMPACT)) lays out
 //! everything between its flags and its first payload this way:
 //!
 //! ```text
@@ -34,10 +34,6 @@ use super::tag::Tag;
 use super::UnsupportedFeature;
 use crate::varint::Reader;
 use crate::{Error, Limits, Malformed};
-
-/// Required flag bit 0: the header's counts and the section table are in
-/// the compact framing (format 1.1).
-pub const FLAG_COMPACT: u16 = 0x0001;
 
 /// Offset of the mode byte, the first byte the framings lay out
 /// differently after it.
@@ -115,7 +111,7 @@ pub(crate) struct CompactHead {
 }
 
 /// Reads and checks the header of a compact file (its flags set
-/// [`FLAG_COMPACT`], its magic, version and required flags were checked):
+/// [`FLAG_COMPACT`](super::header::FLAG_COMPACT), its magic, version and required flags were checked):
 /// mode, counts against `limits` and each other, section count.
 pub(crate) fn read_head(bytes: &[u8], limits: &Limits) -> Result<Scan<CompactHead>, Error> {
     let (major, minor, flags) = (bytes[4], bytes[5], u16::from_le_bytes([bytes[6], bytes[7]]));

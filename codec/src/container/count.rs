@@ -9,7 +9,7 @@
 //! coder's smallest probability allows); the container does the
 //! arithmetic, exactly and without overflow.
 
-use super::FORMAT_NAME;
+use super::header::FORMAT_NAME;
 use crate::{FormatError, Malformed};
 
 /// Checks that `count` elements of at least `min_bits_num / min_bits_den`

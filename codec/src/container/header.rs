@@ -11,9 +11,23 @@
 use crate::prelude::*;
 
 use super::{UnsupportedError, UnsupportedFeature};
-use super::{FORMAT_MAJOR, FORMAT_MINOR, FORMAT_NAME, MAGIC};
 use crate::{Error, FormatError, Limits, Location, Malformed};
 use byteorder::{ByteOrder, LittleEndian as LE};
+
+/// Major format version this crate writes and reads. A decoder rejects any
+/// other major version.
+pub const FORMAT_MAJOR: u8 = 1;
+
+/// Minor format version this crate writes. A decoder reads newer minor
+/// versions of its major version as long as they use no feature it does
+/// not know (see `format-spec/versions.md`).
+pub const FORMAT_MINOR: u8 = 1;
+
+/// The four bytes every `.swm` file starts with.
+pub const MAGIC: [u8; 4] = *b"SWM\0";
+
+/// Format name in [`FormatError`](crate::FormatError)s.
+pub(super) const FORMAT_NAME: &str = "SWM";
 
 /// Byte offsets of the fixed fields. They never move within a major
 /// version: later minor versions add sections, not header fields.
@@ -47,8 +61,12 @@ pub const FLAGS_REQUIRED: u16 = 0x00FF;
 /// Flag bits a decoder may ignore when it does not know them.
 pub const FLAGS_OPTIONAL: u16 = 0xFF00;
 /// Flag bits defined by this format version: 1.1 defines bit 0, the
-/// compact framing ([`FLAG_COMPACT`](super::FLAG_COMPACT)).
-pub const KNOWN_FLAGS: u16 = super::compact::FLAG_COMPACT;
+/// compact framing ([`FLAG_COMPACT`]).
+pub const KNOWN_FLAGS: u16 = FLAG_COMPACT;
+
+/// Required flag bit 0: the header's counts and the section table are in
+/// the compact framing (format 1.1).
+pub const FLAG_COMPACT: u16 = 0x0001;
 
 /// How the sections encode the mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -124,9 +142,9 @@ impl Header {
     /// is raised to at least 1).
     pub fn with_framing(mut self, framing: Framing) -> Self {
         match framing {
-            Framing::Fixed => self.flags &= !super::FLAG_COMPACT,
+            Framing::Fixed => self.flags &= !FLAG_COMPACT,
             Framing::Compact => {
-                self.flags |= super::FLAG_COMPACT;
+                self.flags |= FLAG_COMPACT;
                 self.minor = self.minor.max(1);
             }
         }
@@ -135,7 +153,7 @@ impl Header {
 
     /// How the header's counts and the section table are laid out.
     pub const fn framing(&self) -> Framing {
-        if self.flags & super::FLAG_COMPACT != 0 {
+        if self.flags & FLAG_COMPACT != 0 {
             Framing::Compact
         } else {
             Framing::Fixed
@@ -162,7 +180,7 @@ impl Header {
     }
 
     /// Reads and checks the fixed framing's header of a file whose magic,
-    /// CRC, version and flags were checked ([`check_preamble`]) and that
+    /// CRC, version and flags were checked (`read::check_preamble`) and that
     /// does not set the compact flag. `bytes` holds at least [`MIN_LEN`]
     /// bytes.
     pub(crate) fn read(bytes: &[u8], limits: &Limits) -> Result<Header, Error> {
@@ -205,24 +223,6 @@ pub enum Framing {
     /// per section. The default of the encoder.
     #[default]
     Compact,
-}
-
-/// Checks what every 1.x file has at the same place before its layout can
-/// differ: the major version, then the required flags (one of which
-/// selects the framing), then the file's length against the framing's
-/// smallest file. Returns the flags. `bytes` holds at least
-/// [`MIN_FRAME_LEN`] bytes.
-pub(crate) fn check_preamble(bytes: &[u8]) -> Result<u16, Error> {
-    let flags = check_version_and_flags(bytes)?;
-    let min = if flags & super::FLAG_COMPACT != 0 {
-        super::compact::MIN_COMPACT_LEN
-    } else {
-        MIN_LEN
-    };
-    if bytes.len() < min {
-        return Err(malformed(Malformed::Truncated, bytes.len()));
-    }
-    Ok(flags)
 }
 
 /// The major version, then the required flags; returns the flags.

@@ -8,8 +8,8 @@
 
 use crate::prelude::*;
 
-use super::header::put_u32;
-use super::{Section, FORMAT_NAME};
+use super::header::{put_u32, FORMAT_NAME};
+use super::read::Section;
 use crate::{FormatError, Location, Malformed};
 use byteorder::{ByteOrder, LittleEndian as LE};
 

@@ -26,7 +26,8 @@
 //!   one's own) and image-png's `Limits` for untrusted input.
 //!
 //! One concern per file: `crc` (checksum), `tag` (section names and the
-//! 1.0 registry), `header` (fixed fields, version and limit checks),
+//! 1.0 registry), `header` (magic, format version, flags, fixed fields
+//! and limit checks),
 //! `write` and `read` (the frame), `compact` (the compact framing's
 //! fields), `count` (the "count cannot fit" rule),
 //! `meta` (the `meta` key/value section).
@@ -114,31 +115,18 @@ pub(crate) fn reframe(bytes: &[u8], framing: Framing) -> Vec<u8> {
 }
 
 pub use crate::error::{UnsupportedError, UnsupportedFeature};
-pub use compact::FLAG_COMPACT;
 pub(crate) use compact::{read_head as read_compact_head, Scan};
 pub use count::check_count_fits;
 pub use crc::{crc32, Crc32};
 pub(crate) use header::check_version_and_flags;
 pub(crate) use header::{malformed, MIN_LEN};
-pub use header::{Framing, Header, Mode, FLAGS_OPTIONAL, FLAGS_REQUIRED, KNOWN_FLAGS};
+pub use header::{
+    Framing, Header, Mode, FLAGS_OPTIONAL, FLAGS_REQUIRED, FLAG_COMPACT, FORMAT_MAJOR,
+    FORMAT_MINOR, KNOWN_FLAGS, MAGIC,
+};
 pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
 pub(crate) use read::{check_magic, declared_len, table_end, TableCheck};
 pub use read::{parse_container, Container, Section, Sections};
 pub use tag::Tag;
 pub(crate) use tag::KNOWN_CRITICAL;
 pub use write::{container_len, write_container, write_container_into};
-
-/// Major format version this crate writes and reads. A decoder rejects any
-/// other major version.
-pub const FORMAT_MAJOR: u8 = 1;
-
-/// Minor format version this crate writes. A decoder reads newer minor
-/// versions of its major version as long as they use no feature it does
-/// not know (see `format-spec/versions.md`).
-pub const FORMAT_MINOR: u8 = 1;
-
-/// The four bytes every `.swm` file starts with.
-pub const MAGIC: [u8; 4] = *b"SWM\0";
-
-/// Format name in [`FormatError`](crate::FormatError)s.
-const FORMAT_NAME: &str = "SWM";

@@ -14,14 +14,14 @@
 //! Steps 3 and 4 read the fixed framing or the compact one (`compact`),
 //! as the flags say; the checks on each entry are the same.
 
-use super::compact::{self, Scan, FLAG_COMPACT};
+use super::compact::{self, Scan};
 use super::crc::crc32;
 use super::header::{
-    at, check_preamble, malformed, unsupported, Framing, Header, CRC_LEN, MIN_FRAME_LEN,
-    TABLE_ENTRY_LEN,
+    at, check_version_and_flags, malformed, unsupported, Framing, Header, CRC_LEN, FLAG_COMPACT,
+    FORMAT_MAJOR, MAGIC, MIN_FRAME_LEN, MIN_LEN, TABLE_ENTRY_LEN,
 };
 use super::tag::KNOWN_CRITICAL;
-use super::{Tag, UnsupportedFeature, FORMAT_MAJOR, MAGIC};
+use super::{Tag, UnsupportedFeature};
 use crate::{Error, Limits, Malformed};
 use byteorder::{ByteOrder, LittleEndian as LE};
 
@@ -154,6 +154,24 @@ impl<'a> Iterator for Sections<'a> {
 }
 
 impl ExactSizeIterator for Sections<'_> {}
+
+/// Checks what every 1.x file has at the same place before its layout can
+/// differ: the major version, then the required flags (one of which
+/// selects the framing), then the file's length against the framing's
+/// smallest file. Returns the flags. `bytes` holds at least
+/// [`MIN_FRAME_LEN`] bytes.
+fn check_preamble(bytes: &[u8]) -> Result<u16, Error> {
+    let flags = check_version_and_flags(bytes)?;
+    let min = if flags & FLAG_COMPACT != 0 {
+        compact::MIN_COMPACT_LEN
+    } else {
+        MIN_LEN
+    };
+    if bytes.len() < min {
+        return Err(malformed(Malformed::Truncated, bytes.len()));
+    }
+    Ok(flags)
+}
 
 /// Parses and checks a whole `.swm` file held in memory.
 ///

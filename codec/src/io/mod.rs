@@ -45,6 +45,7 @@
 //! share, `attributes` the report of what was dropped.
 
 mod attributes;
+mod builder;
 mod gltf;
 mod obj;
 mod off;
@@ -54,11 +55,11 @@ mod source;
 mod stl;
 mod text;
 
-use crate::{Error, FormatError, LimitError, Limited, Limits, Malformed, ParameterError, TriMesh};
+use crate::{Error, FormatError, Limits, Malformed, ParameterError, TriMesh};
 pub use attributes::{Attributes, ReadReport};
 pub use output::discard_unfinished;
 use output::write_atomic;
-use std::io::{self, BufWriter, Write};
+use std::io::{BufWriter, Write};
 use std::ops::Deref;
 use std::path::Path;
 
@@ -307,98 +308,6 @@ fn writable(format: MeshFormat) -> Result<(), Error> {
     }
     let format = format.name();
     Err(Error::Parameter(ParameterError::ReadOnly { format }))
-}
-
-/// The mesh a reader is building, the [`Limits`] it must stay within,
-/// and the attributes the file carried that the mesh does not keep.
-struct Builder<'l> {
-    mesh: TriMesh,
-    limits: &'l Limits,
-    dropped: Attributes,
-}
-
-impl<'l> Builder<'l> {
-    fn new(limits: &'l Limits) -> Self {
-        Builder {
-            mesh: TriMesh::default(),
-            limits,
-            dropped: Attributes::default(),
-        }
-    }
-
-    /// Checks the limits for `n` more vertices, then makes room for them.
-    fn reserve_vertices(&mut self, n: u64) -> Result<(), Error> {
-        let total = (self.mesh.positions.len() as u64).saturating_add(n);
-        self.limits.check_vertices(total)?;
-        // Indices are u32: 2^32 vertices is the most a mesh can address.
-        if total > 1 << 32 {
-            return Err(limit(Limited::Vertices, total, 1 << 32));
-        }
-        self.check_alloc(total, self.mesh.triangles.capacity() as u64)?;
-        let n = usize::try_from(n).map_err(|_| out_of_memory())?;
-        self.mesh
-            .positions
-            .try_reserve_exact(n)
-            .map_err(|_| out_of_memory())
-    }
-
-    /// Checks the limits for `n` more triangles, then makes room for them.
-    fn reserve_triangles(&mut self, n: u64) -> Result<(), Error> {
-        let total = (self.mesh.triangles.len() as u64).saturating_add(n);
-        self.limits.check_faces(total)?;
-        self.check_alloc(self.mesh.positions.capacity() as u64, total)?;
-        let n = usize::try_from(n).map_err(|_| out_of_memory())?;
-        self.mesh
-            .triangles
-            .try_reserve_exact(n)
-            .map_err(|_| out_of_memory())
-    }
-
-    /// Checks the limits against what the mesh holds now, for growth no
-    /// declared count announced (polygons, strips, ASCII STL). Memory is
-    /// bounded by the input size anyway; this keeps the limits exact.
-    fn check_growth(&self) -> Result<(), Error> {
-        let mesh = &self.mesh;
-        self.limits.check_vertices(mesh.positions.len() as u64)?;
-        self.limits.check_faces(mesh.triangles.len() as u64)?;
-        if mesh.positions.len() as u64 > 1 << 32 {
-            return Err(limit(
-                Limited::Vertices,
-                mesh.positions.len() as u64,
-                1 << 32,
-            ));
-        }
-        self.check_alloc(
-            mesh.positions.capacity() as u64,
-            mesh.triangles.capacity() as u64,
-        )
-    }
-
-    /// Checks the memory for vertex and triangle slots (allocated ones,
-    /// not just used ones).
-    fn check_alloc(&self, vertices: u64, triangles: u64) -> Result<(), Error> {
-        // 12 bytes per position and per triangle.
-        let bytes = vertices.saturating_add(triangles).saturating_mul(12);
-        Ok(self.limits.check_alloc(bytes)?)
-    }
-
-    fn finish(self) -> (TriMesh, Attributes) {
-        (self.mesh, self.dropped)
-    }
-}
-
-/// The allocator refused what the limits allowed.
-fn out_of_memory() -> Error {
-    Error::Io(io::Error::from(io::ErrorKind::OutOfMemory))
-}
-
-/// A limit error, for readers that count before they build.
-fn limit(what: Limited, requested: u64, limit: u64) -> Error {
-    Error::LimitExceeded(LimitError {
-        what,
-        requested,
-        limit,
-    })
 }
 
 #[cfg(test)]

@@ -27,8 +27,9 @@
 //!   triangles for the [`Limits`] before tobj allocates anything, and
 //!   gives errors their line numbers.
 
+use super::builder::{limit, Builder};
 use super::text::{self, Text};
-use super::{limit, Attributes, Builder};
+use super::Attributes;
 use crate::{Error, FormatError, Limited, Limits, Location, Malformed, TriMesh};
 use std::io::{self, BufRead, Read, Write};
 

@@ -19,8 +19,9 @@
 //! [`Limits`] before any allocation; each vertex and face is one line, so
 //! errors carry the line number.
 
+use super::builder::Builder;
 use super::text::{self, Text};
-use super::{Attributes, Builder};
+use super::Attributes;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 

@@ -27,8 +27,9 @@
 //! [`Malformed::Truncated`]); vertex indices are checked against the
 //! declared vertex count as they are read, so faces may precede vertices.
 
+use super::builder::Builder;
 use super::text::{self, Text};
-use super::{Attributes, Builder};
+use super::Attributes;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 

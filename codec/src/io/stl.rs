@@ -27,8 +27,9 @@
 //! Invariants: the binary count is checked against the file size and the
 //! [`Limits`] before allocation; ASCII growth is checked facet by facet.
 
+use super::builder::Builder;
 use super::text::{self, Text};
-use super::{Attributes, Builder};
+use super::Attributes;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
 use std::io::{self, Write};
 

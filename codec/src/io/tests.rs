@@ -2,7 +2,7 @@
 //! refuse the same way, and the shared corpus.
 
 use super::*;
-use crate::Location;
+use crate::{LimitError, Limited, Location};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

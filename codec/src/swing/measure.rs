@@ -138,7 +138,7 @@ fn measure_contexts() {
         let (file, head, conn, table, count) = open(&bytes);
         let geom = file.require(Tag::GEOM).unwrap().bytes;
         let codes = residual::decode(&table, geom, count, head.bits, head.predicted).unwrap();
-        let x = angle::rebuild_positions(
+        let x = rebuild::rebuild_positions(
             &table,
             &head.first,
             head.bits,

@@ -345,7 +345,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let radii = read_stretch(file, &table, count, head.bits)?;
     let (list, reader) = read_loops(file, head.bits)?;
     let mut points = reader.map(|r| points(&list, r, &head));
-    let x = super::angle::rebuild_positions(
+    let x = super::rebuild::rebuild_positions(
         &table,
         &head.first,
         head.bits,
@@ -557,4 +557,74 @@ pub(crate) fn inspect(
     );
     stats.density_levels = levels.as_deref().and_then(super::level_range);
     Ok((conn, stats))
+}
+
+impl SwingStats {
+    /// The figures of a file: its header fields, decoded corner table,
+    /// symbols, sections, masked triangles and triangles of `REST`. The
+    /// writer and `inspect` both build them here.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn new(
+        head: &Head,
+        table: &crate::CornerTable,
+        conn: &crate::edgebreaker::Connectivity,
+        sections: Vec<([u8; 4], usize)>,
+        file_bytes: usize,
+        masked: u64,
+        (rest_triangles, rest_components): (u64, u64),
+        loops: &chain::Loops,
+    ) -> Self {
+        let mut clers = [0u64; 5];
+        for &s in &conn.symbols {
+            clers[s as usize] += 1;
+        }
+        let labels = conn.symbols.len().max(1) as f64;
+        let mut valence = vec![0u32; table.vertex_count()];
+        for v in table.vertices() {
+            valence[v.idx()] += 1;
+        }
+        let six = valence.iter().filter(|&&k| k == 6).count();
+        let triangles = table.face_count() as u64;
+        let bytes_of = |tags: &[&[u8; 4]]| -> usize {
+            sections
+                .iter()
+                .filter(|(t, _)| tags.contains(&t))
+                .map(|(_, n)| n)
+                .sum()
+        };
+        let per_triangle = |bytes: usize| 8.0 * bytes as f64 / triangles.max(1) as f64;
+        let geom = bytes_of(&[b"GEOM"]);
+        let hole_bytes = bytes_of(&[&crate::container::Tag::HOLE.0]) as u64;
+        let rest_bytes = bytes_of(&[&crate::container::Tag::REST.0]) as u64;
+        let density_bytes = bytes_of(&[&crate::container::Tag::DENS.0]) as u64;
+        let loop_bytes = bytes_of(&[&crate::container::Tag::LOOP.0]) as u64;
+        // `masked` counts the patches' triangles only.
+        SwingStats {
+            edge_length: head.first.first().map_or(0.0, super::first_edge_length),
+            angle_bits: head.bits,
+            predicted_code: head.predicted,
+            vertices: table.vertex_count() as u64,
+            triangles,
+            components: conn.components as u64,
+            handle_events: conn.splits.len() as u64,
+            clers,
+            cr_share: (clers[Symbol::C as usize] + clers[Symbol::R as usize]) as f64 / labels,
+            valence6_share: six as f64 / valence.len().max(1) as f64,
+            connectivity_bits_per_triangle: per_triangle(bytes_of(&[b"TOPO", b"CLRS", b"CLRF"])),
+            geometry_bits_per_triangle: per_triangle(geom),
+            bits_per_angle: 8.0 * geom as f64 / (clers[Symbol::C as usize].max(1)) as f64,
+            sections,
+            file_bytes,
+            hole_bytes,
+            holes_masked_triangles: masked,
+            loops: loops.entries.len() as u64,
+            loop_points: loops.entries.iter().map(|e| u64::from(e.1)).sum(),
+            loop_bytes,
+            rest_bytes,
+            rest_triangles,
+            rest_components,
+            density_bytes,
+            density_levels: None,
+        }
+    }
 }

@@ -288,7 +288,7 @@ pub(crate) fn write(
             head.predicted,
         )
     });
-    let rebuilt = angle::rebuild_positions(
+    let rebuilt = super::rebuild::rebuild_positions(
         &decoded,
         first,
         bits,

@@ -7,7 +7,7 @@
 //! on scheduling.
 
 use crate::rd::source::Source;
-use crate::CliError;
+use crate::error::CliError;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, OnceLock};

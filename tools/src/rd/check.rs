@@ -20,12 +20,12 @@
 //! fails: regenerate the table in the same commit, so the change is seen.
 //! A row whose mesh changed (different vertex count or budget) is a
 //! failure too: the table no longer describes that mesh.
+//!
+//! This file holds the comparison; the run itself (read the table, run
+//! its rows again, print the verdicts) is `run_check` in `rd`, beside the
+//! fresh run whose steps it shares.
 
-use crate::rd::source::Source;
-use crate::rd::table::{self, Outcome, Row};
-use crate::rd::{fail, Args, Job};
-use crate::CliError;
-use std::path::Path;
+use crate::rd::table::{Outcome, Row};
 
 /// Absolute slack on distances, in their unit (1e-4 of the diagonal):
 /// 1e-7 of the diagonal, the resolution of `f32` coordinates. Without it
@@ -139,112 +139,3 @@ pub fn verdict_line(old: &Row, new: &Row, regressions: &[Regression]) -> String 
     }
 }
 
-/// `swm rd --check TABLE`: re-runs the rows (those of `--only` meshes),
-/// prints a verdict per row, and fails naming the first regression.
-pub fn run(args: &Args, table_path: &Path) -> Result<(), CliError> {
-    // Regular files only, within `max_input_bytes`, as every input.
-    let bytes = swm::io::read_file(table_path).map_err(|e| CliError::new(table_path, e))?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| {
-        CliError::new(
-            table_path,
-            std::io::Error::new(std::io::ErrorKind::InvalidData, e),
-        )
-    })?;
-    let mut old = table::from_csv(text).map_err(|e| CliError::new(table_path, e))?;
-    let table_dir = table_path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let short = |cell: &str| Source::from_table(cell, table_dir).short_name();
-    for only in &args.only {
-        if !old
-            .iter()
-            .any(|r| &r.mesh == only || &short(&r.mesh) == only)
-        {
-            return Err(fail(
-                table_path,
-                format!("no row is for the mesh `{only}` (--only)"),
-            ));
-        }
-    }
-    if !args.only.is_empty() {
-        old.retain(|r| {
-            args.only
-                .iter()
-                .any(|o| *o == r.mesh || *o == short(&r.mesh))
-        });
-    }
-    if old.is_empty() {
-        return Err(fail(table_path, "the table has no rows"));
-    }
-    let mut named: Vec<(Source, String)> = Vec::new();
-    for r in &old {
-        if !named.iter().any(|(_, n)| *n == r.mesh) {
-            named.push((Source::from_table(&r.mesh, table_dir), r.mesh.clone()));
-        }
-    }
-    let cases = super::load(named, Some(table_dir))?;
-    let jobs: Vec<Job> = old
-        .iter()
-        .map(|r| Job {
-            case: cases
-                .iter()
-                .position(|c| c.table_name == r.mesh)
-                .expect("loaded"),
-            rate: r.rate_bpv,
-            config: r.config,
-            samples: r.samples,
-        })
-        .collect();
-    let fresh = super::run_jobs(&cases, &jobs, args.quiet)?;
-    super::write_outputs(args, &cases, &fresh)?;
-
-    let mut worse = Vec::new();
-    let mut json_rows = Vec::new();
-    for (o, n) in old.iter().zip(&fresh) {
-        let regressions = compare(o, n, args.tolerance);
-        let line = verdict_line(o, n, &regressions);
-        if args.json {
-            let mut v = n.to_json();
-            v["verdict"] = if regressions.is_empty() {
-                "pass"
-            } else {
-                "worse"
-            }
-            .into();
-            v["regressions"] = regressions
-                .iter()
-                .map(|r| r.to_string())
-                .collect::<Vec<_>>()
-                .into();
-            json_rows.push(v);
-        } else {
-            say!("{line}");
-        }
-        if !regressions.is_empty() {
-            worse.push(line);
-        }
-    }
-    if args.json {
-        crate::report::print_json(&json_rows.into());
-    } else {
-        say!(
-            "{} rows checked, {} regressed (tolerance {}%)",
-            old.len(),
-            worse.len(),
-            100.0 * args.tolerance
-        );
-    }
-    match worse.first() {
-        None => Ok(()),
-        Some(first) => Err(fail(
-            table_path,
-            format!(
-                "{} of {} rows regressed; first: {}",
-                worse.len(),
-                old.len(),
-                first.trim_start_matches("WORSE").trim_start()
-            ),
-        )),
-    }
-}

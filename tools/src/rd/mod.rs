@@ -27,12 +27,14 @@
 mod baseline;
 mod case;
 mod check;
+mod code;
 mod config;
+mod measure;
 mod plot;
 mod source;
 mod table;
 
-use crate::CliError;
+use crate::error::{fail, CliError};
 use case::Case;
 use config::Config;
 use rayon::prelude::*;
@@ -157,11 +159,6 @@ fn parse_name(s: &str) -> Result<String, String> {
     }
 }
 
-/// An error that is the harness's own, not the library's.
-pub fn fail(path: impl Into<PathBuf>, what: impl Into<String>) -> CliError {
-    CliError::new(path, std::io::Error::other(what.into()))
-}
-
 /// One row to compute.
 struct Job {
     case: usize,
@@ -172,8 +169,118 @@ struct Job {
 
 pub fn run(args: &Args) -> Result<(), CliError> {
     match &args.check {
-        Some(table) => check::run(args, table),
+        Some(table) => run_check(args, table),
         None => run_fresh(args),
+    }
+}
+
+/// `swm rd --check TABLE`: re-runs the rows (those of `--only` meshes),
+/// prints a verdict per row, and fails naming the first regression.
+fn run_check(args: &Args, table_path: &Path) -> Result<(), CliError> {
+    // Regular files only, within `max_input_bytes`, as every input.
+    let bytes = swm::io::read_file(table_path).map_err(|e| CliError::new(table_path, e))?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        CliError::new(
+            table_path,
+            std::io::Error::new(std::io::ErrorKind::InvalidData, e),
+        )
+    })?;
+    let mut old = table::from_csv(text).map_err(|e| CliError::new(table_path, e))?;
+    let table_dir = table_path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let short = |cell: &str| Source::from_table(cell, table_dir).short_name();
+    for only in &args.only {
+        if !old
+            .iter()
+            .any(|r| &r.mesh == only || &short(&r.mesh) == only)
+        {
+            return Err(fail(
+                table_path,
+                format!("no row is for the mesh `{only}` (--only)"),
+            ));
+        }
+    }
+    if !args.only.is_empty() {
+        old.retain(|r| {
+            args.only
+                .iter()
+                .any(|o| *o == r.mesh || *o == short(&r.mesh))
+        });
+    }
+    if old.is_empty() {
+        return Err(fail(table_path, "the table has no rows"));
+    }
+    let mut named: Vec<(Source, String)> = Vec::new();
+    for r in &old {
+        if !named.iter().any(|(_, n)| *n == r.mesh) {
+            named.push((Source::from_table(&r.mesh, table_dir), r.mesh.clone()));
+        }
+    }
+    let cases = load(named, Some(table_dir))?;
+    let jobs: Vec<Job> = old
+        .iter()
+        .map(|r| Job {
+            case: cases
+                .iter()
+                .position(|c| c.table_name == r.mesh)
+                .expect("loaded"),
+            rate: r.rate_bpv,
+            config: r.config,
+            samples: r.samples,
+        })
+        .collect();
+    let fresh = run_jobs(&cases, &jobs, args.quiet)?;
+    write_outputs(args, &cases, &fresh)?;
+
+    let mut worse = Vec::new();
+    let mut json_rows = Vec::new();
+    for (o, n) in old.iter().zip(&fresh) {
+        let regressions = check::compare(o, n, args.tolerance);
+        let line = check::verdict_line(o, n, &regressions);
+        if args.json {
+            let mut v = n.to_json();
+            v["verdict"] = if regressions.is_empty() {
+                "pass"
+            } else {
+                "worse"
+            }
+            .into();
+            v["regressions"] = regressions
+                .iter()
+                .map(|r| r.to_string())
+                .collect::<Vec<_>>()
+                .into();
+            json_rows.push(v);
+        } else {
+            say!("{line}");
+        }
+        if !regressions.is_empty() {
+            worse.push(line);
+        }
+    }
+    if args.json {
+        crate::report::print_json(&json_rows.into());
+    } else {
+        say!(
+            "{} rows checked, {} regressed (tolerance {}%)",
+            old.len(),
+            worse.len(),
+            100.0 * args.tolerance
+        );
+    }
+    match worse.first() {
+        None => Ok(()),
+        Some(first) => Err(fail(
+            table_path,
+            format!(
+                "{} of {} rows regressed; first: {}",
+                worse.len(),
+                old.len(),
+                first.trim_start_matches("WORSE").trim_start()
+            ),
+        )),
     }
 }
 

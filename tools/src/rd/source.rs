@@ -16,8 +16,8 @@
 //!
 //! The same three spellings are accepted on the command line.
 
-use crate::rd::fail;
-use crate::CliError;
+use crate::error::fail;
+use crate::error::CliError;
 use std::path::{Component, Path, PathBuf};
 
 const GENERATED: &str = "generated:";

@@ -38,12 +38,11 @@
 //! the slivers. Every collapse deletes a face; flips do not, so a budget
 //! of operations bounds the loop.
 
-use crate::math;
 use crate::prelude::*;
 
 use glam::DVec3;
 
-use super::{angle_at, point};
+use super::geometry::{angle_at, is_sliver, point, sliver_sin2};
 
 const NONE: u32 = u32::MAX;
 
@@ -64,34 +63,6 @@ pub(super) struct Cleaned {
     pub left: u64,
     /// Small components removed because they had collapsed flat.
     pub components_removed: u64,
-}
-
-/// Whether a triangle has an angle with `sin² ≤ sin2` (or no area).
-/// The smallest angle (at most 60°) faces the shortest edge, and its sine
-/// is twice the area over the product of the two other edges' lengths.
-#[inline]
-pub(super) fn is_sliver(p: [DVec3; 3], sin2: f64) -> bool {
-    let (e0, e1, e2) = (p[2] - p[1], p[0] - p[2], p[1] - p[0]);
-    let l = [
-        e0.length_squared(),
-        e1.length_squared(),
-        e2.length_squared(),
-    ];
-    let cross2 = e2.cross(-e1).length_squared();
-    let k = if l[0] <= l[1] && l[0] <= l[2] {
-        0
-    } else if l[1] <= l[2] {
-        1
-    } else {
-        2
-    };
-    cross2 <= sin2 * l[(k + 1) % 3] * l[(k + 2) % 3]
-}
-
-/// The `sin²` of the angle below which a triangle is a sliver.
-pub(super) fn sliver_sin2(min_angle_degrees: f64) -> f64 {
-    let s = math::sin(min_angle_degrees.to_radians());
-    s * s
 }
 
 /// Removes slivers (module docs). `original` is the input's vertex count:

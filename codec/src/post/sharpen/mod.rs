@@ -14,6 +14,10 @@
 //!    that snapping makes where four or more sharp edges meet, and any the
 //!    input had) are removed by edge collapses.
 //!
+//! Below the passes: `options` (what the caller asks, the unmoved counts)
+//! and `geometry` (face normals, the sliver test, corner angles), which
+//! the passes share and which import none of them.
+//!
 //! Two rules are not in the thesis nor the notes. The colouring's flood
 //! is bounded by the normal of the face it starts from (`classify`: the
 //! thesis's flood paints whole chamfer strips smooth). And a new vertex also stays
@@ -39,119 +43,22 @@
 //! Cost: linear in the mesh size; flat arrays indexed by corner, face or
 //! vertex, and no hashing.
 
-use crate::math;
 use crate::prelude::*;
 
 mod classify;
 mod cleanup;
+mod geometry;
+mod options;
 mod snap;
 mod split;
 #[cfg(test)]
 mod tests;
 
-use glam::{DVec3, Vec3};
-
 use super::SharpEdges;
 use crate::mesh::CornerTable;
-use crate::{Error, LimitError, Limited, ParameterError, TriMesh};
-
-/// Options of [`sharpen`]. The defaults are the thesis's and the design
-/// notes' values, but for `max_snap_ratio` (see the module docs).
-#[derive(Clone, Debug, PartialEq)]
-pub struct SharpenOptions {
-    /// An interior edge is smooth when the angle between its two face
-    /// normals is below this multiple of ε, the mean of that angle over
-    /// the mesh's interior edges. Default 2.0 (the thesis's "2ε": ε alone
-    /// makes the filters too sensitive to noise).
-    pub smooth_factor: f64,
-    /// Triangles with an angle below this many degrees are removed by
-    /// collapsing the edge opposite the angle. Default 1.0. Zero-area
-    /// triangles are removed whatever the value.
-    pub min_angle_degrees: f64,
-    /// A chamfer-edge vertex stays at the edge's midpoint when the two
-    /// plane normals N, M are this close to parallel: `1 − (N·M)² <` this.
-    /// Default 1e-4.
-    pub parallel_tolerance: f64,
-    /// A corner vertex stays at the triangle's centroid when its three
-    /// plane normals are this close to coplanar: `|det[N; M; S]| <` this.
-    /// Default 1e-3.
-    pub coplanar_tolerance: f64,
-    /// A new vertex stays unmoved when snapping it would make an edge
-    /// longer than this multiple of the longest edge of the input mesh.
-    /// Default 1.0 (the thesis: the algorithm is tailored for nearly
-    /// uniform triangulations).
-    pub max_edge_factor: f64,
-    /// A new vertex stays unmoved when snapping would move it farther
-    /// than this multiple of its chamfer edge's length (for a corner: of
-    /// its triangle's longest edge). Default 0.7; `f64::INFINITY` (or any
-    /// large value) gives the thesis's rules alone.
-    pub max_snap_ratio: f64,
-}
-
-impl Default for SharpenOptions {
-    fn default() -> Self {
-        SharpenOptions {
-            smooth_factor: 2.0,
-            min_angle_degrees: 1.0,
-            parallel_tolerance: 1e-4,
-            coplanar_tolerance: 1e-3,
-            max_edge_factor: 1.0,
-            max_snap_ratio: 0.7,
-        }
-    }
-}
-
-impl SharpenOptions {
-    fn check(&self) -> Result<(), ParameterError> {
-        let ranges: [(&'static str, f64, f64, f64); 6] = [
-            ("smooth_factor", self.smooth_factor, 0.0, 1e6),
-            ("min_angle_degrees", self.min_angle_degrees, 0.0, 30.0),
-            ("parallel_tolerance", self.parallel_tolerance, 0.0, 1.0),
-            ("coplanar_tolerance", self.coplanar_tolerance, 0.0, 1.0),
-            ("max_edge_factor", self.max_edge_factor, 0.0, 1e6),
-            ("max_snap_ratio", self.max_snap_ratio, 0.0, f64::INFINITY),
-        ];
-        for (name, value, min, max) in ranges {
-            // Written so that NaN fails too.
-            if !(value >= min && value <= max) {
-                return Err(ParameterError::OutOfRange {
-                    name,
-                    value,
-                    min,
-                    max,
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
-/// Why new vertices were left where they were inserted (the middle of
-/// their chamfer edge or corner triangle) instead of being snapped.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[non_exhaustive]
-pub struct Unmoved {
-    /// The two planes are nearly parallel (`1 − c² <` the tolerance).
-    pub parallel: u64,
-    /// The three planes of a corner have nearly coplanar normals.
-    pub coplanar: u64,
-    /// The snapped position would make an edge longer than allowed.
-    pub too_long: u64,
-    /// The snapped position is too far from the inserted one.
-    pub too_far: u64,
-    /// The chamfer mixes a concave and a convex side (`a·b ≥ 0`).
-    pub mixed: u64,
-    /// An endpoint's red triangles give no normal (they cancel out or
-    /// have no area).
-    pub no_normal: u64,
-}
-
-impl Unmoved {
-    /// All unmoved vertices, whatever the reason.
-    pub fn total(&self) -> u64 {
-        self.parallel + self.coplanar + self.too_long + self.too_far + self.mixed + self.no_normal
-    }
-}
+use crate::{Error, LimitError, Limited, TriMesh};
+use geometry::FaceGeometry;
+pub use options::{SharpenOptions, Unmoved};
 
 /// What [`sharpen`] found and did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -239,7 +146,7 @@ pub fn sharpen(mesh: &TriMesh, options: &SharpenOptions) -> Result<Sharpened, Er
     let geometry = FaceGeometry::new(
         &mesh.positions,
         triangles,
-        cleanup::sliver_sin2(options.min_angle_degrees),
+        geometry::sliver_sin2(options.min_angle_degrees),
     );
     let classes = classify::classify(&table, &geometry.normals, options.smooth_factor);
     report.mean_normal_angle = classes.mean_normal_angle;
@@ -345,74 +252,4 @@ fn radix_sort(keys: &mut Vec<u64>) {
         }
         core::mem::swap(keys, &mut buffer);
     }
-}
-
-/// Per-face unit normals and the longest edge, computed in one pass.
-struct FaceGeometry {
-    /// Unit normal of each face; zero for a face without area. Single
-    /// precision (1e-7 is far below any angle the filters compare) halves
-    /// the memory that the per-edge sweep reads out of order.
-    pub normals: Vec<Vec3>,
-    /// Length of the longest edge of the mesh.
-    pub longest_edge: f64,
-    /// Faces that are slivers already (`cleanup::is_sliver` with `sin2`).
-    pub slivers: Vec<u32>,
-}
-
-impl FaceGeometry {
-    fn new(positions: &[[f32; 3]], triangles: &[[u32; 3]], sin2: f64) -> Self {
-        let mut longest2 = 0.0f64;
-        let mut slivers = Vec::new();
-        let normals = triangles
-            .iter()
-            .enumerate()
-            .map(|(f, t)| {
-                let p = t.map(|v| point(positions, v));
-                let (ab, bc, ca) = (p[1] - p[0], p[2] - p[1], p[0] - p[2]);
-                longest2 = longest2
-                    .max(ab.length_squared())
-                    .max(bc.length_squared())
-                    .max(ca.length_squared());
-                if cleanup::is_sliver(p, sin2) {
-                    slivers.push(f as u32);
-                }
-                unit_normal(ab, -ca).as_vec3()
-            })
-            .collect();
-        FaceGeometry {
-            normals,
-            longest_edge: math::sqrt(longest2),
-            slivers,
-        }
-    }
-}
-
-/// The unit normal of a triangle with edge vectors `u`, `v` from one
-/// corner, or zero when the triangle has no area to speak of (its cross
-/// product is lost in the rounding of its edges' lengths).
-#[inline]
-fn unit_normal(u: DVec3, v: DVec3) -> DVec3 {
-    let n = u.cross(v);
-    let len2 = n.length_squared();
-    let scale = u.length_squared() * v.length_squared();
-    if len2 > 1e-24 * scale && len2 > 0.0 {
-        n / math::sqrt(len2)
-    } else {
-        DVec3::ZERO
-    }
-}
-
-/// A position in double precision.
-#[inline(always)]
-fn point(positions: &[[f32; 3]], v: u32) -> DVec3 {
-    let p = positions[v as usize];
-    DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)
-}
-
-/// The angle at `p` between the directions to `q` and `r`, accurate for
-/// small and flat angles alike (0 or π when `q` or `r` is `p` itself).
-#[inline]
-fn angle_at(p: DVec3, q: DVec3, r: DVec3) -> f64 {
-    let (u, v) = (q - p, r - p);
-    math::atan2(u.cross(v).length(), u.dot(v))
 }

@@ -35,8 +35,9 @@ use crate::prelude::*;
 use glam::DVec3;
 
 use super::classify::{is_green, Classes};
+use super::geometry::{angle_at, point, FaceGeometry};
+use super::options::{SharpenOptions, Unmoved};
 use super::snap::{snap_corner, snap_edge, Refusal};
-use super::{angle_at, point, FaceGeometry, SharpenOptions, Unmoved};
 use crate::mesh::{CornerId, CornerTable, FaceId};
 
 /// "No new vertex" in the per-corner and per-face id arrays.
