@@ -45,20 +45,6 @@ use std::path::{Path, PathBuf};
 /// test fails when an entry no longer meets any cycle, so that it is
 /// removed as soon as it can be, and no entry may be added.
 const ALLOWED_FOR_NOW: &[&[&str]] = &[
-    // The encoder's knot, which the encoder refactor of issue 45 (the
-    // method seam, api.rs as a facade only) removes: api dispatches to
-    // auto, hinted and mixed, which call back into api; post/hint takes
-    // DecodeOptions from api. simplify/mod.rs is in it because it decodes
-    // its candidates through api's `crate::decode` (and takes
-    // retile::rate's TOLERANCE) while api calls the simplifier.
-    &[
-        "codec/src/api.rs",
-        "codec/src/auto.rs",
-        "codec/src/hinted.rs",
-        "codec/src/mixed.rs",
-        "codec/src/post/hint.rs",
-        "codec/src/simplify/mod.rs",
-    ],
     // Not broken yet (branch `cycles` ran out of time): the retiler's
     // state, `Retiler` in retile/mod.rs, has its impl spread over
     // boundary, crease, fit and gate, which import it while mod.rs calls

@@ -3,7 +3,6 @@
 //! (its methods, chooser and effort levels) in `encoder`, the decode
 //! table in `decoder` (ARCHITECTURE.md draws the layers).
 
-use crate::container::parse_container;
 use crate::options::DecodeOptions;
 use crate::{Error, Limits, TriMesh};
 
@@ -13,8 +12,8 @@ pub use crate::swing::SwingStats;
 
 #[cfg(feature = "encoder")]
 pub use crate::encoder::stats::{
-    Attempt, Candidate, CandidateFailure, EncodeStats, Encoded, Measured, Method, MethodStats,
-    PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport,
+    Attempt, Candidate, CandidateFailure, EncodeStats, Encoded, HintReport, Measured, Method,
+    MethodStats, PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport,
 };
 #[cfg(feature = "encoder")]
 pub use crate::options::{
@@ -39,7 +38,7 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
 /// file gives an error, never a panic, and nothing beyond `options.limits`
 /// is allocated.
 pub fn decode(bytes: &[u8], options: &DecodeOptions) -> Result<TriMesh, Error> {
-    crate::decoder::decode_container(&parse_container(bytes, &options.limits)?, options)
+    crate::decoder::decode(bytes, options)
 }
 
 /// Reads a file's header and connectivity (CLERS histogram included),

@@ -79,6 +79,11 @@ pub(crate) fn for_mode(mode: Mode) -> &'static ModeDecoder {
     }
 }
 
+/// [`crate::decode`].
+pub(crate) fn decode(bytes: &[u8], options: &DecodeOptions) -> Result<TriMesh, Error> {
+    decode_container(&parse_container(bytes, &options.limits)?, options)
+}
+
 /// [`crate::decode`] of a container already parsed (and checked) with
 /// `options.limits`.
 pub(crate) fn decode_container(

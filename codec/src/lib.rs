@@ -55,6 +55,8 @@ mod varint;
 #[cfg(feature = "io")]
 pub mod io;
 
+#[cfg(feature = "encoder")]
+pub use api::HintReport;
 pub use api::{decode, inspect, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
@@ -77,8 +79,6 @@ pub use mesh::{
 };
 pub use options::DecodeOptions;
 pub use post::bend::{bend, Bent};
-#[cfg(feature = "encoder")]
-pub use post::hint::HintReport;
 pub use post::hint::PostProcessing;
 pub use post::sharpen::{sharpen, SharpenOptions, SharpenReport, Sharpened, Unmoved};
 pub use post::SharpEdges;

@@ -34,22 +34,13 @@
 //! methods that code the input's own triangles compete: the others would
 //! answer it with an edge length of their own.
 
-use super::method::{Ask, CodingMethod, Job, Made};
+use super::effort::Entry;
+use super::method::{Ask, Job, Made};
 use super::stats::{Candidate, CandidateFailure, Measured, MethodStats};
 use crate::options::{EncodeOptions, SwingTarget};
 use crate::simplify::ON_SIZE_SLACK;
 use crate::{Error, ParameterError};
 use rayon::prelude::*;
-
-/// One entry of an effort level's list: a method and the work budget it
-/// gets (`None`: the caller's limits alone).
-#[derive(Clone, Copy)]
-pub(crate) struct Entry {
-    /// The method.
-    pub method: &'static dyn CodingMethod,
-    /// Its budget in the retiler's steps, when the level bounds it.
-    pub work: Option<u64>,
-}
 
 /// What the chooser wrote: the file, its method's figures, and every
 /// candidate in list order.

@@ -18,11 +18,21 @@
 //! depend on the machine). The budgets and the predicted work are
 //! measured figures (BENCHMARKS.md, "Effort levels").
 
-use super::choose::Entry;
+use super::method::CodingMethod;
 use super::mixed::Mixed;
 use super::simplified::Simplified;
 use super::swing::Swing;
 use crate::options::Effort;
+
+/// One entry of an effort level's list: a method and the work budget it
+/// gets (`None`: the caller's limits alone).
+#[derive(Clone, Copy)]
+pub(crate) struct Entry {
+    /// The method.
+    pub method: &'static dyn CodingMethod,
+    /// Its budget in the retiler's steps, when the level bounds it.
+    pub work: Option<u64>,
+}
 
 /// Retiling steps the `default` level always allows SwingWrapper (about
 /// a quarter of a second of retiling on the machines measured: 7-8 M
@@ -49,7 +59,7 @@ pub(crate) fn cut(budget: u64) -> u64 {
 
 /// The chooser's list at `effort` for an input of `faces` triangles.
 pub(crate) fn methods(effort: Effort, faces: usize) -> Vec<Entry> {
-    let entry = |method: &'static dyn super::method::CodingMethod, work| Entry { method, work };
+    let entry = |method: &'static dyn CodingMethod, work| Entry { method, work };
     match effort {
         Effort::Fast => vec![entry(&Simplified::QUICK, None)],
         Effort::Default => vec![

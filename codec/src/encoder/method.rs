@@ -121,7 +121,7 @@ impl<'a, 's> Job<'a, 's> {
                 s.given.get_or_init(|| made)
             }
         };
-        let decoded = crate::decode(bytes, &Default::default())?;
+        let decoded = crate::decoder::decode(bytes, &Default::default())?;
         let d =
             crate::metrics::distance_between(given, &Surface::new(&decoded)?, &Default::default())?;
         Ok(d.l2_relative())

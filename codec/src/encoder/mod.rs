@@ -80,7 +80,7 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 _ => simplified::Search::Full,
             };
             if let SwingTarget::MaxError(bound) = target {
-                let list = [choose::Entry {
+                let list = [effort::Entry {
                     method: if search == simplified::Search::Quick {
                         &simplified::Simplified::QUICK
                     } else {

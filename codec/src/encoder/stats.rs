@@ -5,7 +5,7 @@
 
 use crate::{CleanReport, LimitError, LosslessStats, RetileError, SizeError, SwingStats};
 
-pub use crate::post::hint::HintReport;
+pub use super::swing::hint::HintReport;
 pub use crate::retile::compose::{PieceOutcome, PieceReport};
 pub use crate::retile::rate::{Attempt, RateReport};
 

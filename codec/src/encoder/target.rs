@@ -27,7 +27,8 @@
 //! collapse sequence and one reference surface, and [`ROUNDS`] Metro
 //! measures; the file is never above the cap.
 
-use super::choose::{choose, Chosen, Entry};
+use super::choose::{choose, Chosen};
+use super::effort::Entry;
 use super::method::{Ask, Job};
 use super::request::{bytes_for, positive};
 use crate::options::{ErrorBound, SwingTarget};

@@ -201,7 +201,7 @@ pub(crate) fn file_distance(
     reference: &Surface,
     samples: u64,
 ) -> Result<SurfaceDistance, Error> {
-    let decoded = crate::decode(bytes, &Default::default())?;
+    let decoded = crate::decoder::decode(bytes, &Default::default())?;
     crate::metrics::distance_between(
         reference,
         &Surface::new(&decoded)?,

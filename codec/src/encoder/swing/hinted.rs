@@ -44,9 +44,10 @@
 //! deterministic measures (seeded samples), never on the thread count;
 //! the hint's bytes count against the request like any other section.
 
+use super::hint::{self, HintReport};
 use crate::metrics::Surface;
 use crate::options::AUTO_SAMPLES;
-use crate::post::hint::{self, HintReport, PostProcessing};
+use crate::post::hint::{payload, PostProcessing};
 use crate::retile::rate::{self, Chosen, Knobs, Prior};
 use crate::retile::{fill::Piece, Budget};
 use crate::{Error, TriMesh};
@@ -282,7 +283,7 @@ fn hinted(
 /// The figures of a file that now carries the hint `post`.
 fn noted(mut chosen: Chosen, post: PostProcessing, request: Request) -> Chosen {
     if !post.is_plain() {
-        let payload = hint::payload(post).len();
+        let payload = payload(post).len();
         chosen
             .stats
             .sections

@@ -10,6 +10,7 @@
 //! file is written, nor on the thread count); a file is never above the
 //! request's cap.
 
+pub(crate) mod hint;
 pub(crate) mod hinted;
 
 use super::method::{Ask, CodingMethod, Job, Made};
