@@ -19,6 +19,8 @@ pub(crate) mod simplified;
 pub(crate) mod stats;
 pub(crate) mod swing;
 pub(crate) mod target;
+#[cfg(test)]
+mod tests;
 
 use crate::options::{EncodeMode, EncodeOptions, SwingTarget};
 use crate::{Error, TriMesh};

@@ -10,9 +10,9 @@
 //! lives in the library, so `swm encode --mode lossless --bpv R` and this
 //! row are the same file.
 
+use crate::error::CliError;
 use crate::rd::measure::measure;
 use crate::rd::table::Coded;
-use crate::error::CliError;
 use std::time::Instant;
 
 /// The simplified method at one budget; `None` if nothing fits it.

@@ -6,8 +6,8 @@
 //! an entry first, every job reads the same value: results do not depend
 //! on scheduling.
 
-use crate::rd::source::Source;
 use crate::error::CliError;
+use crate::rd::source::Source;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, OnceLock};

@@ -138,4 +138,3 @@ pub fn verdict_line(old: &Row, new: &Row, regressions: &[Regression]) -> String 
         format!("WORSE  {}: {}", old.key(), why.join("; "))
     }
 }
-
