@@ -346,10 +346,24 @@ fn a_very_thin_torus_gives_a_valid_file() {
     assert!((388..=400).contains(&bytes), "{j}");
     let mesh = swm::decode(&std::fs::read(&output).unwrap(), &Default::default()).unwrap();
     assert!(mesh.face_count() > 0);
+    // No size given: the default rate is below the smallest file, which
+    // is written with a note (issue 45, item 7).
     let out = swm(&["encode", i, "-o", o]);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("the smallest possible is"), "{err}");
-    let out = swm(&["encode", i, "-o", o, "--or-smallest"]);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("swm: note: ") && err.contains("no size was given"),
+        "{err}"
+    );
+    // An explicit size below it is refused, naming the way out.
+    let out = swm(&["encode", i, "-o", o, "--size", "20"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("the smallest possible is") && err.contains("--or-smallest"),
+        "{err}"
+    );
+    let out = swm(&["encode", i, "-o", o, "--size", "20", "--or-smallest"]);
     assert_eq!(
         out.status.code(),
         Some(0),

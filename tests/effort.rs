@@ -158,3 +158,31 @@ fn an_error_bound_gets_the_smallest_file_that_meets_it() {
         other => panic!("{:?}", other.map(|e| e.bytes.len())),
     }
 }
+
+#[test]
+fn a_rate_counts_positions_not_split_vertices() {
+    // Every triangle with its own three vertices, as a glTF file with
+    // flat normals has them: the same shape and positions.
+    let welded = swm_corpus::icosphere(1.0, 2);
+    let mut split = swm::TriMesh::new(Vec::new(), Vec::new());
+    for t in &welded.triangles {
+        let base = split.positions.len() as u32;
+        split
+            .positions
+            .extend(t.iter().map(|&v| welded.positions[v as usize]));
+        split.triangles.push([base, base + 1, base + 2]);
+    }
+    assert_eq!(split.distinct_positions(), welded.vertex_count());
+    // The same budget for both (cleaning numbers the welded copy of the
+    // split mesh in another order, so the files themselves may differ).
+    let budget = (4.0 * welded.vertex_count() as f64 / 8.0).round();
+    for mesh in [&split, &welded] {
+        let n = encode(mesh, SwingTarget::BitsPerVertex(4.0), Effort::Fast)
+            .bytes
+            .len() as f64;
+        assert!(
+            n <= budget * 1.03 && n >= budget * 0.97,
+            "{n} bytes for {budget}"
+        );
+    }
+}

@@ -79,7 +79,9 @@ pub const DEFAULT_ANGLE_BITS: u8 = 8;
 pub enum SwingTarget {
     /// A file size in bytes, met within 3%.
     Bytes(u64),
-    /// Bits per vertex of the input mesh (as given to `encode`).
+    /// Bits per vertex of the input mesh as given to `encode`, its
+    /// vertices counted by position
+    /// ([`TriMesh::distinct_positions`](crate::TriMesh::distinct_positions)).
     BitsPerVertex(f64),
     /// The edge length L itself, in the mesh's units.
     EdgeLength(f64),

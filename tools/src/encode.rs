@@ -309,25 +309,48 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     };
     progress.phase("encoding");
     let start = Instant::now();
+    // No target given: the default rate is a convenience, not a request,
+    // so a mesh too small for it gets its smallest file and a note.
+    let defaulted = args.size.is_none()
+        && args.bpv.is_none()
+        && args.edge_length.is_none()
+        && !bounded
+        && args.mode != ModeArg::Lossless;
     let encoded = match swm::encode(&mesh, &options) {
         // Allowed to write more than asked: the smallest file there is.
-        Err(swm::Error::Size(e)) if args.or_smallest => {
+        Err(swm::Error::Size(e)) if args.or_smallest || defaulted => {
             let Some(mode) = at_size(&options.mode, e.smallest) else {
                 return Err(CliError::new(&args.input, swm::Error::Size(e)));
             };
             let encoded = swm::encode(&mesh, &swm::EncodeOptions { mode, ..options })
                 .map_err(|e| CliError::new(&args.input, e))?;
+            let why = if args.or_smallest {
+                "--or-smallest"
+            } else {
+                "no size was given; the default is 2 bits per vertex"
+            };
             eprintln!(
-                "swm: note: {}: no file of {} bytes can hold this mesh; the smallest, {} bytes, was written (--or-smallest)",
+                "swm: note: {}: no file of {} bytes can hold this mesh; the smallest, {} bytes, was written ({why})",
                 args.input.display(),
                 e.requested,
                 encoded.bytes.len()
             );
             encoded
         }
+        // An explicit size below the smallest file: an error that says
+        // how to get that file.
+        Err(swm::Error::Size(e)) => {
+            return Err(crate::error::fail(
+                &args.input,
+                format!("{e} (--or-smallest writes it)"),
+            ))
+        }
         other => other.map_err(|e| CliError::new(&args.input, e))?,
     };
     let seconds = start.elapsed().as_secs_f64();
+    // What a rate counts: the input's distinct positions, as the encoder
+    // counts them.
+    let positions = mesh.distinct_positions();
     // The lossless mode at a given qp keeps every triangle and moves each
     // vertex by at most half a quantization step: nothing to catch, and
     // on a million-triangle scan the check would cost several times the
@@ -365,7 +388,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // The size asked for, when one was.
     let requested = match (args.size, args.bpv) {
         (Some(b), _) => Some(b),
-        (_, Some(bpv)) => Some((bpv * mesh.vertex_count() as f64 / 8.0).round() as u64),
+        (_, Some(bpv)) => Some((bpv * positions as f64 / 8.0).round() as u64),
         _ => None,
     };
     let bytes = encoded.bytes.len() as u64;
@@ -382,7 +405,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             });
         }
         json["encode_seconds"] = seconds.into();
-        json["input_vertices"] = mesh.vertex_count().into();
+        json["input_vertices"] = positions.into();
         json["cleaning"] = crate::report::clean_json(&stats.clean);
         if let Some(r) = stats.rate() {
             json["rate_control"] = crate::report::rate_json(r);
@@ -428,7 +451,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         args.input.display(),
         args.output.display(),
         encoded.bytes.len(),
-        8.0 * encoded.bytes.len() as f64 / mesh.vertex_count().max(1) as f64,
+        8.0 * encoded.bytes.len() as f64 / positions.max(1) as f64,
         vertices,
         triangles,
         seconds

@@ -71,7 +71,8 @@ impl<'a> Services<'a> {
 pub(crate) struct Job<'a, 's> {
     /// The cleaned input.
     pub cleaned: &'a Cleaned,
-    /// Vertices of the mesh as given (what bits per vertex count).
+    /// Distinct positions of the mesh as given (what bits per vertex
+    /// count, [`TriMesh::distinct_positions`](crate::TriMesh::distinct_positions)).
     pub input_vertices: usize,
     /// The caller's options (the chooser may lower a candidate's limits).
     pub options: &'a EncodeOptions,

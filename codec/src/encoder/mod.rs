@@ -43,7 +43,7 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
     );
     let job = Job {
         cleaned: &cleaned,
-        input_vertices: mesh.vertex_count(),
+        input_vertices: mesh.distinct_positions(),
         options,
         services: &services,
     };
