@@ -24,6 +24,34 @@
 use swm::metrics::{DistanceOptions, Surface};
 use swm::TriMesh;
 
+/// Triangles around one vertex above which the input is measured with
+/// its fans rebuilt (a polygon face of thousands of sides, fanned by the
+/// reader, is thousands of overlapping slivers from one vertex: each
+/// nearest-point query would visit them all, 5 s for a 10,000-gon).
+const FAN: usize = 64;
+
+/// What the decoded mesh is measured against: the input as read, or,
+/// when it has a fan wider than [`FAN`], the same surface cleaned and
+/// with its fans rebuilt as the encoder measures it
+/// (`swm::simplify::Simplifier::reference`; within about 1e-4 of a spoke,
+/// far below the thresholds here).
+fn reference(input: &TriMesh) -> Result<Surface, swm::Error> {
+    let mut around = vec![0usize; input.vertex_count()];
+    for t in &input.triangles {
+        for &v in t {
+            if let Some(n) = around.get_mut(v as usize) {
+                *n += 1;
+            }
+        }
+    }
+    if around.iter().all(|&n| n <= FAN) {
+        return Surface::new(input);
+    }
+    let cleaned = swm::clean(input, &Default::default())?;
+    let s = swm::simplify::Simplifier::new(&cleaned.mesh, swm::Framing::Compact);
+    Surface::new(s.reference())
+}
+
 /// The decoded surface's area below this share of the input's is a
 /// warning.
 pub const MIN_AREA_RATIO: f64 = 0.10;
@@ -50,7 +78,7 @@ impl Fidelity {
     /// Decodes `bytes` and measures the result against `input`.
     pub fn measure(input: &TriMesh, bytes: &[u8]) -> Result<Fidelity, swm::Error> {
         let decoded = swm::decode(bytes, &swm::DecodeOptions::default())?;
-        let reference = Surface::new(input)?;
+        let reference = reference(input)?;
         let (vertices, triangles) = (decoded.vertex_count(), decoded.face_count());
         if triangles == 0 {
             return Ok(Fidelity {
