@@ -59,20 +59,6 @@ const ALLOWED_FOR_NOW: &[&[&str]] = &[
         "codec/src/post/hint.rs",
         "codec/src/simplify/mod.rs",
     ],
-    // Not broken yet (branch `cycles` ran out of time): the retiler's
-    // state, `Retiler` in retile/mod.rs, has its impl spread over
-    // boundary, crease, fit and gate, which import it while mod.rs calls
-    // them, and its fields hold their types (fit::Region). The cure is
-    // the state in a file of its own below the passes, with the passes'
-    // scratch types below it; retile/ moves under the encoder in the
-    // same refactor, so it is left to that.
-    &[
-        "codec/src/retile/boundary.rs",
-        "codec/src/retile/crease.rs",
-        "codec/src/retile/fit.rs",
-        "codec/src/retile/gate.rs",
-        "codec/src/retile/mod.rs",
-    ],
 ];
 
 type Module = Vec<String>;
