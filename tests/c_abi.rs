@@ -46,9 +46,12 @@ fn example() -> &'static Path {
             .arg("-I")
             .arg(ffi_dir().join("include"))
             .arg(static_library())
-            // No C++ runtime: the library is all Rust, even built with
-            // the features the CLI asks for (cargo unifies them).
-            .args(["-lpthread", "-ldl", "-lm", "-o"])
+            // The decoder is all Rust (`cargo build -p swm-ffi` links
+            // with these alone), but the test build's copy carries the
+            // features the CLI asks for (cargo unifies them), and the
+            // encoder's `fast` effort brings meshoptimizer's C++: its
+            // runtime is named here for that copy only.
+            .args(["-lpthread", "-ldl", "-lm", "-lstdc++", "-o"])
             .arg(&out)
             .status()
             .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));

@@ -31,8 +31,10 @@
 //! touches itself (a pinched hole) is not used.
 
 use super::path::{self, Point};
+use super::region;
+use super::state::{f32_exact, Gate, Retiler};
 use super::surface::{face, next, prev, Surface, NONE};
-use super::{f32_exact, region, Failure, Gate, Retiler};
+use super::Failure;
 use crate::edgebreaker::Symbol;
 use crate::swing::chain;
 use crate::swing::{first_edge_length, tip_radius};

@@ -48,9 +48,9 @@
 //! from the decoder's own frame arithmetic (`swing::Frame`), so the
 //! retiled positions are what the decoder rebuilds.
 
+use super::state::Retiler;
 use super::surface::{face, NONE};
 use super::walk::{Plane, Walker};
-use super::Retiler;
 use glam::DVec3;
 
 /// Dihedral turn (degrees) above which an edge of M is a crease.

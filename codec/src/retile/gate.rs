@@ -1,8 +1,9 @@
 //! One gate of the retiling front (thesis §7.3 "To build the other
 //! triangles of M′"; design notes §6 step 6): the candidate tip on the
 //! circle, the snap that decides the label, the triangle's paths and
-//! triangloid, and the fallbacks this implementation adds where the
-//! thesis's rules leave a gate without a valid triangle.
+//! triangloid (both laid by `triangle`), and the fallbacks this
+//! implementation adds where the thesis's rules leave a gate without a
+//! valid triangle.
 //!
 //! Order of the choices at a gate, first that builds a valid triangle:
 //! 1. an ear: a loop neighbour at under [`EAR_ANGLE`] from the gate;
@@ -23,9 +24,10 @@
 
 use super::front::Place;
 use super::snap;
+use super::state::{Gate, Retiler};
 use super::surface::NONE;
 use super::walk::Plane;
-use super::{Failure, Gate, Retiler};
+use super::Failure;
 use crate::edgebreaker::Symbol;
 use crate::swing::{gate_level, level_ratio, quantize, stretch_apply, stretch_code, Frame};
 use glam::DVec3;
@@ -38,13 +40,11 @@ pub(super) const SNAP: f64 = 0.5;
 pub(super) const EAR_ANGLE: f64 = 90.0;
 /// The longest edge a snap may create, in L.
 pub(super) const MAX_EDGE: f64 = 2.0;
-/// The largest triangloid, in L² (an equilateral triangle is 0.43 L²).
-pub(super) const MAX_REGION_AREA: f64 = 3.0;
 /// Border vertices tried as a forced snap before a gate fails.
 pub(super) const SNAP_TRIES: usize = 6;
 /// The last resort at a gate that no other choice closes: a loop
 /// neighbour with new edges up to `SLACK` times the relaxed limit and a
-/// triangloid up to `SLACK²` times [`MAX_REGION_AREA`]. Measured on horse
+/// triangloid up to `SLACK²` times [`MAX_REGION_AREA`](super::triangle::MAX_REGION_AREA). Measured on horse
 /// at 1 b/v: of the gates that failed a run, the refusals were "edge too
 /// long" (43%) and "triangloid too large" (28%) far more often than a
 /// path or a region that could not be built; a failed run costs a whole

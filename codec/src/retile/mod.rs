@@ -33,6 +33,12 @@
 //! All searches move by adjacency on M (`walk`, `path`, `snap`,
 //! `region`); there is no spatial index, so self-intersecting input
 //! cannot confuse them.
+//!
+//! Here: the options, one piece's run (`retile_piece`), its first
+//! triangle, the growth gate by gate, and the start vertex. The run's
+//! state (`Retiler`) is in `state`, below every file that holds one of
+//! its steps (`triangle`, `crease`, `fit`, `gate`, `boundary` and this
+//! one), so that each of them depends downward only.
 
 mod boundary;
 mod budget;
@@ -42,6 +48,7 @@ pub(crate) use crease::crease_length;
 mod density;
 pub mod fill;
 mod fit;
+mod fit_cost;
 mod front;
 mod gate;
 mod marks;
@@ -52,7 +59,9 @@ pub mod rate;
 mod refine;
 mod region;
 mod snap;
+mod state;
 mod surface;
+mod triangle;
 pub(crate) mod valence;
 mod walk;
 
@@ -63,13 +72,13 @@ mod pieces_tests;
 #[cfg(test)]
 pub(crate) mod tests;
 
-use crate::edgebreaker::Symbol;
 use crate::swing::Retiled;
 use crate::swing::{first_edge_length, tip_radius, AngleTable};
 use crate::{CornerTable, TriMesh};
 pub use budget::Budget;
 use front::Front;
 use glam::DVec3;
+use state::{f32_exact, Gate, Retiler};
 use std::collections::HashMap;
 use surface::{next, Surface, NONE};
 use walk::{leave_vertex, walk_to_radius, Plane, Walker};
@@ -211,7 +220,7 @@ fn retile_piece(
         approximate: opt.approximate_tips,
         fit: opt.fit_tips,
         offsets: offset::Scratch::default(),
-        fit_region: fit::Region::default(),
+        fit_region: fit_cost::Region::default(),
         run_steps: budget::RUN_STEPS_PER_ELEMENT.saturating_mul(elements),
         run_bytes,
         budget,
@@ -278,118 +287,7 @@ fn retile_piece(
     Ok((retiled, cover))
 }
 
-fn f32_exact(p: DVec3) -> DVec3 {
-    p.as_vec3().as_dvec3()
-}
-
-/// A gate to process: the node of GR (GL follows it) and the previous tip.
-type Gate = (u32, u32);
-
-struct Retiler<'b> {
-    s: Surface,
-    table: AngleTable,
-    /// The edge length of the gate at hand: `l0` scaled by its level.
-    l: f64,
-    /// The base edge length (level 0): the first edge's.
-    l0: f64,
-    /// `l` is an earlier component's and must not change.
-    fixed: bool,
-    /// M has handles: a tip may snap to another loop (an S\*).
-    handles: bool,
-    /// The tip radius of the gate at hand, `radius0` scaled by its level
-    /// exactly as the decoder scales it.
-    radius: f64,
-    radius0: f64,
-    /// Per M′ vertex: its level (`swing::density`).
-    level: Vec<i8>,
-    /// Per C tip: its level step.
-    steps: Vec<i8>,
-    /// Per C tip: its radius code (`crease`).
-    stretch: Vec<i32>,
-    /// Put tips on creases ([`RetileOptions::crease_tips`]).
-    creases: bool,
-    /// The step and level a C at the gate at hand takes.
-    tip_step: (i8, i8),
-    /// The target levels, when the density adapts.
-    density: Option<density::Field>,
-    /// Per M′ vertex: decoded position.
-    xhat: Vec<DVec3>,
-    /// Per M′ vertex: the vertex of M where its paths meet.
-    msample: Vec<u32>,
-    /// Per M′ vertex: its neighbours in M′.
-    adj: Vec<Vec<u32>>,
-    /// Per M′ edge (low id, high id): its path in M, from low to high.
-    paths: HashMap<(u32, u32), Vec<u32>>,
-    front: Front,
-    triangles: Vec<[u32; 3]>,
-    /// Directed edge (a, b) of M′ to the triangle holding it CCW.
-    half_edges: HashMap<(u32, u32), u32>,
-    symbols: Vec<Symbol>,
-    codes: Vec<u32>,
-    scratch: path::Scratch,
-    flood: region::Flood,
-    /// Scale of the edge and area limits: 1, or `gate::SLACK` for a
-    /// gate's last resort.
-    slack: f64,
-    /// The last resort is allowed ([`RetileOptions::last_resort`]).
-    last_resort: bool,
-    /// Aim C tips off M by the curvature offset (`offset`).
-    approximate: bool,
-    /// Choose C codes by `fit`.
-    fit: bool,
-    offsets: offset::Scratch,
-    /// Scratch of `fit`: the region just claimed.
-    fit_region: fit::Region,
-    cap: usize,
-    /// The two angle codes of each loop point (`boundary`), in order.
-    loop_codes: Vec<[u32; 2]>,
-    /// Steps this run may still take before it counts as running away.
-    run_steps: u64,
-    /// Bytes this run may hold before it counts as running away.
-    run_bytes: u64,
-    budget: &'b Budget,
-}
-
 impl Retiler<'_> {
-    fn add_vertex(&mut self, xhat: DVec3, m: u32) -> u32 {
-        let id = self.xhat.len() as u32;
-        self.xhat.push(xhat);
-        self.level.push(self.tip_step.1);
-        self.msample.push(m);
-        self.adj.push(Vec::new());
-        if m != NONE {
-            self.s.sample[m as usize] = id;
-        }
-        id
-    }
-
-    fn push_triangle(&mut self, t: [u32; 3]) {
-        let id = self.triangles.len() as u32;
-        for k in 0..3 {
-            self.half_edges.insert((t[k], t[(k + 1) % 3]), id);
-        }
-        self.triangles.push(t);
-    }
-
-    fn normal(&self, t: [u32; 3]) -> DVec3 {
-        let [a, b, c] = t.map(|v| self.xhat[v as usize]);
-        (b - a).cross(c - a)
-    }
-
-    /// Triangle `t` (CCW) would fold back (normals over 120° apart) onto
-    /// an existing triangle across one of its edges.
-    fn folds(&self, t: [u32; 3]) -> bool {
-        let n = self.normal(t);
-        (0..3).any(|k| {
-            self.half_edges
-                .get(&(t[(k + 1) % 3], t[k]))
-                .is_some_and(|&u| {
-                    let m = self.normal(self.triangles[u as usize]);
-                    n.dot(m) < -0.5 * n.length() * m.length()
-                })
-        })
-    }
-
     /// Per M′ triangle: the hole patch holding most of its triangloid's
     /// area, and that share of the area.
     fn cover(&self) -> Vec<mask::Cover> {
@@ -424,83 +322,6 @@ impl Retiler<'_> {
             }
         }
         cover
-    }
-
-    /// Undoes the last `add_vertex`.
-    fn pop_vertex(&mut self) {
-        if let Some(m) = self.msample.pop() {
-            if m != NONE {
-                self.s.sample[m as usize] = NONE;
-            }
-        }
-        self.xhat.pop();
-        self.level.pop();
-        self.adj.pop();
-    }
-
-    /// The path of M′ edge a–b as stored (from the lower id to the
-    /// higher), and whether that runs from b to a.
-    fn path(&self, a: u32, b: u32) -> (&[u32], bool) {
-        (&self.paths[&(a.min(b), a.max(b))], a > b)
-    }
-
-    /// The consecutive vertex pairs of the path of M′ edge a–b, in order
-    /// from a to b.
-    fn path_steps(&self, a: u32, b: u32) -> impl Iterator<Item = (u32, u32)> + '_ {
-        let (chain, reversed) = self.path(a, b);
-        let n = chain.len();
-        (1..n).map(move |i| {
-            if reversed {
-                (chain[n - i], chain[n - i - 1])
-            } else {
-                (chain[i - 1], chain[i])
-            }
-        })
-    }
-
-    /// Builds triangle `tri` = (tip, GL, GR) as M′ triangle `id`: traces
-    /// the paths of its `new` edges, then claims its triangloid. On any
-    /// failure everything it marked is undone and `false` returned (splits
-    /// of M stay: they change no triangloid).
-    fn attempt(&mut self, tri: [u32; 3], new: &[(u32, u32)], id: u32) -> bool {
-        let mut made: Vec<(u32, u32)> = Vec::new();
-        let mut ok = true;
-        for &(a, b) in new {
-            let (ma, mb) = (self.msample[a as usize], self.msample[b as usize]);
-            let chain = path::find(&self.s, ma, mb, &mut self.scratch)
-                .and_then(|pts| path::insert(&mut self.s, &pts));
-            let Some(mut chain) = chain else {
-                ok = false;
-                break;
-            };
-            if chain[0] != self.msample[a.min(b) as usize] {
-                chain.reverse();
-            }
-            self.paths.insert((a.min(b), a.max(b)), chain);
-            made.push((a, b));
-        }
-        if ok {
-            let mut boundary = Vec::new();
-            for (a, b) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
-                boundary.extend(self.path_steps(a, b).map(|(x, _)| x));
-            }
-            let max_area = gate::MAX_REGION_AREA * (self.slack * self.l).powi(2);
-            match region::claim(&mut self.s, &boundary, id, max_area, &mut self.flood) {
-                Ok(_) => {
-                    for &(a, b) in &made {
-                        self.adj[a as usize].push(b);
-                        self.adj[b as usize].push(a);
-                    }
-                    return true;
-                }
-                Err(_) => region::release(&mut self.s, id, &mut self.flood),
-            }
-        }
-        for (a, b) in made {
-            let chain = self.paths.remove(&(a.min(b), a.max(b))).unwrap_or_default();
-            path::unmark(&mut self.s, &chain);
-        }
-        false
     }
 
     /// p1, p2, p3 and the first triangloid (design notes §6 steps 2–5).
@@ -592,45 +413,6 @@ impl Retiler<'_> {
         let nodes = self.front.start(&[0, 1, 2]);
         // First gate: GR = p2, GL = p1, previous tip p3.
         Ok(((nodes[2], 1), [x1, x3, x2].map(|p| p.to_array())))
-    }
-
-    /// Where the circle of radius L√3/2 around the midpoint of edge a–b,
-    /// in `plane`, meets M: walking both ways from the crossing of the
-    /// edge's path with the plane. Also returns that crossing (a face and
-    /// the point), or `None` if the path does not cross the plane.
-    #[allow(clippy::type_complexity)]
-    fn circle(
-        &self,
-        a: u32,
-        b: u32,
-        plane: Plane,
-        centre: DVec3,
-    ) -> ([Option<(DVec3, u32)>; 2], Option<(u32, DVec3)>) {
-        // (The crossing is returned as the corner facing its edge.)
-        let s = &self.s;
-        // The path may cross the bisecting plane more than once; start
-        // from the crossing nearest the circle's centre.
-        let crossing = self
-            .path_steps(a, b)
-            .filter(|&(x, y)| {
-                plane.positive(s.pos[x as usize]) != plane.positive(s.pos[y as usize])
-            })
-            .filter_map(|(x, y)| s.edge(x, y))
-            .map(|c| (c, plane.crossing(s, c).1))
-            .min_by(|a, b| {
-                a.1.distance_squared(centre)
-                    .total_cmp(&b.1.distance_squared(centre))
-            });
-        let Some((c, start)) = crossing else {
-            return ([None, None], None);
-        };
-        let budget = s.face_count();
-        let max_len = 6.0 * self.radius;
-        let hits = [c, s.opp[c as usize]].map(|side| {
-            let mut walker = Walker::across(s, plane, side, budget);
-            walk_to_radius(&mut walker, start, centre, self.radius, max_len)
-        });
-        (hits, Some((c, start)))
     }
 
     /// Processes gates in Edgebreaker order until every loop closed.

@@ -1,6 +1,7 @@
 use super::surface::Surface;
 use super::*;
 use crate::edgebreaker::tests_support::{icosahedron, subdivided};
+use crate::edgebreaker::Symbol;
 
 /// A sphere of radius 1: an icosahedron subdivided `levels` times with
 /// the midpoints pushed out.
