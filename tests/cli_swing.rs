@@ -447,12 +447,24 @@ fn a_mesh_too_small_to_retile_is_kept_in_rest() {
     )
     .unwrap();
     let file = dir.join("tet.swm");
-    // The default mode will not write 91 bytes for a 1-byte request...
-    let refused = swm(&["encode", s(&input), "-o", s(&file)]);
+    // The default mode will not write 91 bytes for an explicit 1-byte
+    // request, and says how to get them...
+    let refused = swm(&["encode", s(&input), "-o", s(&file), "--size", "1"]);
     assert_eq!(refused.status.code(), Some(1));
     let err = String::from_utf8_lossy(&refused.stderr);
-    assert!(err.contains("the smallest possible is"), "{err}");
+    assert!(
+        err.contains("the smallest possible is") && err.contains("--or-smallest"),
+        "{err}"
+    );
     assert!(!file.exists());
+    // ... while with no size at all (the default 2 b/v asks for 1 byte)
+    // the smallest file is written, with a note.
+    let written = swm(&["encode", s(&input), "-o", s(&file)]);
+    let err = String::from_utf8_lossy(&written.stderr);
+    assert_eq!(written.status.code(), Some(0), "{err}");
+    assert!(err.contains("no size was given"), "{err}");
+    assert!(file.exists());
+    std::fs::remove_file(&file).unwrap();
     // ... the swing mode keeps the nearest file it made.
     let summary = ok(&swm(&[
         "encode",

@@ -34,13 +34,16 @@ pub(crate) struct Entry {
     pub work: Option<u64>,
 }
 
-/// Retiling steps the `default` level always allows SwingWrapper (about
-/// a quarter of a second of retiling on the machines measured: 7-8 M
-/// steps per second).
-const SWING_STEPS_FLOOR: u64 = 2_000_000;
+/// Retiling steps the `default` level always allows SwingWrapper: about a
+/// third of a second of retiling on the machines measured (7-8 M steps
+/// per second), the half-second floor of the level's time bar less the
+/// simplified method's share on a small mesh.
+const SWING_STEPS_FLOOR: u64 = 2_500_000;
 /// And per triangle of the cleaned input: the level's time bar is a
-/// multiple of a lossless encode's, which is linear in the input.
-const SWING_STEPS_PER_FACE: u64 = 40;
+/// multiple of Draco's encode, which is linear in the input, and the
+/// simplified method already takes most of it (about 10 µs per input
+/// triangle of the 15 the bar allows).
+const SWING_STEPS_PER_FACE: u64 = 20;
 /// A budgeted retiling is cut at this multiple of its budget: the
 /// prediction is within a factor of two on the corpus, and a run that
 /// goes past that is running away.

@@ -21,11 +21,13 @@ use crate::retile::fill::Piece;
 use crate::{Cleaned, Error, ParameterError, TriMesh};
 use hinted::Request;
 
-/// Retiling steps predicted per retiled triangle and run (measured on
-/// spot, bunny, horse and fandisk at 1-4 b/v: 240-410 per triangle and
-/// run, the rate control plus the hint's trials taking 2-3 runs), for an
-/// effort level's budget.
-const STEPS_PER_TRIANGLE: u64 = 350;
+/// Retiling steps predicted per retiled triangle and run, for an effort
+/// level's budget. Measured over whole encodes (rate control and the
+/// hint's trials, 2-3 runs) at 1-4 b/v: 315 per triangle on the generated
+/// double torus, 587 on spot, 726 on bunny, 822 on horse, 3,100 on
+/// fandisk (whose crease trial doubles the runs); the prediction takes
+/// the smooth shapes' middle, and a run past twice the budget is cut.
+const STEPS_PER_TRIANGLE: u64 = 250;
 /// Runs predicted for one encode (rate control and the hint's trials).
 const PREDICTED_RUNS: u64 = 2;
 /// Bits per retiled triangle assumed when predicting its count from a
