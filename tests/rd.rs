@@ -129,7 +129,7 @@ fn tamper(csv: &Path, row: &str, column: &str, f: impl Fn(&str) -> String) -> St
 fn writes_csv_markdown_and_plots() {
     let (dir, csv, out) = small_table_run("rd-files");
     let rows = read_csv(&csv);
-    // 2 meshes x 2 rates x 6 configurations, sorted by mesh (as given),
+    // 2 meshes x 2 rates x 9 configurations, sorted by mesh (as given),
     // rate, configuration.
     let order: Vec<(String, String, String)> = rows
         .iter()
@@ -149,6 +149,8 @@ fn writes_csv_markdown_and_plots() {
                     "lossless",
                     "baseline",
                     "auto",
+                    "auto-default",
+                    "auto-fast",
                     "swing",
                     "swing-plain",
                     "swing+sharpen",
@@ -180,6 +182,14 @@ fn writes_csv_markdown_and_plots() {
         ] {
             assert!(r.contains_key(col), "no column {col}");
         }
+        // The automatic mode's level, named by the configuration.
+        let effort = match r["config"].as_str() {
+            "auto" => "max",
+            "auto-default" => "default",
+            "auto-fast" => "fast",
+            _ => "",
+        };
+        assert_eq!(r["effort"], effort, "{r:?}");
         let vertices: f64 = r["vertices"].parse().unwrap();
         let rate: f64 = r["rate_bpv"].parse().unwrap();
         let budget: u64 = r["budget_bytes"].parse().unwrap();
@@ -321,11 +331,11 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
         .lines()
         .filter(|l| !l.contains("rows checked"))
         .collect();
-    assert_eq!(verdicts.len(), 28, "{text}");
+    assert_eq!(verdicts.len(), 36, "{text}");
     assert!(verdicts.iter().all(|l| l.starts_with("same ")), "{text}");
 
     // Halve the L2 of the torus's 8 bpv lossless row.
-    let row = "torus.obj,8,lossless,ok,";
+    let row = "torus.obj,8,lossless,,ok,";
     let tampered = dir.join("tampered.csv");
     let halve = |c: &str| (c.parse::<f64>().unwrap() / 2.0).to_string();
     std::fs::write(&tampered, tamper(&csv, row, "l2_rel", halve)).unwrap();
@@ -359,7 +369,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     let claimed: Vec<&str> = text
         .lines()
         .map(|l| {
-            if l.starts_with("torus.obj,1,lossless,infeasible,") {
+            if l.starts_with("torus.obj,1,lossless,,infeasible,") {
                 baseline.as_str()
             } else {
                 l
@@ -373,11 +383,22 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
         "{err}"
     );
 
+    // A table whose effort level contradicts its configuration describes
+    // runs swm rd does not make: refused, naming the line.
+    let claim_fast = |_: &str| "fast".to_string();
+    std::fs::write(
+        &tampered,
+        tamper(&csv, "torus.obj,8,auto,", "effort", claim_fast),
+    )
+    .unwrap();
+    let err = one_line_error(&swm(&["rd", "--check", s(&tampered)]), 1);
+    assert!(err.contains("effort") && err.contains("line "), "{err}");
+
     // --only keeps one mesh's rows; --json gives verdicts.
     let out = swm(&["rd", "--check", s(&csv), "--only", "cube", "--json"]);
     let v = json(&out);
     let rows = v.as_array().unwrap();
-    assert_eq!(rows.len(), 14);
+    assert_eq!(rows.len(), 18);
     assert!(rows
         .iter()
         .all(|r| r["mesh"] == "generated:cube" && r["verdict"] == "pass"));
@@ -444,6 +465,44 @@ fn committed_generated_table_holds() {
     assert!(text.contains(" 0 regressed"), "{text}");
 }
 
+/// Both committed tables carry the effort column, and every (mesh, rate)
+/// with an `auto` row (effort `max`, the files of before the levels) has
+/// its `auto-default` and `auto-fast` rows too.
+#[test]
+fn committed_tables_have_every_effort() {
+    for name in ["generated", "shared"] {
+        let table = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../corpus/rd/{name}.csv"));
+        let rows = read_csv(&table);
+        let autos: Vec<_> = rows.iter().filter(|r| r["config"] == "auto").collect();
+        assert!(!autos.is_empty(), "{name}: no auto rows");
+        for auto in autos {
+            assert_eq!(auto["effort"], "max", "{name}: {auto:?}");
+            for (config, effort) in [("auto-default", "default"), ("auto-fast", "fast")] {
+                let found: Vec<_> = rows
+                    .iter()
+                    .filter(|r| {
+                        r["mesh"] == auto["mesh"]
+                            && r["rate_bpv"] == auto["rate_bpv"]
+                            && r["config"] == config
+                    })
+                    .collect();
+                assert_eq!(
+                    found.len(),
+                    1,
+                    "{name}: {} {} {config}",
+                    auto["mesh"],
+                    auto["rate_bpv"]
+                );
+                assert_eq!(found[0]["effort"], effort);
+                assert_eq!(found[0]["samples"], auto["samples"]);
+            }
+        }
+        for r in rows.iter().filter(|r| !r["config"].starts_with("auto")) {
+            assert_eq!(r["effort"], "", "{name}: {r:?}");
+        }
+    }
+}
+
 /// The fandisk rows of the committed shared-corpus table reproduce (the
 /// bunny and horse rows take longer; `swm rd --check corpus/rd/shared.csv`
 /// runs them all).
@@ -466,7 +525,7 @@ fn committed_shared_table_holds_for_fandisk() {
 }
 
 /// The columns README.md documents for `rd.csv`.
-const COLUMNS: &str = "mesh,rate_bpv,config,status,vertices,budget_bytes,bytes,bpv,faces,qp,samples,l2_rel,hausdorff_rel,encode_s,decode_s";
+const COLUMNS: &str = "mesh,rate_bpv,config,effort,status,vertices,budget_bytes,bytes,bpv,faces,qp,samples,l2_rel,hausdorff_rel,encode_s,decode_s";
 
 /// Python's `csv.DictReader`, with no options, finds the documented
 /// columns in a fresh table (one mesh, one rate, `lossless`) and in the

@@ -1,6 +1,8 @@
 //! The `baseline` and `auto` configurations: the encoder's
 //! simplify-then-lossless method (`swm::simplify`,
-//! `EncodeMode::Simplified`) and its automatic mode (`EncodeMode::Auto`),
+//! `EncodeMode::Simplified`, always with its full search) and its
+//! automatic mode (`EncodeMode::Auto`, at the effort level the
+//! configuration names: `auto` at `max`, `auto-default`, `auto-fast`),
 //! each asked for the budget and capped at it, timed whole (search and
 //! measurements included) and measured here with the row's samples.
 //!
@@ -28,17 +30,19 @@ pub fn run(
     coded(case, mode, swm::Effort::Max, samples)
 }
 
-/// The automatic mode at one budget; `None` if nothing fits it.
+/// The automatic mode at one budget and effort level; `None` if nothing
+/// fits it.
 pub fn run_auto(
     case: &crate::rd::case::Case,
     budget: u64,
+    effort: swm::Effort,
     samples: u64,
 ) -> Result<Option<Coded>, CliError> {
     let mode = swm::EncodeMode::Auto {
         target: swm::SwingTarget::Bytes(budget),
         max_bytes: Some(budget),
     };
-    coded(case, mode, swm::Effort::Max, samples)
+    coded(case, mode, effort, samples)
 }
 
 /// Encodes (timed), decodes and measures; the row's `qp` is the

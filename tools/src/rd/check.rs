@@ -20,6 +20,9 @@
 //! fails: regenerate the table in the same commit, so the change is seen.
 //! A row whose mesh changed (different vertex count or budget) is a
 //! failure too: the table no longer describes that mesh.
+//! A table whose `effort` cell contradicts its configuration (`auto` is
+//! always `max`) is refused as it is read (`table::from_csv`): it
+//! describes runs this harness does not make.
 //!
 //! This file holds the comparison; the run itself (read the table, run
 //! its rows again, print the verdicts) is `run_check` in `rd`, beside the

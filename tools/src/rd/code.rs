@@ -20,7 +20,12 @@ impl Config {
         let coded = match self {
             Config::Lossless => lossless(case, budget, samples)?,
             Config::Baseline => baseline::run(case, budget, samples)?,
-            Config::Auto => baseline::run_auto(case, budget, samples)?,
+            Config::Auto | Config::AutoDefault | Config::AutoFast => {
+                let effort = self
+                    .effort()
+                    .expect("the automatic configurations name a level");
+                baseline::run_auto(case, budget, effort, samples)?
+            }
             Config::Swing
             | Config::SwingPlain
             | Config::SwingOnSurface

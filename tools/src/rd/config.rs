@@ -18,9 +18,20 @@ pub enum Config {
     /// (swm's own) to the face count and qp (6..=16) with the lowest L2
     /// that fits (`swm encode --mode lossless --size B`).
     Baseline,
-    /// `swm encode`'s default: SwingWrapper or `baseline`, whichever the
-    /// encoder measures closer (`--mode auto`).
+    /// `swm encode --effort max`: every method with its whole search
+    /// (SwingWrapper, `baseline`, a method per component), whichever the
+    /// encoder measures closer (`--mode auto`; the files the automatic
+    /// mode wrote before effort levels existed).
     Auto,
+    /// `swm encode` with no flag (`--effort default`): `baseline`'s
+    /// method, and SwingWrapper where its retiling fits the level's work
+    /// budget, whichever the encoder measures closer.
+    #[value(name = "auto-default")]
+    AutoDefault,
+    /// `swm encode --effort fast`: meshoptimizer's simplifier, then the
+    /// lossless mode, with a short size search and no distance measured.
+    #[value(name = "auto-fast")]
+    AutoFast,
     /// SwingWrapper as `swm encode` runs it by default, asked for the
     /// budget and capped at it, decoded as `swm decode` does by default
     /// (following the file's post-processing hint).
@@ -46,10 +57,12 @@ pub enum Config {
 
 impl Config {
     /// Every configuration, in table order.
-    pub const ALL: [Config; 9] = [
+    pub const ALL: [Config; 11] = [
         Config::Lossless,
         Config::Baseline,
         Config::Auto,
+        Config::AutoDefault,
+        Config::AutoFast,
         Config::Swing,
         Config::SwingPlain,
         Config::SwingOnSurface,
@@ -72,12 +85,26 @@ impl Config {
             Config::Lossless => "lossless",
             Config::Baseline => "baseline",
             Config::Auto => "auto",
+            Config::AutoDefault => "auto-default",
+            Config::AutoFast => "auto-fast",
             Config::Swing => "swing",
             Config::SwingPlain => "swing-plain",
             Config::SwingOnSurface => "swing-on-surface",
             Config::SwingAdaptive => "swing-adaptive",
             Config::SwingSharpen => "swing+sharpen",
             Config::SwingSharpenBend => "swing+sharpen+bend",
+        }
+    }
+
+    /// The effort level the automatic mode runs at (the table's `effort`
+    /// column); `None` for configurations that do not run the automatic
+    /// mode (they pin one method and its search).
+    pub fn effort(self) -> Option<swm::Effort> {
+        match self {
+            Config::Auto => Some(swm::Effort::Max),
+            Config::AutoDefault => Some(swm::Effort::Default),
+            Config::AutoFast => Some(swm::Effort::Fast),
+            _ => None,
         }
     }
 
@@ -130,5 +157,18 @@ mod tests {
             assert_eq!(Config::from_name(c.name()), Some(c));
         }
         assert_eq!(Config::ALL.len(), Config::value_variants().len());
+    }
+
+    /// `auto` keeps the files it wrote before effort levels existed
+    /// (`max`); each level has its configuration, named after it.
+    #[test]
+    fn each_effort_has_an_auto_configuration() {
+        assert_eq!(Config::Auto.effort(), Some(swm::Effort::Max));
+        for c in [Config::AutoDefault, Config::AutoFast] {
+            let effort = c.effort().expect("an automatic configuration");
+            assert_eq!(c.name(), format!("auto-{}", effort.name()));
+        }
+        assert_eq!(Config::Baseline.effort(), None);
+        assert_eq!(Config::Swing.effort(), None);
     }
 }

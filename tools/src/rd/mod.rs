@@ -98,8 +98,15 @@ Configurations:
   baseline  quadric edge collapse (swm's), then the lossless mode,
             at the face count and qp (6..16) with the lowest L2 that fits
             (swm encode --mode lossless --size B)
-  auto      swm encode's default: swing or baseline, whichever the encoder
-            measures closer to the input
+  auto      swm encode --effort max: swing, baseline or a method per
+            component, whichever the encoder measures closer to the input
+            (the files the automatic mode wrote before effort levels)
+  auto-default  swm encode with no flag (--effort default): baseline, and
+            swing where its retiling fits the level's work budget
+  auto-fast  swm encode --effort fast: meshoptimizer's simplifier, then the
+            lossless mode, with a short search
+            (the CSV's effort column: max, default, fast; empty for the
+            other configurations)
   swing     SwingWrapper as swm encode --mode swing runs it (angle bits
             chosen by rate control, approximating tips), asked for the
             budget and capped at it, decoded as swm decode does by

@@ -19,12 +19,15 @@ use plotters::prelude::*;
 const FLOOR: f64 = 1e-3;
 
 /// Each configuration's colour, the same in every plot (from the first
-/// entries of plotters' `Palette99`, yellow skipped: it vanishes on white).
+/// entries of plotters' `Palette99`, yellow skipped: it vanishes on white;
+/// the automatic mode in black, grey and brown, from most effort to least).
 fn color(config: Config) -> RGBColor {
     match config {
         Config::Lossless => RGBColor(230, 25, 75),
         Config::Baseline => RGBColor(60, 180, 75),
         Config::Auto => RGBColor(0, 0, 0),
+        Config::AutoDefault => RGBColor(128, 128, 128),
+        Config::AutoFast => RGBColor(170, 110, 40),
         Config::Swing => RGBColor(67, 99, 216),
         Config::SwingPlain => RGBColor(70, 153, 144),
         Config::SwingSharpen => RGBColor(245, 130, 49),

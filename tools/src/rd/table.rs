@@ -8,7 +8,8 @@
 //! |---|---|
 //! | `mesh` | the mesh, as `rd::source` names it |
 //! | `rate_bpv` | the target rate, bits per input vertex |
-//! | `config` | the configuration (`lossless`, `baseline`, `swing`) |
+//! | `config` | the configuration (`lossless`, `baseline`, `auto`, `swing`, ...) |
+//! | `effort` | the effort level of the automatic mode (`swm encode --effort`): `max` for `auto`, `default` for `auto-default`, `fast` for `auto-fast`; empty for the configurations that pin one method and its search (`lossless`, `baseline`, the swing rows). A function of `config`, written so that readers can group by it; a table that contradicts its config is refused, and one written before the column existed reads as if it had it |
 //! | `status` | `ok`; `infeasible` when nothing fits the budget; `failed` when the encoder gave up (the reason is printed on stderr); `n/a` when the configuration does not take the mesh (e.g. `swing` on a mesh with holes) |
 //! | `vertices` | vertex count of the mesh as read (the rate's unit) |
 //! | `budget_bytes` | ⌊rate × vertices / 8⌋ |
@@ -19,7 +20,7 @@
 //! | `samples` | area-proportional face samples per direction of the final distance |
 //! | `l2_rel` | L2 (max of the one-sided RMS), in 1e-4 of the input's bbox diagonal |
 //! | `hausdorff_rel` | Hausdorff distance, same unit |
-//! | `encode_s`, `decode_s` | wall times (simplification included in the baseline's encode, the rate search in swing's) |
+//! | `encode_s`, `decode_s` | wall times (simplification included in the baseline's encode, the rate search in swing's, the whole chooser in auto's) |
 //! | `method` | how the file codes the mesh: `swing` (retiled), `simplified` (simplified, then lossless), `whole` (the whole mesh, lossless, at the quantization the simplified method chose: nothing more to code), `lossless` (the `lossless` row); for `auto`, the method it chose |
 //!
 //! Rows without a file (every status but `ok`) leave the measured columns
@@ -160,6 +161,7 @@ impl Row {
             "mesh": self.mesh,
             "rate_bpv": self.rate_bpv,
             "config": self.config.name(),
+            "effort": self.config.effort().map(|e| e.name()),
             "status": self.status(),
             "vertices": self.vertices,
             "budget_bytes": self.budget_bytes,
@@ -178,10 +180,11 @@ impl Row {
 }
 
 /// The CSV columns, in the order written.
-pub const COLUMNS: [&str; 16] = [
+pub const COLUMNS: [&str; 17] = [
     "mesh",
     "rate_bpv",
     "config",
+    "effort",
     "status",
     "vertices",
     "budget_bytes",
@@ -209,6 +212,7 @@ pub fn to_csv(rows: &[Row]) -> String {
             csv_cell(&r.mesh),
             r.rate_bpv.to_string(),
             r.config.name().to_string(),
+            effort_cell(r.config).to_string(),
             r.status().to_string(),
             r.vertices.to_string(),
             r.budget_bytes.to_string(),
@@ -227,6 +231,12 @@ pub fn to_csv(rows: &[Row]) -> String {
         out.push('\n');
     }
     out
+}
+
+/// The `effort` cell of a configuration's rows: empty for those that do
+/// not run the automatic mode.
+fn effort_cell(config: Config) -> &'static str {
+    config.effort().map_or("", |e| e.name())
 }
 
 /// Mesh names are the only free text; quote them when they need it.
@@ -287,11 +297,11 @@ pub fn from_csv(text: &str) -> Result<Vec<Row>, swm::Error> {
     let col = |name: &str| header.iter().position(|h| h.trim() == name);
     let mut index = [0usize; COLUMNS.len()];
     for (slot, name) in index.iter_mut().zip(COLUMNS) {
-        // Times are informative only, and `method` came later; every
-        // other column is needed.
+        // Times are informative only, and `method` and `effort` came
+        // later; every other column is needed.
         *slot = match col(name) {
             Some(i) => i,
-            None if name.ends_with("_s") || name == "method" => usize::MAX,
+            None if name.ends_with("_s") || name == "method" || name == "effort" => usize::MAX,
             None => return Err(bad(header_line, "the header lacks a column swm rd writes")),
         };
     }
@@ -304,47 +314,58 @@ pub fn from_csv(text: &str) -> Result<Vec<Row>, swm::Error> {
                 "the row has a different number of cells than the header",
             ));
         }
-        let get = |k: usize| cells.get(index[k]).map(|s| s.trim()).unwrap_or("");
+        let get = |name: &str| {
+            let k = COLUMNS.iter().position(|c| *c == name).expect("a column");
+            cells.get(index[k]).map(|s| s.trim())
+        };
         rows.push(parse_row(n, get)?);
     }
     Ok(rows)
 }
 
-fn parse_row<'a>(n: usize, get: impl Fn(usize) -> &'a str) -> Result<Row, swm::Error> {
+/// One row from its cells by column name (`None`: a column the table
+/// lacks, which `from_csv` allows only for the optional ones).
+fn parse_row<'a>(n: usize, cell: impl Fn(&str) -> Option<&'a str>) -> Result<Row, swm::Error> {
     fn num<T: std::str::FromStr>(n: usize, s: &str, why: &'static str) -> Result<T, swm::Error> {
         s.parse().map_err(|_| bad(n, why))
     }
-    let rate_bpv: f64 = num(n, get(1), "rate_bpv is not a number")?;
+    let get = |name: &str| cell(name).unwrap_or("");
+    let rate_bpv: f64 = num(n, get("rate_bpv"), "rate_bpv is not a number")?;
     if !(rate_bpv.is_finite() && rate_bpv > 0.0) {
         return Err(bad(n, "rate_bpv must be positive"));
     }
-    let config = Config::from_name(get(2)).ok_or_else(|| bad(n, "unknown config"))?;
-    let outcome = match get(3) {
+    let config = Config::from_name(get("config")).ok_or_else(|| bad(n, "unknown config"))?;
+    // The level is the configuration's; a table that says otherwise
+    // describes runs this harness does not make.
+    if cell("effort").is_some_and(|e| e != effort_cell(config)) {
+        return Err(bad(n, "effort does not match the config"));
+    }
+    let outcome = match get("status") {
         "infeasible" => Outcome::Infeasible,
         "failed" => Outcome::Failed { why: String::new() },
         "n/a" => Outcome::NotApplicable { why: String::new() },
         "ok" => Outcome::Coded(Coded {
-            bytes: num(n, get(6), "bytes is not a whole number")?,
-            faces: num(n, get(8), "faces is not a whole number")?,
-            qp: num(n, get(9), "qp is not a whole number")?,
-            l2_rel: num(n, get(11), "l2_rel is not a number")?,
-            hausdorff_rel: num(n, get(12), "hausdorff_rel is not a number")?,
-            encode_s: get(13).parse().unwrap_or(f64::NAN),
-            decode_s: get(14).parse().unwrap_or(f64::NAN),
-            method: get(15).to_string(),
+            bytes: num(n, get("bytes"), "bytes is not a whole number")?,
+            faces: num(n, get("faces"), "faces is not a whole number")?,
+            qp: num(n, get("qp"), "qp is not a whole number")?,
+            l2_rel: num(n, get("l2_rel"), "l2_rel is not a number")?,
+            hausdorff_rel: num(n, get("hausdorff_rel"), "hausdorff_rel is not a number")?,
+            encode_s: get("encode_s").parse().unwrap_or(f64::NAN),
+            decode_s: get("decode_s").parse().unwrap_or(f64::NAN),
+            method: get("method").to_string(),
         }),
         _ => return Err(bad(n, "status must be ok, infeasible, failed or n/a")),
     };
-    let samples: u64 = num(n, get(10), "samples is not a whole number")?;
+    let samples: u64 = num(n, get("samples"), "samples is not a whole number")?;
     if samples == 0 {
         return Err(bad(n, "samples must be at least 1"));
     }
     Ok(Row {
-        mesh: get(0).to_string(),
+        mesh: get("mesh").to_string(),
         rate_bpv,
         config,
-        vertices: num(n, get(4), "vertices is not a whole number")?,
-        budget_bytes: num(n, get(5), "budget_bytes is not a whole number")?,
+        vertices: num(n, get("vertices"), "vertices is not a whole number")?,
+        budget_bytes: num(n, get("budget_bytes"), "budget_bytes is not a whole number")?,
         samples,
         outcome,
     })
@@ -361,6 +382,8 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
         "L2 and Hausdorff distances in units of 1e-4 of the input's bounding-box diagonal; \
          rates in bits per vertex of the mesh as read. `—` = nothing fits the budget, \
          `failed` = the encoder gave up, `n/a` = the configuration does not take the mesh. \
+         `auto`, `auto-default` and `auto-fast` are `swm encode` at `--effort max`, with no flag \
+         (`default`) and at `--effort fast` (the `effort` column). \
          Written by `swm rd`; the CSV beside this file is the record `swm rd --check` compares against \
          (its `l2_rel` and `hausdorff_rel` in the same units, `rate_bpv` and `bpv` in bits per vertex, \
          `encode_s` and `decode_s` in seconds).\n",
@@ -401,8 +424,8 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
         ];
         for config in configs {
             // Which method wrote the file is news only where a choice is
-            // made: the automatic mode's rows.
-            let shown = if config == Config::Auto { 4 } else { 3 };
+            // made: the automatic mode's rows, at every effort.
+            let shown = if config.effort().is_some() { 4 } else { 3 };
             for (metric, show) in metrics.into_iter().take(shown) {
                 out.push_str(&format!("| {} | {metric} |", config.name()));
                 for rate in &rates {
@@ -418,14 +441,15 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
         }
     }
     out.push_str("\n## All rows\n\n");
-    out.push_str("| mesh | rate | config | status | budget | bytes | bpv | faces | qp | L2 | Hausdorff | encode s | decode s |\n");
-    out.push_str("|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    out.push_str("| mesh | rate | config | effort | status | budget | bytes | bpv | faces | qp | L2 | Hausdorff | encode s | decode s |\n");
+    out.push_str("|---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for r in rows {
         let head = format!(
-            "| {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} |",
             short_name(&r.mesh),
             r.rate_bpv,
             r.config.name(),
+            effort_cell(r.config),
             r.status(),
             r.budget_bytes
         );
@@ -489,8 +513,53 @@ mod tests {
         assert_eq!(statuses, ["ok", "infeasible", "failed", "n/a"]);
         assert_eq!(back[0], rows[0], "numbers round-trip bit for bit");
         assert_eq!(back[2].outcome, Outcome::Failed { why: String::new() });
+        // A table written before the effort column reads the same.
+        let without: String = csv
+            .lines()
+            .map(|l| {
+                let mut cells: Vec<&str> = l.split(',').collect();
+                cells.remove(3);
+                cells.join(",") + "\n"
+            })
+            .collect();
+        assert!(
+            without.starts_with("mesh,rate_bpv,config,status,"),
+            "{without}"
+        );
+        assert_eq!(from_csv(&without).expect("a table without effort"), back);
         let md = to_markdown("t", &rows, |m| m.to_string());
         assert!(md.contains("| swing | L2 | failed | 0.300 | n/a |"), "{md}");
         assert!(md.contains("| lossless | L2 | — |"), "{md}");
+    }
+
+    /// The `effort` column names the automatic mode's level, and a table
+    /// whose level contradicts its configuration is refused.
+    #[test]
+    fn effort_column_follows_the_config() {
+        let rows = vec![
+            row(Config::Baseline, 1.0, Outcome::Infeasible),
+            row(Config::Auto, 1.0, Outcome::Infeasible),
+            row(Config::AutoDefault, 1.0, Outcome::Infeasible),
+            row(Config::AutoFast, 1.0, Outcome::Infeasible),
+        ];
+        let csv = to_csv(&rows);
+        let efforts: Vec<&str> = csv
+            .lines()
+            .map(|l| l.split(',').nth(3).expect("an effort cell"))
+            .collect();
+        assert_eq!(efforts, ["effort", "", "max", "default", "fast"]);
+        assert_eq!(from_csv(&csv).expect("a table"), rows);
+        let json = rows[2].to_json();
+        assert_eq!(json["effort"], "default");
+        assert!(rows[0].to_json()["effort"].is_null());
+        let wrong = csv.replacen(",auto,max,", ",auto,fast,", 1);
+        let err = from_csv(&wrong).expect_err("auto is max").to_string();
+        assert!(err.contains("line 3") && err.contains("effort"), "{err}");
+        let md = to_markdown("t", &rows, |m| m.to_string());
+        assert!(md.contains("| auto-fast | method |"), "{md}");
+        assert!(
+            md.contains("| 1 | auto-default | default | infeasible |"),
+            "{md}"
+        );
     }
 }
