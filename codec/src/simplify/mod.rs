@@ -377,7 +377,9 @@ pub fn best_fit(
 /// until something fits), then the fit at the quantization its face
 /// count predicts (as [`best_fit`] starts its climb), whose file is
 /// kept; nothing is measured. About two size searches instead of four
-/// to six, and no decode or distance. `None` when nothing fits.
+/// to six, and no decode or distance. When the whole mesh fits, the
+/// finest quantization whose whole-mesh file still fits. `None` when
+/// nothing fits.
 pub fn quick_fit(s: &Simplifier<'_>, budget: u64) -> Result<Option<Fit>, Error> {
     let mut start = START_QP;
     let first = loop {
@@ -387,6 +389,19 @@ pub fn quick_fit(s: &Simplifier<'_>, budget: u64) -> Result<Option<Fit>, Error> 
             None => start -= 1,
         }
     };
+    // The whole mesh fits: the finest quantization whose whole-mesh file
+    // still fits (nothing is simplified; only the grid can improve).
+    if first.faces >= s.faces() {
+        let mut best = first;
+        for qp in best.qp + 1..=*QPS.end() {
+            let bytes = lossless_bytes(s.mesh, qp, s.framing)?;
+            if bytes.len() as u64 > budget {
+                break;
+            }
+            best = Fit { qp, bytes, ..best };
+        }
+        return Ok(Some(best));
+    }
     let predicted = ((first.faces.max(1) as f64).log2() - 2.5).round() as i64;
     let qp = predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8;
     if qp == first.qp {

@@ -3,7 +3,7 @@
 //! ```text
 //! swm rd MESH... [--rates 0.5,1,2,4,8] [--configs lossless,baseline,swing]
 //!        [--samples N] [--out DIR] [--name rd] [--json] [--quiet]
-//! swm rd --check TABLE.csv [--only MESH]... [--tolerance 0.01] [--out DIR] [--json] [--quiet]
+//! swm rd --check TABLE.csv [--only MESH]... [--configs C,...] [--tolerance 0.01] [--out DIR] [--json] [--quiet]
 //! ```
 //!
 //! For every mesh, rate and configuration, code the mesh into
@@ -57,8 +57,11 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,4,8", value_parser = parse_rate, conflicts_with = "check")]
     rates: Vec<f64>,
     /// Configurations to run (default: all but the ablation rows
-    /// swing-on-surface and swing-adaptive).
-    #[arg(long, value_enum, value_delimiter = ',', conflicts_with = "check")]
+    /// swing-on-surface and swing-adaptive). With --check: only the rows
+    /// of these are re-run and compared; the others are kept as the
+    /// table has them (and written so with --out), which refreshes the
+    /// rows of a configuration whose encoder changed.
+    #[arg(long, value_enum, value_delimiter = ',')]
     configs: Vec<Config>,
     /// Area-uniform face samples per surface for each row's distance (the
     /// encoder compares its own candidates with 30,000).
@@ -167,6 +170,7 @@ fn parse_name(s: &str) -> Result<String, String> {
 }
 
 /// One row to compute.
+#[derive(Clone)]
 struct Job {
     case: usize,
     rate: f64,
@@ -238,8 +242,22 @@ fn run_check(args: &Args, table_path: &Path) -> Result<(), CliError> {
             samples: r.samples,
         })
         .collect();
-    let fresh = run_jobs(&cases, &jobs, args.quiet)?;
-    write_outputs(args, &cases, &fresh)?;
+    // `--configs`: the other rows are kept as they are, not re-run.
+    let rerun = |r: &Row| args.configs.is_empty() || args.configs.contains(&r.config);
+    let (picked, kept): (Vec<usize>, Vec<usize>) = (0..old.len()).partition(|&i| rerun(&old[i]));
+    let picked_jobs: Vec<Job> = picked.iter().map(|&i| jobs[i].clone()).collect();
+    let ran = run_jobs(&cases, &picked_jobs, args.quiet)?;
+    let mut all: Vec<Option<Row>> = vec![None; old.len()];
+    for (&i, r) in picked.iter().zip(ran) {
+        all[i] = Some(r);
+    }
+    for &i in &kept {
+        all[i] = Some(old[i].clone());
+    }
+    let all: Vec<Row> = all.into_iter().map(|r| r.expect("every row")).collect();
+    write_outputs(args, &cases, &all)?;
+    let old: Vec<Row> = picked.iter().map(|&i| old[i].clone()).collect();
+    let fresh: Vec<Row> = picked.iter().map(|&i| all[i].clone()).collect();
 
     let mut worse = Vec::new();
     let mut json_rows = Vec::new();
