@@ -5,7 +5,7 @@
 //! Two searches ([`Search`]): the full one climbs over quantizations and
 //! measures each file against the input (`simplify::best_fit`); the
 //! quick one (effort `fast`) fits two quantizations, the start and the
-//! one its face count predicts, and measures nothing
+//! one its face count predicts, and ranks them with a few samples
 //! (`simplify::quick_fit`). Both return a file that fits the budget.
 
 use super::method::{Ask, CodingMethod, Job, Made};
@@ -62,7 +62,9 @@ pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Resul
             crate::simplify::best_fit(s, budget, job.reference()?, crate::AUTO_SAMPLES)?
                 .map(|(fit, l2)| (fit, Some(l2)))
         }
-        Search::Quick => crate::simplify::quick_fit(s, budget)?.map(|fit| (fit, None)),
+        Search::Quick => {
+            crate::simplify::quick_fit(s, budget, job.reference()?)?.map(|fit| (fit, None))
+        }
     };
     let Some((fit, l2_relative)) = found else {
         return Err(crate::SizeError {
