@@ -106,6 +106,14 @@ fn the_cli_takes_effort_levels_and_reports_them() {
     );
     let out = swm(&["encode", i, "-o", o, "--effort", "fastest"]);
     assert_eq!(out.status.code(), Some(2));
+    // A mode with no choice of methods has no use for a level.
+    for refused in [
+        &["--mode", "swing", "--effort", "fast"][..],
+        &["--mode", "lossless", "--effort", "max"][..],
+    ] {
+        let out = swm(&[&["encode", i, "-o", o][..], refused].concat());
+        assert_eq!(out.status.code(), Some(2), "{refused:?}");
+    }
 }
 
 #[test]

@@ -234,22 +234,27 @@ fn encode_report<'py>(
         let d = PyDict::new(py);
         d.set_item("chosen", stats.chosen().name())?;
         d.set_item("effort", effort.name())?;
+        let list = pyo3::types::PyList::empty(py);
         for c in &stats.candidates {
             let name = c.method.name();
-            match &c.outcome {
+            let (file, failure): (Option<Bound<'py, PyDict>>, Option<String>) = match &c.outcome {
                 Ok(m) => {
                     let f = PyDict::new(py);
                     f.set_item("bytes", m.bytes)?;
                     f.set_item("l2_rel", m.l2_relative)?;
-                    d.set_item(name, f)?;
-                    d.set_item(format!("{name}_failure"), py.None())?;
+                    (Some(f), None)
                 }
-                Err(e) => {
-                    d.set_item(name, py.None())?;
-                    d.set_item(format!("{name}_failure"), e.to_string())?;
-                }
-            }
+                Err(e) => (None, Some(e.to_string())),
+            };
+            d.set_item(name, file.clone())?;
+            d.set_item(format!("{name}_failure"), failure.clone())?;
+            let entry = PyDict::new(py);
+            entry.set_item("method", name)?;
+            entry.set_item("file", file)?;
+            entry.set_item("failure", failure)?;
+            list.append(entry)?;
         }
+        d.set_item("candidates", list)?;
         out.set_item("choice", d)?;
     }
     match stats.simplified() {

@@ -192,8 +192,9 @@ def encode(
     ``"lossless"``); ``choice``, in the automatic mode, the ``method``
     object of ``swm encode --json`` (``chosen``, ``effort``, each
     candidate of the level under its method's name as
-    ``{"bytes", "l2_rel"}`` or ``None``, and ``<name>_failure``, why it
-    made no file, or ``None``),
+    ``{"bytes", "l2_rel"}`` or ``None``, ``<name>_failure``, why it
+    made no file, or ``None``, and ``candidates``, the same in the
+    chooser's order as ``{"method", "file", "failure"}``),
     else ``None``; ``simplified``, when a simplified file was written,
     ``{"input_faces", "faces", "qp"}``, else ``None``.
 

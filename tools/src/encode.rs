@@ -190,6 +190,7 @@ impl Args {
                 "swing",
                 vec![
                     (self.qp.is_some(), "--qp"),
+                    (self.effort != EffortArg::Default, "--effort"),
                     (self.max_error.is_some(), "--max-error"),
                     (self.max_error_units.is_some(), "--max-error-units"),
                 ],
@@ -205,6 +206,10 @@ impl Args {
                 "lossless",
                 vec![
                     (self.qp.is_some() && sized, "--qp with --size or --bpv"),
+                    (
+                        self.effort != EffortArg::Default && !sized,
+                        "--effort without --size, --bpv or --max-error",
+                    ),
                     (
                         self.max_size.is_some() && !sized,
                         "--max-size without --size or --bpv",
