@@ -33,7 +33,7 @@ pub enum EncodeMode {
     },
     /// Quadric simplification, then the lossless mode: the largest face
     /// count and the quantization (7..=14 bits) of lowest measured error
-    /// whose file fits the size ([`simplify`](crate::simplify)).
+    /// whose file fits the size (module `simplify`).
     Simplified {
         /// A size or a rate; an edge length is refused (this method has
         /// none).
@@ -217,7 +217,7 @@ pub struct SwingTuning {
     /// Decode the file plain, sharpened, and sharpened and bent once,
     /// measure each against the input, and record the best in the file
     /// (the ancillary `post` section, written only when it is not plain)
-    /// for decoders to follow ([`crate::post::hint`]); where
+    /// for decoders to follow (module `post::hint`); where
     /// EdgeSharpener helps, also retile with every tip on the surface
     /// (as `approximate_tips` and `fit_tips` off) and keep the file
     /// closer to the input after its hint. Default `true`.
@@ -253,7 +253,7 @@ impl Default for SwingTuning {
 /// Options for [`decode`].
 ///
 /// Post-processing follows the file's hint (the encoder's measured
-/// choice, [`crate::post::hint`]) in every field left `None`; a file
+/// choice, module `post::hint`) in every field left `None`; a file
 /// without a hint decodes plain.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DecodeOptions {

@@ -92,7 +92,7 @@ impl<'a, 's> Job<'a, 's> {
 
     /// The bounding-box diagonal of the input as given (what relative
     /// errors are relative to, as `swm distance` reports them).
-    pub fn services_input_diagonal(&self) -> f64 {
+    pub fn input_diagonal(&self) -> f64 {
         self.services.input.bbox_diagonal()
     }
 

@@ -67,7 +67,7 @@ pub(crate) fn smallest_within(
     max_bytes: Option<u64>,
     list: &[Entry],
 ) -> Result<Chosen, Error> {
-    let diagonal = job.services_input_diagonal();
+    let diagonal = job.input_diagonal();
     let e = match bound {
         ErrorBound::Relative(r) => positive("max error", r)?,
         ErrorBound::Absolute(a) => positive("max error", a)? / diagonal,
@@ -130,6 +130,12 @@ fn search(
     probes: &mut Vec<Probe>,
 ) -> Result<Option<usize>, Error> {
     let meets = |p: &Probe| p.file.as_ref().is_some_and(|f| f.1 <= aim);
+    // The index of the smallest probe that meets the aim.
+    let smallest_meeting = |probes: &[Probe]| {
+        (0..probes.len())
+            .filter(|&i| meets(&probes[i]))
+            .min_by_key(|&i| probes[i].bytes)
+    };
     let mut next = match probes.is_empty() {
         true => Some(bytes_for(FIRST_BPV, job.input_vertices).clamp(1, ceiling)),
         false => None,
@@ -160,12 +166,7 @@ fn search(
         // `lo`: the largest size known not to meet the aim; `hi`: the
         // smallest known to.
         let lo = probes.iter().filter(|p| !meets(p)).map(|p| p.bytes).max();
-        let hi = probes
-            .iter()
-            .enumerate()
-            .filter(|(_, p)| meets(p))
-            .min_by_key(|(_, p)| p.bytes)
-            .map(|(i, p)| (i, p.bytes));
+        let hi = smallest_meeting(probes).map(|i| (i, probes[i].bytes));
         if let (Some(l), Some((i, h))) = (lo, hi) {
             if h as f64 <= l as f64 * PRECISION {
                 return Ok(Some(i));
@@ -184,13 +185,7 @@ fn search(
         }
         next = Some(guess);
     }
-    let hi = probes
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| meets(p))
-        .min_by_key(|(_, p)| p.bytes)
-        .map(|(i, _)| i);
-    Ok(hi)
+    Ok(smallest_meeting(probes))
 }
 
 /// The measured L2 of the chooser's file (its candidate's, or measured

@@ -33,9 +33,9 @@
 //! |---------------------------------------------------|---------------:|---------------:|
 //! | breadth-first, one parallelogram (or delta)        | 9.28           | 10.65          |
 //! | breadth-first, all parallelograms, subset coded    | 8.22           |  9.22          |
-//! | [`super::traverse`], all parallelograms, subset coded | 7.79        |  8.76          |
+//! | `traverse` order, all parallelograms, subset coded    | 7.79        |  8.76          |
 //!
-//! Design measurements (bunny, [`super::traverse`] order): averaging all
+//! Design measurements (bunny, `traverse` order): averaging all
 //! parallelograms without coding a subset 8.69; subset chosen by L1 error
 //! instead of estimated cost 7.83; also offering 3:1 weighted averages of
 //! two parallelograms 7.82 (no gain, so not offered). The neighbourhood

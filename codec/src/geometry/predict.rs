@@ -64,7 +64,7 @@ pub enum Prediction {
     /// Several parallelograms: entries `first .. first + count` of
     /// [`Predictions::parallelograms`]. The prediction is the average of a
     /// non-empty subset of the first [`MAX_SELECTABLE`] of them, which the
-    /// encoder chooses and codes (see [`super::lossless`]).
+    /// encoder chooses and codes (see `geometry::lossless`).
     Multi {
         /// First entry in the parallelogram list.
         first: u32,

@@ -21,7 +21,7 @@
 //! Why it matters: on the Stanford bunny at 11 bits, a breadth-first
 //! order leaves a vertex 1 to 3 parallelograms when it is reached; this
 //! order gives 95% of vertices two, and position coding drops from 8.22 to
-//! 7.79 bits/vertex (see [`super::lossless`]).
+//! 7.79 bits/vertex (see `geometry::lossless`).
 //!
 //! Because the order depends only on the corner table, the encoder and the
 //! decoder compute it the same way once connectivity is known; the

@@ -298,7 +298,7 @@ impl Hinge {
 impl Frame {
     /// The frame of the gate (gl, gr) whose previous tip is t. Never
     /// panics; hostile input (a zero-length gate, non-finite points) gives
-    /// non-finite points, which [`rebuild_positions`](super::rebuild::rebuild_positions) rejects.
+    /// non-finite points, which `rebuild::rebuild_positions` rejects.
     ///
     /// Order of operations (must match the spec exactly):
     /// ```text

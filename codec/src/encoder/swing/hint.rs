@@ -123,3 +123,122 @@ pub(crate) fn with_post(bytes: &[u8], payload: &[u8]) -> Result<Vec<u8>, Error> 
     sections.push((Tag::POST, payload));
     crate::container::write_container(&file.header, &sections)
 }
+
+// The format's reading (`post::hint`) tested on files this half writes:
+// the tests sit with the upper of the two halves.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::container::parse_container;
+    use crate::post::hint::{read, resolve, MAX_HINT_BEND};
+
+    fn file_with(payload: Option<&[u8]>) -> Vec<u8> {
+        let mesh = crate::mesh::test_shapes::unit_cube();
+        let options = crate::EncodeOptions {
+            mode: crate::EncodeMode::Lossless { qp: 10 },
+            ..Default::default()
+        };
+        let bytes = crate::encode(&mesh, &options).unwrap().bytes;
+        match payload {
+            None => bytes,
+            Some(p) => with_post(&bytes, p).unwrap(),
+        }
+    }
+
+    fn hint_of(bytes: &[u8]) -> Option<PostProcessing> {
+        read(&parse_container(bytes, &Default::default()).unwrap())
+    }
+
+    #[test]
+    fn payload_round_trips_and_odd_values_are_ignored() {
+        for sharpen in [false, true] {
+            for bend_steps in 0..=MAX_HINT_BEND {
+                let h = PostProcessing {
+                    sharpen,
+                    bend_steps,
+                };
+                assert_eq!(hint_of(&file_with(Some(&payload(h)))), Some(h));
+            }
+        }
+        assert_eq!(hint_of(&file_with(None)), None);
+        // Longer payloads: later versions' bytes, ignored.
+        assert_eq!(
+            hint_of(&file_with(Some(&[1, 1, 7, 7]))),
+            Some(PostProcessing {
+                sharpen: true,
+                bend_steps: 1
+            })
+        );
+        for odd in [&[][..], &[1], &[2, 0], &[1, 3], &[255, 255]] {
+            assert_eq!(hint_of(&file_with(Some(odd))), None, "{odd:?}");
+        }
+    }
+
+    #[test]
+    fn callers_choices_override_the_hint_field_by_field() {
+        let bytes = file_with(Some(&[1, 2]));
+        let file = parse_container(&bytes, &Default::default()).unwrap();
+        let r = |s, b| resolve(&file, s, b);
+        assert_eq!(
+            r(None, None),
+            PostProcessing {
+                sharpen: true,
+                bend_steps: 2
+            }
+        );
+        assert_eq!(
+            r(Some(false), None),
+            PostProcessing {
+                sharpen: false,
+                bend_steps: 2
+            }
+        );
+        assert_eq!(
+            r(None, Some(0)),
+            PostProcessing {
+                sharpen: true,
+                bend_steps: 0
+            }
+        );
+        assert_eq!(r(Some(false), Some(0)), PostProcessing::PLAIN);
+        let plain = file_with(None);
+        let file = parse_container(&plain, &Default::default()).unwrap();
+        assert_eq!(resolve(&file, None, None), PostProcessing::PLAIN);
+        assert_eq!(
+            resolve(&file, None, Some(1)),
+            PostProcessing {
+                sharpen: false,
+                bend_steps: 1
+            }
+        );
+    }
+
+    #[test]
+    fn with_hint_keeps_every_section_and_decodes_as_told() {
+        let plain = file_with(None);
+        assert_eq!(with_hint(&plain, PostProcessing::PLAIN).unwrap(), plain);
+        let h = PostProcessing {
+            sharpen: true,
+            bend_steps: 1,
+        };
+        let hinted = with_hint(&plain, h).unwrap();
+        assert_eq!(hint_of(&hinted), Some(h));
+        // Re-hinting replaces, never duplicates.
+        let again = with_hint(&hinted, h).unwrap();
+        assert_eq!(again, hinted);
+        // The default decode follows the hint; explicit options win.
+        let default = crate::decode(&hinted, &Default::default()).unwrap();
+        let told = crate::decode(
+            &plain,
+            &crate::DecodeOptions {
+                sharpen: Some(true),
+                bend_steps: Some(1),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(default, told);
+        let off = crate::decode(&hinted, &crate::DecodeOptions::plain()).unwrap();
+        assert_eq!(off, crate::decode(&plain, &Default::default()).unwrap());
+    }
+}
