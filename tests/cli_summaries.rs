@@ -257,7 +257,9 @@ fn a_decoded_mesh_far_from_the_input_is_a_warning() {
     let v = json(&run("90", &coarse, &["--json"]));
     let check = &v["check"];
     assert!(check["hausdorff_relative"].as_f64().unwrap() > 0.1, "{v}");
-    assert_eq!(check["samples"], 30_000, "{v}");
+    // Metro's samples, all of them here (fewer than the check's 60,000).
+    let n = check["samples"].as_u64().unwrap();
+    assert!((1_000..=swm::CHECK_SAMPLES).contains(&n), "{v}");
     assert_eq!(check["problems"].as_array().unwrap().len(), 1, "{v}");
     assert!(w[0].contains(check["problems"][0].as_str().unwrap()), "{v}");
     let back = dir.join("coarse.obj");

@@ -267,6 +267,21 @@ fn encode_report<'py>(
         }
         None => out.set_item("simplified", py.None())?,
     }
+    // As `swm encode --json`'s `check`: the file decoded and measured
+    // against the input as `swm distance` measures it.
+    match &stats.check {
+        Some(c) => {
+            let d = PyDict::new(py);
+            d.set_item("decoded_vertices", c.decoded_vertices)?;
+            d.set_item("decoded_triangles", c.decoded_triangles)?;
+            d.set_item("area_ratio", c.area_ratio)?;
+            d.set_item("l2_relative", c.l2_relative)?;
+            d.set_item("hausdorff_relative", c.hausdorff_relative)?;
+            d.set_item("samples", c.samples)?;
+            out.set_item("check", d)?;
+        }
+        None => out.set_item("check", py.None())?,
+    }
     Ok(out)
 }
 

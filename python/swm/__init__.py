@@ -196,7 +196,11 @@ def encode(
     made no file, or ``None``, and ``candidates``, the same in the
     chooser's order as ``{"method", "file", "failure"}``),
     else ``None``; ``simplified``, when a simplified file was written,
-    ``{"input_faces", "faces", "qp"}``, else ``None``.
+    ``{"input_faces", "faces", "qp"}``, else ``None``; ``check``, the
+    file decoded and measured against the input as ``swm distance``
+    measures it (``decoded_vertices``, ``decoded_triangles``,
+    ``area_ratio``, ``l2_relative``, ``hausdorff_relative``,
+    ``samples``), ``None`` in the lossless mode at a fixed ``qp``.
 
     Deterministic: the same arrays and options give the same bytes.
     """

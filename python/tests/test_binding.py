@@ -256,6 +256,10 @@ def test_auto_is_the_default_and_reports_the_cli_choice(swm_bin, generated_corpu
     assert report["choice"] == cli["method"]
     assert report["method"] == cli["method"]["chosen"] in ("swing", "simplified")
     assert report["simplified"] == cli.get("simplified")
+    # The check as `--json` reports it, less the CLI's judgement.
+    check = dict(cli["check"])
+    assert check.pop("problems") == []
+    assert report["check"] == check and 0 < check["l2_relative"] < 0.05
     both = report["choice"]
     assert both["swing"] is not None and both["simplified"] is not None and both["swing_failure"] is None
     chosen, other = both[both["chosen"]], both[{"swing": "simplified", "simplified": "swing"}[both["chosen"]]]

@@ -122,7 +122,7 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::Cli;
-    use crate::fidelity::{MAX_HAUSDORFF, MIN_AREA_RATIO, SAMPLES};
+    use crate::fidelity::{MAX_HAUSDORFF, MIN_AREA_RATIO};
 
     /// `encode --help` and the README state the thresholds and the
     /// sample count in words: they follow the constants. (Here rather
@@ -138,11 +138,11 @@ mod tests {
         let readme = readme.split_whitespace().collect::<Vec<_>>().join(" ");
         let area = format!("under {:.0}% of the input's", 100.0 * MIN_AREA_RATIO);
         let far = format!("over {:.0}% of the", 100.0 * MAX_HAUSDORFF);
-        assert_eq!(SAMPLES, 30_000, "the texts say 30,000");
+        assert_eq!(swm::CHECK_SAMPLES, 60_000, "the texts say 60,000");
         for text in [&help, &readme] {
             assert!(text.contains(&area), "{area}");
             assert!(text.contains(&far), "{far}");
-            assert!(text.contains("30,000 area-uniform samples"));
+            assert!(text.contains("60,000 of Metro's samples"));
         }
     }
 }

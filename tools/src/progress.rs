@@ -1,7 +1,7 @@
 //! Progress on stderr (indicatif) for commands that may run long: a
 //! spinner with the elapsed time and the current phase for `encode`
 //! (the encoder runs inside the library, which reports no progress, so
-//! the phases are the CLI's own: reading, encoding, checking, writing),
+//! the phases are the CLI's own: reading, encoding, writing),
 //! and a bar over the (mesh, rate, configuration) cells for `rd`.
 //!
 //! Nothing is drawn for a run that ends within [`DELAY`], when stderr is

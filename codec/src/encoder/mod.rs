@@ -9,6 +9,7 @@
 //! method shares the job's services (the simplifier's collapse sequence,
 //! the reference surface).
 
+pub(crate) mod check;
 pub(crate) mod choose;
 pub(crate) mod effort;
 pub(crate) mod lossless;
@@ -57,10 +58,11 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 clean: cleaned.report.clone(),
                 method: made.stats,
                 candidates: Vec::new(),
+                check: None,
             },
         })
     };
-    match options.mode {
+    let mut encoded = match options.mode {
         EncodeMode::Lossless { .. } => {
             let m = lossless.expect("checked above");
             // Its file needs no size: any ask will do.
@@ -68,13 +70,13 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 target: SwingTarget::Bytes(1),
                 max_bytes: None,
             };
-            forced(&m, ask)
+            return forced(&m, ask);
         }
         EncodeMode::Swing {
             target,
             angle_bits,
             max_bytes,
-        } => forced(&swing::Swing { angle_bits }, Ask { target, max_bytes }),
+        } => forced(&swing::Swing { angle_bits }, Ask { target, max_bytes })?,
         EncodeMode::Simplified { target, max_bytes } => {
             let ask = Ask { target, max_bytes };
             let search = match options.effort {
@@ -90,12 +92,13 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                     },
                     work: None,
                 }];
-                return finish(
+                finish(
                     &cleaned,
                     target::smallest_within(&job, bound, max_bytes, &list)?,
-                );
+                )?
+            } else {
+                forced(&simplified::Simplified { search }, ask)?
             }
-            forced(&simplified::Simplified { search }, ask)
         }
         EncodeMode::Auto { target, max_bytes } => {
             let list = effort::methods(options.effort, cleaned.mesh.triangles.len());
@@ -105,9 +108,13 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 }
                 _ => choose::choose(&job, Ask { target, max_bytes }, &list)?,
             };
-            finish(&cleaned, chosen)
+            finish(&cleaned, chosen)?
         }
-    }
+    };
+    // Every lossy file is decoded and measured once more, as
+    // `swm distance` would measure it (`check`).
+    encoded.stats.check = Some(check::check(&job, &encoded.bytes)?);
+    Ok(encoded)
 }
 
 /// The chooser's file as the encoder's result.
@@ -118,6 +125,7 @@ fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<Encoded, E
             clean: cleaned.report.clone(),
             method: chosen.stats,
             candidates: chosen.candidates,
+            check: None,
         },
     })
 }

@@ -197,6 +197,11 @@ pub struct EncodeStats {
     /// Every candidate the automatic mode weighed, in the order of its
     /// list (empty when the mode named one method).
     pub candidates: Vec<Candidate>,
+    /// The file as decoded, measured against the input: the error to
+    /// report (`None` in the lossless mode, whose file keeps every
+    /// triangle and moves each vertex by at most half a quantization
+    /// step).
+    pub check: Option<super::check::Check>,
 }
 
 impl EncodeStats {

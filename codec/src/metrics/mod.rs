@@ -27,6 +27,7 @@
 //! chunk.
 
 mod bvh;
+mod estimate;
 mod sample;
 #[cfg(test)]
 mod tests;
@@ -38,6 +39,7 @@ use crate::{Error, FormatError, Malformed, ParameterError, TopologyError, TriMes
 use bvh::{Bvh, Scratch};
 #[cfg(feature = "encoder")]
 pub(crate) use bvh::{Bvh as NearestTree, Scratch as NearestScratch};
+pub use estimate::metro_estimate;
 use sample::{area, carried_counts, edge_points, face_points, SplitMix};
 use triangle::Tri;
 #[cfg(feature = "encoder")]

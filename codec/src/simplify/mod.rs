@@ -48,6 +48,7 @@ use alloc::borrow::Cow;
 use core::ops::RangeInclusive;
 use std::sync::OnceLock;
 
+mod heap;
 pub mod qem;
 mod refit;
 

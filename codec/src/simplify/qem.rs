@@ -41,11 +41,10 @@
 //! a face dies only when it holds both ends of a collapsed edge, and every
 //! other face follows its vertices through the recorded merges.
 
+use super::heap::Heap;
 use crate::TriMesh;
-use alloc::collections::BinaryHeap;
 use alloc::vec;
 use alloc::vec::Vec;
-use core::cmp::Reverse;
 
 /// Pull of the midpoint on the quadric's minimum, relative to the
 /// quadric's trace: small enough to leave any real constraint alone,
@@ -177,7 +176,10 @@ pub struct Collapses {
 
 /// A heap entry: the edge (`a`, `b`) as it was when both ends had these
 /// stamps; the cost is an `f64`'s bits (non-negative, so they order as
-/// the numbers do).
+/// the numbers do). Two entries with the same cost and ends are either
+/// the same entry twice or at most one of them is current (the stamps
+/// differ), so any correct min-heap pops the current ones in the same
+/// sequence.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 struct Entry {
     cost: u64,
@@ -199,7 +201,7 @@ struct State {
     stamp: Vec<u32>,
     /// A collapse of one of its edges was refused since it last changed.
     retry: Vec<bool>,
-    heap: BinaryHeap<Reverse<Entry>>,
+    heap: Heap<Entry>,
     faces: u32,
     /// Maps the normalised frame back to the input's.
     centre: [f64; 3],
@@ -215,13 +217,13 @@ impl Collapses {
         let mut ring = Vec::new();
         let mut scratch = Vec::new();
         while s.faces > floor {
-            let Some(Reverse(e)) = s.heap.pop() else {
+            let Some(e) = s.heap.pop() else {
                 break;
             };
-            let (a, b) = (e.a as usize, e.b as usize);
-            if !s.alive[a] || !s.alive[b] || s.stamp[a] != e.sa || s.stamp[b] != e.sb {
+            if !s.current(&e) {
                 continue;
             }
+            let (a, b) = (e.a as usize, e.b as usize);
             let (_, v) = s.candidate(a, b);
             if !s.allowed(a, b, v, &mut ring, &mut scratch) {
                 s.retry[a] = true;
@@ -235,6 +237,17 @@ impl Collapses {
                 pos: s.output(v),
                 faces_after: s.faces,
             });
+            // Stale entries past half the live edges (about 3/2 per
+            // face): drop them. Stale is for good (vertices never come
+            // back, stamps only grow), so the current entries, and the
+            // order they pop in, stay as they were; the queue stays
+            // short and most pops find a current entry (on bunny-1m 1.2
+            // million pops instead of 5.6 million, 10 s to 5.4 s).
+            if 2 * s.heap.len() > 3 * (3 * s.faces as usize / 2 + 64) {
+                let mut heap = core::mem::replace(&mut s.heap, Heap::with_capacity(0));
+                heap.retain(|e| s.current(e));
+                s.heap = heap;
+            }
         }
         Collapses {
             faces: mesh.face_count() as u32,
@@ -377,7 +390,7 @@ impl State {
             alive: vec![true; n],
             stamp: vec![0; n],
             retry: vec![false; n],
-            heap: BinaryHeap::with_capacity(3 * mesh.face_count() / 2),
+            heap: Heap::with_capacity(3 * mesh.face_count() / 2),
             faces: mesh.face_count() as u32,
             centre,
             scale,
@@ -445,15 +458,22 @@ impl State {
         (if cost.is_finite() { cost } else { f64::MAX }, v)
     }
 
+    /// Whether `e` is the edge as it is now (both ends alive, neither
+    /// changed since it was pushed).
+    fn current(&self, e: &Entry) -> bool {
+        let (a, b) = (e.a as usize, e.b as usize);
+        self.alive[a] && self.alive[b] && self.stamp[a] == e.sa && self.stamp[b] == e.sb
+    }
+
     fn push(&mut self, a: usize, b: usize) {
         let (cost, _) = self.candidate(a, b);
-        self.heap.push(Reverse(Entry {
+        self.heap.push(Entry {
             cost: cost.to_bits(),
             a: a as u32,
             b: b as u32,
             sa: self.stamp[a],
             sb: self.stamp[b],
-        }));
+        });
     }
 
     /// Whether collapsing `b` into `a` at `v` keeps the mesh a manifold
