@@ -592,9 +592,8 @@ fn swing_loop_v1_1_reencodes_to_the_same_bytes() {
 
 const SWING_POST_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-post-v1.1.swm");
 
-/// The test vector of format-spec/06-post.md ("Golden file"): the plain
-/// decode's hash (post-processing itself is floating-point geometry that
-/// decoders need not agree on bit for bit).
+/// The plain decode's hash, from format-spec/06-post.md ("Golden file
+/// and test vectors"; the sharpened and bent ones are below).
 const SWING_POST_V1_1_PLAIN_FNV1A64: u64 = 0x8D73_D847_7D16_0DA4;
 
 /// The hint golden file's input: the box [-1, 1]³, each face a grid of
@@ -703,6 +702,96 @@ fn swing_post_v1_1_decodes_to_its_test_vector() {
     let sharpened = swm::sharpen(&plain, &Default::default()).unwrap().mesh;
     assert_eq!(default, sharpened, "the default decode follows the hint");
     assert_ne!(default, plain);
+}
+
+/// The sharpened and bent test vectors of format-spec/06-post.md
+/// ("Golden file and test vectors"): the decode of swing-post-v1.1.swm
+/// that its hint asks for (EdgeSharpener alone), then with one and two
+/// Bender steps after it; (Bender steps, vertices, triangles, FNV-1a 64
+/// of `mesh_hash`).
+const SWING_POST_V1_1_POST: [(u32, usize, usize, u64); 3] = [
+    (0, 375, 746, 0x4C09_5F9B_1B6D_50F0),
+    (1, 1494, 2984, 0x1459_7F9D_A8FC_DA8A),
+    (2, 5970, 11936, 0x2045_1A0D_3C12_9692),
+];
+
+/// What EdgeSharpener reports on the plain decode of swing-post-v1.1.swm
+/// (06-post.md): smooth edges, chamfer edges, corners, snapped, unmoved,
+/// slivers collapsed, vertices removed, sharp edges.
+const SWING_POST_V1_1_REPORT: [u64; 8] = [707, 73, 1, 71, 3, 0, 0, 146];
+
+/// Must hold forever (the figures are part of 06-post.md): the default
+/// decode of the hint golden file, and the same file sharpened and bent
+/// by one and two steps on the caller's request, counted and hashed; and
+/// EdgeSharpener's intermediate counts, which a second implementation can
+/// compare on the way.
+#[test]
+fn swing_post_v1_1_sharpens_and_bends_to_its_test_vectors() {
+    let mut got = Vec::new();
+    for (bend, ..) in SWING_POST_V1_1_POST {
+        let options = if bend == 0 {
+            DecodeOptions::default()
+        } else {
+            DecodeOptions {
+                sharpen: Some(true),
+                bend_steps: Some(bend),
+                ..DecodeOptions::default()
+            }
+        };
+        let mesh = swm::decode(SWING_POST_V1_1, &options).unwrap();
+        got.push((
+            bend,
+            mesh.positions.len(),
+            mesh.triangles.len(),
+            mesh_hash(&mesh),
+        ));
+    }
+    let plain = swm::decode(SWING_POST_V1_1, &DecodeOptions::plain()).unwrap();
+    let r = swm::sharpen(&plain, &Default::default()).unwrap().report;
+    let report = [
+        r.smooth_edges,
+        r.chamfer_edges,
+        r.corners,
+        r.snapped,
+        r.unmoved.total(),
+        r.slivers_collapsed,
+        r.vertices_removed,
+        r.sharp_edges,
+    ];
+    assert_eq!(
+        got,
+        SWING_POST_V1_1_POST,
+        "the sharpened (and bent) decodes differ from format-spec/06-post.md's test vectors"
+    );
+    assert_eq!(
+        report, SWING_POST_V1_1_REPORT,
+        "EdgeSharpener's counts differ from format-spec/06-post.md's"
+    );
+}
+
+/// 06-post.md's test vectors on two golden files with boundaries, which
+/// Bender treats as sharp: EdgeSharpener and one Bender step asked for by
+/// the caller; (file, vertices, triangles, FNV-1a 64 of `mesh_hash`).
+const POST_WITH_BOUNDARIES: [(&str, &[u8], usize, usize, u64); 2] = [
+    ("lossless-v1.0.swm", LOSSLESS_V1_0, 319, 632, 0xA943_5954_B356_5704),
+    ("swing-loop-v1.1.swm", SWING_LOOP_V1_1, 1242, 2428, 0xDE49_33D6_47BC_BB0C),
+];
+
+#[test]
+fn sharpened_and_bent_boundaries_decode_to_their_test_vectors() {
+    let options = DecodeOptions {
+        sharpen: Some(true),
+        bend_steps: Some(1),
+        ..DecodeOptions::default()
+    };
+    for (name, bytes, vertices, triangles, hash) in POST_WITH_BOUNDARIES {
+        let mesh = swm::decode(bytes, &options).unwrap();
+        assert_eq!(
+            (mesh.positions.len(), mesh.triangles.len(), mesh_hash(&mesh)),
+            (vertices, triangles, hash),
+            "{name} sharpened and bent differs from format-spec/06-post.md's test vector"
+        );
+    }
 }
 
 /// The encoder still writes the hint golden bytes from the golden box.
@@ -855,3 +944,4 @@ fn lossless_dense_v1_1_reencodes_to_the_same_bytes() {
         "re-encoding the golden sphere no longer gives golden/lossless-dense-v1.1.swm"
     );
 }
+
