@@ -804,6 +804,117 @@ fn swing_post_v1_1_reencodes_to_the_same_bytes() {
     );
 }
 
+// --- Format 1.1: a hint for EdgeSharpener and Bender, and a cleanup ---
+
+const SWING_BEND_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-bend-v1.1.swm");
+
+/// The golden box retiled at L = 0.25, its hint measured: EdgeSharpener
+/// and one Bender step (format-spec/06-post.md, "Golden file and test
+/// vectors"). Where its corners' chamfers meet, one snap leaves a sliver
+/// that the cleanup collapses.
+fn golden_bend_options() -> EncodeOptions {
+    let mut options = golden_post_options();
+    options.mode = EncodeMode::Swing {
+        target: swm::SwingTarget::EdgeLength(0.25),
+        angle_bits: Some(8),
+        max_bytes: None,
+    };
+    options
+}
+
+/// The test vectors of 06-post.md: (Bender steps after EdgeSharpener,
+/// vertices, triangles, FNV-1a 64 of `mesh_hash`); one step is the
+/// default decode, which the hint asks for.
+const SWING_BEND_V1_1_POST: [(u32, usize, usize, u64); 3] = [
+    (0, 499, 994, 0x351A_D3BB_A5ED_3C9E),
+    (1, 1990, 3976, 0x4689_9CF4_6A17_8432),
+    (2, 7954, 15904, 0xA1BC_DB8E_0856_5503),
+];
+
+/// Its plain decode: vertices, triangles, FNV-1a 64.
+const SWING_BEND_V1_1_PLAIN: (usize, usize, u64) = (394, 784, 0xE7FE_2652_FCBC_EAB5);
+
+/// Writes the Sharpen&Bend golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_swing_bend_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_swing_bend_v1_1_golden() {
+    let options = golden_bend_options();
+    write_golden("swing-bend-v1.1.swm", &golden_box(), &options);
+    let encoded = swm::encode(&golden_box(), &options).unwrap();
+    println!("hint {:?}", encoded.stats.hint());
+}
+
+/// Must hold forever: the hint says EdgeSharpener and one Bender step, the
+/// default decode follows it, and every figure of 06-post.md's table for
+/// this file (plain, sharpened, bent once and twice, EdgeSharpener's
+/// counts) holds.
+#[test]
+fn swing_bend_v1_1_decodes_to_its_test_vectors() {
+    let info = swm::inspect(SWING_BEND_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    assert_eq!(
+        info.post,
+        Some(swm::PostProcessing {
+            sharpen: true,
+            bend_steps: 1
+        })
+    );
+    let plain = swm::decode(SWING_BEND_V1_1, &DecodeOptions::plain())
+        .expect("golden file swing-bend-v1.1.swm must decode");
+    assert_eq!(
+        (
+            plain.positions.len(),
+            plain.triangles.len(),
+            mesh_hash(&plain)
+        ),
+        SWING_BEND_V1_1_PLAIN
+    );
+    for (bend, vertices, triangles, hash) in SWING_BEND_V1_1_POST {
+        let options = DecodeOptions {
+            sharpen: Some(true),
+            bend_steps: Some(bend),
+            ..DecodeOptions::default()
+        };
+        let mesh = swm::decode(SWING_BEND_V1_1, &options).unwrap();
+        assert_eq!(
+            (mesh.positions.len(), mesh.triangles.len(), mesh_hash(&mesh)),
+            (vertices, triangles, hash),
+            "swing-bend-v1.1.swm sharpened and bent {bend} times differs from \
+             format-spec/06-post.md's test vector"
+        );
+        if bend == 1 {
+            let default = swm::decode(SWING_BEND_V1_1, &DecodeOptions::default()).unwrap();
+            assert_eq!(default, mesh, "the default decode follows the hint");
+        }
+    }
+    let r = swm::sharpen(&plain, &Default::default()).unwrap().report;
+    assert_eq!(
+        [
+            r.smooth_edges,
+            r.chamfer_edges,
+            r.corners,
+            r.snapped,
+            r.unmoved.total(),
+            r.slivers_collapsed,
+            r.vertices_removed,
+            r.sharp_edges,
+        ],
+        [941, 102, 4, 103, 3, 1, 1, 164],
+        "EdgeSharpener's counts differ from format-spec/06-post.md's"
+    );
+}
+
+/// The encoder still writes the Sharpen&Bend golden bytes from the box.
+#[test]
+fn swing_bend_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_box(), &golden_bend_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_BEND_V1_1,
+        "re-encoding the golden box no longer gives golden/swing-bend-v1.1.swm"
+    );
+}
+
 // --- Format 1.1: tips on creases (RADS) ---
 
 const SWING_CREASE_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-crease-v1.1.swm");
@@ -944,4 +1055,5 @@ fn lossless_dense_v1_1_reencodes_to_the_same_bytes() {
         "re-encoding the golden sphere no longer gives golden/lossless-dense-v1.1.swm"
     );
 }
+
 
