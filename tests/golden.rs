@@ -759,8 +759,7 @@ fn swing_post_v1_1_sharpens_and_bends_to_its_test_vectors() {
         r.sharp_edges,
     ];
     assert_eq!(
-        got,
-        SWING_POST_V1_1_POST,
+        got, SWING_POST_V1_1_POST,
         "the sharpened (and bent) decodes differ from format-spec/06-post.md's test vectors"
     );
     assert_eq!(
@@ -773,8 +772,20 @@ fn swing_post_v1_1_sharpens_and_bends_to_its_test_vectors() {
 /// Bender treats as sharp: EdgeSharpener and one Bender step asked for by
 /// the caller; (file, vertices, triangles, FNV-1a 64 of `mesh_hash`).
 const POST_WITH_BOUNDARIES: [(&str, &[u8], usize, usize, u64); 2] = [
-    ("lossless-v1.0.swm", LOSSLESS_V1_0, 319, 632, 0xA943_5954_B356_5704),
-    ("swing-loop-v1.1.swm", SWING_LOOP_V1_1, 1242, 2428, 0xDE49_33D6_47BC_BB0C),
+    (
+        "lossless-v1.0.swm",
+        LOSSLESS_V1_0,
+        319,
+        632,
+        0xA943_5954_B356_5704,
+    ),
+    (
+        "swing-loop-v1.1.swm",
+        SWING_LOOP_V1_1,
+        1242,
+        2428,
+        0xDE49_33D6_47BC_BB0C,
+    ),
 ];
 
 #[test]
@@ -1055,5 +1066,3 @@ fn lossless_dense_v1_1_reencodes_to_the_same_bytes() {
         "re-encoding the golden sphere no longer gives golden/lossless-dense-v1.1.swm"
     );
 }
-
-
