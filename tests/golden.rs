@@ -1066,3 +1066,75 @@ fn lossless_dense_v1_1_reencodes_to_the_same_bytes() {
         "re-encoding the golden sphere no longer gives golden/lossless-dense-v1.1.swm"
     );
 }
+
+/// 06-post.md's test vectors for fans of more than 16 triangles (its
+/// "Large fans"), on `golden_fans`: (vertices, triangles, FNV-1a 64) of
+/// the mesh, of one Bender step without sharp edges, and of EdgeSharpener
+/// (which tags 24 edges and changes nothing else) then one Bender step.
+const FANS: [(usize, usize, u64); 3] = [
+    (48, 68, 0x579A_052E_28CB_A4F1),
+    (161, 272, 0xCF50_E9FD_0F3F_CE61),
+    (161, 272, 0xDE52_1FCA_379E_8756),
+];
+
+#[test]
+fn large_fans_sharpen_and_bend_to_their_test_vectors() {
+    let figures = |m: &TriMesh| (m.positions.len(), m.triangles.len(), mesh_hash(m));
+    let mesh = golden_fans();
+    let none = swm::SharpEdges::default();
+    let bent = swm::bend(&mesh, &none, 1, &Default::default())
+        .unwrap()
+        .mesh;
+    let sharpened = swm::sharpen(&mesh, &Default::default()).unwrap();
+    assert_eq!(sharpened.mesh, mesh);
+    assert_eq!(sharpened.sharp.len(), 24);
+    let both = swm::bend(&sharpened.mesh, &sharpened.sharp, 1, &Default::default())
+        .unwrap()
+        .mesh;
+    assert_eq!(
+        [figures(&mesh), figures(&bent), figures(&both)],
+        FANS,
+        "the large fans' figures differ from format-spec/06-post.md's"
+    );
+}
+
+/// Two components with fans of more than 16 triangles: a square pyramid
+/// whose apex and base centre each have 24, and an open half-fan whose
+/// centre, on the boundary, has 20 between its two boundary edges.
+fn golden_fans() -> TriMesh {
+    let mut positions: Vec<[f32; 3]> = Vec::new();
+    let mut triangles = Vec::new();
+    // The perimeter of [-3, 3]², counter-clockwise from (-3, -3).
+    for i in 0..24 {
+        let (side, k) = (i / 6, (i % 6) as f32);
+        let (x, y) = match side {
+            0 => (-3.0 + k, -3.0),
+            1 => (3.0, -3.0 + k),
+            2 => (3.0 - k, 3.0),
+            _ => (-3.0, 3.0 - k),
+        };
+        positions.push([x, y, 0.0]);
+    }
+    positions.push([0.0, 0.0, 3.0]);
+    positions.push([0.0, 0.0, 0.0]);
+    for i in 0..24u32 {
+        let j = (i + 1) % 24;
+        triangles.push([i, j, 24]);
+        triangles.push([j, i, 25]);
+    }
+    // The half-fan: centre (10, 0, 0), then the upper half of the
+    // perimeter of [-5, 5]² around it, z = -1, 0, 1 in turn.
+    positions.push([10.0, 0.0, 0.0]);
+    for j in 0..=20u32 {
+        let (x, y) = match j {
+            0..=5 => (5.0, j as f32),
+            6..=15 => (5.0 - (j - 5) as f32, 5.0),
+            _ => (-5.0, 5.0 - (j - 15) as f32),
+        };
+        positions.push([10.0 + x, y, (j % 3) as f32 - 1.0]);
+    }
+    for j in 0..20u32 {
+        triangles.push([26, 27 + j, 28 + j]);
+    }
+    TriMesh::new(positions, triangles)
+}
