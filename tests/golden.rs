@@ -592,9 +592,8 @@ fn swing_loop_v1_1_reencodes_to_the_same_bytes() {
 
 const SWING_POST_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-post-v1.1.swm");
 
-/// The test vector of format-spec/06-post.md ("Golden file"): the plain
-/// decode's hash (post-processing itself is floating-point geometry that
-/// decoders need not agree on bit for bit).
+/// The plain decode's hash, from format-spec/06-post.md ("Golden file
+/// and test vectors"; the sharpened and bent ones are below).
 const SWING_POST_V1_1_PLAIN_FNV1A64: u64 = 0x8D73_D847_7D16_0DA4;
 
 /// The hint golden file's input: the box [-1, 1]³, each face a grid of
@@ -705,6 +704,107 @@ fn swing_post_v1_1_decodes_to_its_test_vector() {
     assert_ne!(default, plain);
 }
 
+/// The sharpened and bent test vectors of format-spec/06-post.md
+/// ("Golden file and test vectors"): the decode of swing-post-v1.1.swm
+/// that its hint asks for (EdgeSharpener alone), then with one and two
+/// Bender steps after it; (Bender steps, vertices, triangles, FNV-1a 64
+/// of `mesh_hash`).
+const SWING_POST_V1_1_POST: [(u32, usize, usize, u64); 3] = [
+    (0, 375, 746, 0x4C09_5F9B_1B6D_50F0),
+    (1, 1494, 2984, 0x1459_7F9D_A8FC_DA8A),
+    (2, 5970, 11936, 0x2045_1A0D_3C12_9692),
+];
+
+/// What EdgeSharpener reports on the plain decode of swing-post-v1.1.swm
+/// (06-post.md): smooth edges, chamfer edges, corners, snapped, unmoved,
+/// slivers collapsed, vertices removed, sharp edges.
+const SWING_POST_V1_1_REPORT: [u64; 8] = [707, 73, 1, 71, 3, 0, 0, 146];
+
+/// Must hold forever (the figures are part of 06-post.md): the default
+/// decode of the hint golden file, and the same file sharpened and bent
+/// by one and two steps on the caller's request, counted and hashed; and
+/// EdgeSharpener's intermediate counts, which a second implementation can
+/// compare on the way.
+#[test]
+fn swing_post_v1_1_sharpens_and_bends_to_its_test_vectors() {
+    let mut got = Vec::new();
+    for (bend, ..) in SWING_POST_V1_1_POST {
+        let options = if bend == 0 {
+            DecodeOptions::default()
+        } else {
+            DecodeOptions {
+                sharpen: Some(true),
+                bend_steps: Some(bend),
+                ..DecodeOptions::default()
+            }
+        };
+        let mesh = swm::decode(SWING_POST_V1_1, &options).unwrap();
+        got.push((
+            bend,
+            mesh.positions.len(),
+            mesh.triangles.len(),
+            mesh_hash(&mesh),
+        ));
+    }
+    let plain = swm::decode(SWING_POST_V1_1, &DecodeOptions::plain()).unwrap();
+    let r = swm::sharpen(&plain, &Default::default()).unwrap().report;
+    let report = [
+        r.smooth_edges,
+        r.chamfer_edges,
+        r.corners,
+        r.snapped,
+        r.unmoved.total(),
+        r.slivers_collapsed,
+        r.vertices_removed,
+        r.sharp_edges,
+    ];
+    assert_eq!(
+        got, SWING_POST_V1_1_POST,
+        "the sharpened (and bent) decodes differ from format-spec/06-post.md's test vectors"
+    );
+    assert_eq!(
+        report, SWING_POST_V1_1_REPORT,
+        "EdgeSharpener's counts differ from format-spec/06-post.md's"
+    );
+}
+
+/// 06-post.md's test vectors on two golden files with boundaries, which
+/// Bender treats as sharp: EdgeSharpener and one Bender step asked for by
+/// the caller; (file, vertices, triangles, FNV-1a 64 of `mesh_hash`).
+const POST_WITH_BOUNDARIES: [(&str, &[u8], usize, usize, u64); 2] = [
+    (
+        "lossless-v1.0.swm",
+        LOSSLESS_V1_0,
+        319,
+        632,
+        0xA943_5954_B356_5704,
+    ),
+    (
+        "swing-loop-v1.1.swm",
+        SWING_LOOP_V1_1,
+        1242,
+        2428,
+        0xDE49_33D6_47BC_BB0C,
+    ),
+];
+
+#[test]
+fn sharpened_and_bent_boundaries_decode_to_their_test_vectors() {
+    let options = DecodeOptions {
+        sharpen: Some(true),
+        bend_steps: Some(1),
+        ..DecodeOptions::default()
+    };
+    for (name, bytes, vertices, triangles, hash) in POST_WITH_BOUNDARIES {
+        let mesh = swm::decode(bytes, &options).unwrap();
+        assert_eq!(
+            (mesh.positions.len(), mesh.triangles.len(), mesh_hash(&mesh)),
+            (vertices, triangles, hash),
+            "{name} sharpened and bent differs from format-spec/06-post.md's test vector"
+        );
+    }
+}
+
 /// The encoder still writes the hint golden bytes from the golden box.
 #[test]
 fn swing_post_v1_1_reencodes_to_the_same_bytes() {
@@ -712,6 +812,117 @@ fn swing_post_v1_1_reencodes_to_the_same_bytes() {
     assert_eq!(
         encoded.bytes, SWING_POST_V1_1,
         "re-encoding the golden box no longer gives golden/swing-post-v1.1.swm"
+    );
+}
+
+// --- Format 1.1: a hint for EdgeSharpener and Bender, and a cleanup ---
+
+const SWING_BEND_V1_1: &[u8] = include_bytes!("../format-spec/golden/swing-bend-v1.1.swm");
+
+/// The golden box retiled at L = 0.25, its hint measured: EdgeSharpener
+/// and one Bender step (format-spec/06-post.md, "Golden file and test
+/// vectors"). Where its corners' chamfers meet, one snap leaves a sliver
+/// that the cleanup collapses.
+fn golden_bend_options() -> EncodeOptions {
+    let mut options = golden_post_options();
+    options.mode = EncodeMode::Swing {
+        target: swm::SwingTarget::EdgeLength(0.25),
+        angle_bits: Some(8),
+        max_bytes: None,
+    };
+    options
+}
+
+/// The test vectors of 06-post.md: (Bender steps after EdgeSharpener,
+/// vertices, triangles, FNV-1a 64 of `mesh_hash`); one step is the
+/// default decode, which the hint asks for.
+const SWING_BEND_V1_1_POST: [(u32, usize, usize, u64); 3] = [
+    (0, 499, 994, 0x351A_D3BB_A5ED_3C9E),
+    (1, 1990, 3976, 0x4689_9CF4_6A17_8432),
+    (2, 7954, 15904, 0xA1BC_DB8E_0856_5503),
+];
+
+/// Its plain decode: vertices, triangles, FNV-1a 64.
+const SWING_BEND_V1_1_PLAIN: (usize, usize, u64) = (394, 784, 0xE7FE_2652_FCBC_EAB5);
+
+/// Writes the Sharpen&Bend golden file (run once, by hand:
+/// `cargo test --test golden -- --ignored write_swing_bend_v1_1_golden`).
+#[test]
+#[ignore]
+fn write_swing_bend_v1_1_golden() {
+    let options = golden_bend_options();
+    write_golden("swing-bend-v1.1.swm", &golden_box(), &options);
+    let encoded = swm::encode(&golden_box(), &options).unwrap();
+    println!("hint {:?}", encoded.stats.hint());
+}
+
+/// Must hold forever: the hint says EdgeSharpener and one Bender step, the
+/// default decode follows it, and every figure of 06-post.md's table for
+/// this file (plain, sharpened, bent once and twice, EdgeSharpener's
+/// counts) holds.
+#[test]
+fn swing_bend_v1_1_decodes_to_its_test_vectors() {
+    let info = swm::inspect(SWING_BEND_V1_1, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 1));
+    assert_eq!(
+        info.post,
+        Some(swm::PostProcessing {
+            sharpen: true,
+            bend_steps: 1
+        })
+    );
+    let plain = swm::decode(SWING_BEND_V1_1, &DecodeOptions::plain())
+        .expect("golden file swing-bend-v1.1.swm must decode");
+    assert_eq!(
+        (
+            plain.positions.len(),
+            plain.triangles.len(),
+            mesh_hash(&plain)
+        ),
+        SWING_BEND_V1_1_PLAIN
+    );
+    for (bend, vertices, triangles, hash) in SWING_BEND_V1_1_POST {
+        let options = DecodeOptions {
+            sharpen: Some(true),
+            bend_steps: Some(bend),
+            ..DecodeOptions::default()
+        };
+        let mesh = swm::decode(SWING_BEND_V1_1, &options).unwrap();
+        assert_eq!(
+            (mesh.positions.len(), mesh.triangles.len(), mesh_hash(&mesh)),
+            (vertices, triangles, hash),
+            "swing-bend-v1.1.swm sharpened and bent {bend} times differs from \
+             format-spec/06-post.md's test vector"
+        );
+        if bend == 1 {
+            let default = swm::decode(SWING_BEND_V1_1, &DecodeOptions::default()).unwrap();
+            assert_eq!(default, mesh, "the default decode follows the hint");
+        }
+    }
+    let r = swm::sharpen(&plain, &Default::default()).unwrap().report;
+    assert_eq!(
+        [
+            r.smooth_edges,
+            r.chamfer_edges,
+            r.corners,
+            r.snapped,
+            r.unmoved.total(),
+            r.slivers_collapsed,
+            r.vertices_removed,
+            r.sharp_edges,
+        ],
+        [941, 102, 4, 103, 3, 1, 1, 164],
+        "EdgeSharpener's counts differ from format-spec/06-post.md's"
+    );
+}
+
+/// The encoder still writes the Sharpen&Bend golden bytes from the box.
+#[test]
+fn swing_bend_v1_1_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_box(), &golden_bend_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_BEND_V1_1,
+        "re-encoding the golden box no longer gives golden/swing-bend-v1.1.swm"
     );
 }
 
@@ -854,4 +1065,76 @@ fn lossless_dense_v1_1_reencodes_to_the_same_bytes() {
         encoded.bytes, LOSSLESS_DENSE_V1_1,
         "re-encoding the golden sphere no longer gives golden/lossless-dense-v1.1.swm"
     );
+}
+
+/// 06-post.md's test vectors for fans of more than 16 triangles (its
+/// "Large fans"), on `golden_fans`: (vertices, triangles, FNV-1a 64) of
+/// the mesh, of one Bender step without sharp edges, and of EdgeSharpener
+/// (which tags 24 edges and changes nothing else) then one Bender step.
+const FANS: [(usize, usize, u64); 3] = [
+    (48, 68, 0x579A_052E_28CB_A4F1),
+    (161, 272, 0xCF50_E9FD_0F3F_CE61),
+    (161, 272, 0xDE52_1FCA_379E_8756),
+];
+
+#[test]
+fn large_fans_sharpen_and_bend_to_their_test_vectors() {
+    let figures = |m: &TriMesh| (m.positions.len(), m.triangles.len(), mesh_hash(m));
+    let mesh = golden_fans();
+    let none = swm::SharpEdges::default();
+    let bent = swm::bend(&mesh, &none, 1, &Default::default())
+        .unwrap()
+        .mesh;
+    let sharpened = swm::sharpen(&mesh, &Default::default()).unwrap();
+    assert_eq!(sharpened.mesh, mesh);
+    assert_eq!(sharpened.sharp.len(), 24);
+    let both = swm::bend(&sharpened.mesh, &sharpened.sharp, 1, &Default::default())
+        .unwrap()
+        .mesh;
+    assert_eq!(
+        [figures(&mesh), figures(&bent), figures(&both)],
+        FANS,
+        "the large fans' figures differ from format-spec/06-post.md's"
+    );
+}
+
+/// Two components with fans of more than 16 triangles: a square pyramid
+/// whose apex and base centre each have 24, and an open half-fan whose
+/// centre, on the boundary, has 20 between its two boundary edges.
+fn golden_fans() -> TriMesh {
+    let mut positions: Vec<[f32; 3]> = Vec::new();
+    let mut triangles = Vec::new();
+    // The perimeter of [-3, 3]², counter-clockwise from (-3, -3).
+    for i in 0..24 {
+        let (side, k) = (i / 6, (i % 6) as f32);
+        let (x, y) = match side {
+            0 => (-3.0 + k, -3.0),
+            1 => (3.0, -3.0 + k),
+            2 => (3.0 - k, 3.0),
+            _ => (-3.0, 3.0 - k),
+        };
+        positions.push([x, y, 0.0]);
+    }
+    positions.push([0.0, 0.0, 3.0]);
+    positions.push([0.0, 0.0, 0.0]);
+    for i in 0..24u32 {
+        let j = (i + 1) % 24;
+        triangles.push([i, j, 24]);
+        triangles.push([j, i, 25]);
+    }
+    // The half-fan: centre (10, 0, 0), then the upper half of the
+    // perimeter of [-5, 5]² around it, z = -1, 0, 1 in turn.
+    positions.push([10.0, 0.0, 0.0]);
+    for j in 0..=20u32 {
+        let (x, y) = match j {
+            0..=5 => (5.0, j as f32),
+            6..=15 => (5.0 - (j - 5) as f32, 5.0),
+            _ => (-5.0, 5.0 - (j - 15) as f32),
+        };
+        positions.push([10.0 + x, y, (j % 3) as f32 - 1.0]);
+    }
+    for j in 0..20u32 {
+        triangles.push([26, 27 + j, 28 + j]);
+    }
+    TriMesh::new(positions, triangles)
 }

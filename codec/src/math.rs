@@ -7,9 +7,10 @@
 //!   keeps the instruction for speed.
 //! - Transcendental functions have no such guarantee: `libm` is used in
 //!   every build, so a `no_std` viewer and the CLI bend and sharpen to the
-//!   same bits. The normative decode path uses none of them (format spec,
-//!   00-conventions.md "Arithmetic"); only the informative post-processing
-//!   and the encoder do.
+//!   same bits. The plain decode uses none of them (format spec,
+//!   00-conventions.md "Arithmetic"); only the post-processing, whose
+//!   results format-spec/06-post.md defines with these functions (and
+//!   whose golden hashes tests/golden.rs pins), and the encoder do.
 
 /// The square root, correctly rounded.
 #[inline]
