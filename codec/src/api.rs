@@ -13,6 +13,8 @@ pub use crate::swing::SwingStats;
 #[cfg(feature = "encoder")]
 pub use crate::encoder::check::{Check, CHECK_SAMPLES};
 #[cfg(feature = "encoder")]
+pub use crate::encoder::provenance::Origin;
+#[cfg(feature = "encoder")]
 pub use crate::encoder::stats::{
     Attempt, Candidate, CandidateFailure, EncodeStats, Encoded, HintReport, Measured, Method,
     MethodStats, PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport,

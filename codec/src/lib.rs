@@ -61,8 +61,8 @@ pub use api::{decode, inspect, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
     encode, Attempt, Candidate, CandidateFailure, Check, Effort, EncodeMode, EncodeOptions,
-    EncodeStats, Encoded, ErrorBound, Measured, Method, MethodStats, PieceOutcome, PieceReport,
-    RateReport, SimplifiedStats, SwingReport, SwingTarget, SwingTuning, AUTO_SAMPLES,
+    EncodeStats, Encoded, ErrorBound, Measured, Method, MethodStats, Origin, PieceOutcome,
+    PieceReport, RateReport, SimplifiedStats, SwingReport, SwingTarget, SwingTuning, AUTO_SAMPLES,
     CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};

@@ -96,6 +96,11 @@ impl<'a, 's> Job<'a, 's> {
         self.services.input.bbox_diagonal()
     }
 
+    /// The mesh as the caller gave it.
+    pub fn services_input(&self) -> &'s crate::TriMesh {
+        self.services.input
+    }
+
     /// The surface every candidate is measured against.
     pub fn reference(&self) -> Result<&'a Surface, Error> {
         let s = self.services;

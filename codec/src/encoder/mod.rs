@@ -15,6 +15,7 @@ pub(crate) mod effort;
 pub(crate) mod lossless;
 pub(crate) mod method;
 pub(crate) mod mixed;
+pub(crate) mod provenance;
 pub(crate) mod request;
 pub(crate) mod simplified;
 pub(crate) mod stats;
@@ -59,6 +60,7 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 method: made.stats,
                 candidates: Vec::new(),
                 check: None,
+                origins: Vec::new(),
             },
         })
     };
@@ -114,6 +116,7 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
     // Every lossy file is decoded and measured once more, as
     // `swm distance` would measure it (`check`).
     encoded.stats.check = Some(check::check(&job, &encoded.bytes)?);
+    encoded.stats.origins = provenance::of_file(&job, &encoded.bytes)?;
     Ok(encoded)
 }
 
@@ -126,6 +129,7 @@ fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<Encoded, E
             method: chosen.stats,
             candidates: chosen.candidates,
             check: None,
+            origins: Vec::new(),
         },
     })
 }

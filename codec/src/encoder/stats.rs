@@ -202,6 +202,12 @@ pub struct EncodeStats {
     /// triangle and moves each vertex by at most half a quantization
     /// step).
     pub check: Option<super::check::Check>,
+    /// For each vertex of the file as decoded plainly (no
+    /// post-processing), the face of the input and the barycentric
+    /// coordinates it stands for (`provenance`): what attributes are
+    /// resampled from. Empty in the lossless mode, whose vertices are the
+    /// input's own.
+    pub origins: Vec<super::provenance::Origin>,
 }
 
 impl EncodeStats {

@@ -228,6 +228,21 @@ impl Surface {
         self.faces[f].map(|v| self.positions[v as usize])
     }
 
+    /// The point of the surface nearest to `p`: the face it lies on (its
+    /// index in the mesh the surface was made from), the point, and the
+    /// hint for a next query nearby. `None` only for an empty surface.
+    #[cfg(feature = "encoder")]
+    pub(crate) fn nearest_point(
+        &self,
+        p: [f64; 3],
+        hint: Option<u32>,
+        scratch: &mut Scratch,
+    ) -> Option<(u32, [f64; 3], u32)> {
+        let hit = self.bvh.nearest(p, hint, scratch)?;
+        let t = self.triangle(hit.slot as usize);
+        Some((hit.triangle, triangle::closest_point(p, &t), hit.slot))
+    }
+
     /// Number of faces.
     pub fn face_count(&self) -> usize {
         self.faces.len()
