@@ -174,6 +174,12 @@ pub struct EncodeOptions {
     /// (with `SwingTuning::front_contexts` off, the whole file is then
     /// 1.0).
     pub framing: crate::container::Framing,
+    /// Find where each vertex of a lossy file came from
+    /// (`EncodeStats::origins`: a face of the input and barycentric
+    /// coordinates per decoded vertex, what attributes are resampled
+    /// from). Default `false`: on a file of a million vertices it is a
+    /// million nearest-point queries.
+    pub origins: bool,
 }
 
 #[cfg(feature = "encoder")]

@@ -116,7 +116,9 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
     // Every lossy file is decoded and measured once more, as
     // `swm distance` would measure it (`check`).
     encoded.stats.check = Some(check::check(&job, &encoded.bytes)?);
-    encoded.stats.origins = provenance::of_file(&job, &encoded.bytes)?;
+    if options.origins {
+        encoded.stats.origins = provenance::of_file(&job, &encoded.bytes)?;
+    }
     Ok(encoded)
 }
 

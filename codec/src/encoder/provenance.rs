@@ -256,8 +256,18 @@ mod file_tests {
                         max_bytes: None,
                     },
                 },
+                origins: true,
                 ..Default::default()
             };
+            let without = EncodeOptions {
+                origins: false,
+                ..options.clone()
+            };
+            assert!(crate::encode(&input, &without)
+                .unwrap()
+                .stats
+                .origins
+                .is_empty());
             let encoded = crate::encode(&input, &options).unwrap();
             let plain = crate::decode(&encoded.bytes, &crate::DecodeOptions::plain()).unwrap();
             let origins = &encoded.stats.origins;

@@ -205,8 +205,8 @@ pub struct EncodeStats {
     /// For each vertex of the file as decoded plainly (no
     /// post-processing), the face of the input and the barycentric
     /// coordinates it stands for (`provenance`): what attributes are
-    /// resampled from. Empty in the lossless mode, whose vertices are the
-    /// input's own.
+    /// resampled from. Empty unless `EncodeOptions::origins` asks for it,
+    /// and in the lossless mode, whose vertices are the input's own.
     pub origins: Vec<super::provenance::Origin>,
 }
 
