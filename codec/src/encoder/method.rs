@@ -40,7 +40,9 @@ pub(crate) struct Services<'a> {
     /// Simplify with meshoptimizer (effort `fast`).
     quick: bool,
     simplifier: OnceLock<Simplifier<'a>>,
-    reference: OnceLock<Surface>,
+    /// `None` when the reference makes no surface (the error is made
+    /// again for each caller: `Error` is not `Clone`).
+    reference: OnceLock<Option<Surface>>,
     /// The input as given, as `swm distance` measures against it.
     given: OnceLock<Surface>,
 }
@@ -101,15 +103,19 @@ impl<'a, 's> Job<'a, 's> {
         self.services.input
     }
 
-    /// The surface every candidate is measured against.
+    /// The surface every candidate is measured against. Made once: a
+    /// second caller waits for the first (the simplified method builds
+    /// it beside its first search, `simplified::encode_at`).
     pub fn reference(&self) -> Result<&'a Surface, Error> {
-        let s = self.services;
-        if let Some(r) = s.reference.get() {
-            return Ok(r);
+        let mesh = self.simplifier().reference();
+        let made = self
+            .services
+            .reference
+            .get_or_init(|| Surface::new(mesh).ok());
+        match made {
+            Some(r) => Ok(r),
+            None => Err(Surface::new(mesh).err().expect("the same mesh fails again")),
         }
-        // Two threads may both build it; one is kept (they are equal).
-        let made = Surface::new(self.simplifier().reference())?;
-        Ok(s.reference.get_or_init(|| made))
     }
 
     /// The L2 distance between the input as given and what the file

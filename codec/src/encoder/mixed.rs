@@ -292,7 +292,8 @@ fn resize(
 /// fits.
 fn fit_at(m: &Measured<'_>, bytes: u64) -> Result<Option<Fit>, Error> {
     let diagonal = m.simplifier.reference().bbox_diagonal();
-    let Some((fit, l2_relative)) = best_fit(&m.simplifier, bytes, &m.surface, TRIAL_SAMPLES)?
+    let Some((fit, l2_relative)) =
+        best_fit(&m.simplifier, bytes, &|| Ok(&m.surface), TRIAL_SAMPLES)?
     else {
         return Ok(None);
     };
