@@ -11,13 +11,12 @@ pub use crate::lossless::LosslessStats;
 pub use crate::swing::SwingStats;
 
 #[cfg(feature = "encoder")]
-pub use crate::encoder::check::{Check, CHECK_SAMPLES};
-#[cfg(feature = "encoder")]
-pub use crate::encoder::provenance::Origin;
+pub use crate::encoder::check::CHECK_SAMPLES;
 #[cfg(feature = "encoder")]
 pub use crate::encoder::stats::{
-    Attempt, Candidate, CandidateFailure, EncodeStats, Encoded, HintReport, Measured, Method,
-    MethodStats, PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport,
+    Attempt, Candidate, CandidateFailure, Check, EncodeStats, Encoded, HintReport, Measured,
+    Method, MethodStats, Origin, PieceOutcome, PieceReport, RateReport, SimplifiedStats,
+    SwingReport,
 };
 #[cfg(feature = "encoder")]
 pub use crate::options::{

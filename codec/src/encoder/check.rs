@@ -16,34 +16,15 @@
 //! million-triangle scan a second of its time).
 
 use super::method::Job;
-use crate::metrics::{metro_estimate, Surface};
+use super::stats::Check;
+use crate::metrics::estimate::metro_estimate;
+use crate::metrics::Surface;
 use crate::Error;
 
 /// Metro's samples kept per side for the check: about 0.3% standard
 /// error on the L2 of a simplified scan (measured in BENCHMARKS.md,
 /// "The reported error").
 pub const CHECK_SAMPLES: u64 = 60_000;
-
-/// The file as decoded, measured against the input.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct Check {
-    /// Vertices of the decoded mesh.
-    pub decoded_vertices: usize,
-    /// Triangles of the decoded mesh.
-    pub decoded_triangles: usize,
-    /// The decoded surface's area over the input's.
-    pub area_ratio: f64,
-    /// Symmetric L2 distance to the input over the input's bounding-box
-    /// diagonal, Metro's estimated from [`CHECK_SAMPLES`] of its samples a
-    /// side; `None` when the file decodes to no triangle.
-    pub l2_relative: Option<f64>,
-    /// The largest distance found among those samples (a lower bound of
-    /// the Hausdorff distance) over the diagonal; `None` as above.
-    pub hausdorff_relative: Option<f64>,
-    /// Points measured on each side.
-    pub samples: u64,
-}
 
 /// Decodes `bytes` and measures the result against the job's reference.
 pub(crate) fn check(job: &Job<'_, '_>, bytes: &[u8]) -> Result<Check, Error> {

@@ -30,18 +30,10 @@
 //! corner order of that face. Deterministic (queries in vertex order, one
 //! thread).
 
+use super::stats::Origin;
 use crate::metrics::{NearestScratch, Surface};
 use crate::TriMesh;
 use alloc::vec::Vec;
-
-/// Where one decoded vertex came from.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Origin {
-    /// A face of the input as given (index into its triangles).
-    pub face: u32,
-    /// Barycentric coordinates on that face, in its corner order.
-    pub barycentric: [f32; 3],
-}
 
 /// The origin of every vertex of the file `bytes` decoded plainly.
 pub(crate) fn of_file(

@@ -201,13 +201,13 @@ pub struct EncodeStats {
     /// report (`None` in the lossless mode, whose file keeps every
     /// triangle and moves each vertex by at most half a quantization
     /// step).
-    pub check: Option<super::check::Check>,
+    pub check: Option<Check>,
     /// For each vertex of the file as decoded plainly (no
     /// post-processing), the face of the input and the barycentric
     /// coordinates it stands for (`provenance`): what attributes are
     /// resampled from. Empty unless `EncodeOptions::origins` asks for it,
     /// and in the lossless mode, whose vertices are the input's own.
-    pub origins: Vec<super::provenance::Origin>,
+    pub origins: Vec<Origin>,
 }
 
 impl EncodeStats {
@@ -273,4 +273,34 @@ pub struct Encoded {
     pub bytes: Vec<u8>,
     /// How it was made.
     pub stats: EncodeStats,
+}
+
+/// The file as decoded, measured against the input.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Check {
+    /// Vertices of the decoded mesh.
+    pub decoded_vertices: usize,
+    /// Triangles of the decoded mesh.
+    pub decoded_triangles: usize,
+    /// The decoded surface's area over the input's.
+    pub area_ratio: f64,
+    /// Symmetric L2 distance to the input over the input's bounding-box
+    /// diagonal, Metro's estimated from `CHECK_SAMPLES` of its samples a
+    /// side; `None` when the file decodes to no triangle.
+    pub l2_relative: Option<f64>,
+    /// The largest distance found among those samples (a lower bound of
+    /// the Hausdorff distance) over the diagonal; `None` as above.
+    pub hausdorff_relative: Option<f64>,
+    /// Points measured on each side.
+    pub samples: u64,
+}
+
+/// Where one decoded vertex came from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Origin {
+    /// A face of the input as given (index into its triangles).
+    pub face: u32,
+    /// Barycentric coordinates on that face, in its corner order.
+    pub barycentric: [f32; 3],
 }

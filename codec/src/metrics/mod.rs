@@ -27,7 +27,7 @@
 //! chunk.
 
 mod bvh;
-mod estimate;
+pub mod estimate;
 mod sample;
 #[cfg(test)]
 mod tests;
@@ -39,7 +39,6 @@ use crate::{Error, FormatError, Malformed, ParameterError, TopologyError, TriMes
 use bvh::{Bvh, Scratch};
 #[cfg(feature = "encoder")]
 pub(crate) use bvh::{Bvh as NearestTree, Scratch as NearestScratch};
-pub use estimate::metro_estimate;
 use sample::{area, carried_counts, edge_points, face_points, SplitMix};
 use triangle::Tri;
 #[cfg(feature = "encoder")]
