@@ -536,7 +536,7 @@ fn csv_loads_in_python() {
         .arg("--version")
         .output();
     if !python.is_ok_and(|o| o.status.success()) {
-        println!("skipped: python3 not found");
+        skip("python3 not found");
         return;
     }
     let dir = scratch("rd-python");

@@ -50,6 +50,8 @@ mod retile;
 pub mod simplify;
 mod stream;
 mod swing;
+#[cfg(all(test, feature = "std"))]
+pub(crate) mod test_skip;
 mod varint;
 
 #[cfg(feature = "io")]

@@ -749,7 +749,7 @@ mod tests {
             .join("../../shared/corpus")
             .join(name);
         if !path.is_file() {
-            println!("skipped: ../shared/corpus not found");
+            crate::test_skip::skip("../shared/corpus not found");
             return None;
         }
         Some(crate::io::read_mesh(&path).unwrap())
