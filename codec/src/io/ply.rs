@@ -257,10 +257,18 @@ fn parse_header(bytes: &[u8]) -> Result<Header<'_>, Error> {
     }
     let encoding = encoding.ok_or_else(|| bad_header("no format line", 2))?;
     assign_roles(&mut elements)?;
+    // The header's lines all end alike, as its first does. When that is a
+    // lone `\r` (old Mac exporters), a `\n` after `end_header\r` is the
+    // first byte of binary data, not part of a `\r\n`.
+    let mut data = t.pos();
+    let lone_cr = bytes.get(3) == Some(&b'\r') && bytes.get(4) != Some(&b'\n');
+    if lone_cr && encoding != Encoding::Ascii && bytes[..data].ends_with(b"\r\n") {
+        data -= 1;
+    }
     Ok(Header {
         encoding,
         elements,
-        data: t.pos(),
+        data,
         data_line: t.line(),
     })
 }
@@ -999,6 +1007,59 @@ mod tests {
                     check_square(&mesh, xyz);
                 }
             }
+        }
+    }
+
+    /// `\n`, `\r\n` and a lone `\r` end header lines (and ASCII data
+    /// lines) alike, as old Mac exporters write them; after a lone `\r`,
+    /// binary data that starts with a `\n` byte keeps it.
+    #[test]
+    fn every_line_ending_reads_alike() {
+        for eol in ["\n", "\r\n", "\r"] {
+            for encoding in ENCODINGS {
+                let bytes = square(encoding, "float", "uchar", "int", true);
+                let end = bytes.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+                let mut text = String::from_utf8_lossy(&bytes[..end]).replace('\n', eol);
+                let mut file = if encoding == "ascii" {
+                    text.push_str(&String::from_utf8_lossy(&bytes[end..]).replace('\n', eol));
+                    text.into_bytes()
+                } else {
+                    [text.as_bytes(), &bytes[end..]].concat()
+                };
+                let mesh = read(&file, MeshFormat::Ply)
+                    .unwrap_or_else(|e| panic!("{eol:?} {encoding}: {e}"));
+                check_square(&mesh, "float");
+                // A header error names the line it is on.
+                let at = file.windows(16).position(|w| w == b"element material").unwrap();
+                file[at..at + 7].copy_from_slice(b"elemenX");
+                let (_, at) = malformed(read(&file, MeshFormat::Ply));
+                assert_eq!(at, Some(Location::Line(5)), "{eol:?} {encoding}");
+            }
+            // Binary data whose first byte is 10, `\n`.
+            let mut file = [
+                "ply",
+                "format binary_little_endian 1.0",
+                "element vertex 3",
+                "property uchar red",
+                "property float x",
+                "property float y",
+                "property float z",
+                "element face 1",
+                "property list uchar int vertex_indices",
+                "end_header",
+                "",
+            ]
+            .join(eol)
+            .into_bytes();
+            for p in [[0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+                file.push(10);
+                file.extend(p.iter().flat_map(|c| c.to_le_bytes()));
+            }
+            file.push(3);
+            file.extend([0i32, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
+            let mesh = read(&file, MeshFormat::Ply).unwrap_or_else(|e| panic!("{eol:?}: {e}"));
+            assert_eq!(mesh.positions, [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+            assert_eq!(mesh.triangles, [[0, 1, 2]], "{eol:?}");
         }
     }
 
