@@ -5,8 +5,9 @@
 //! runs the batch encoder on a two-worker Dask cluster over the shared
 //! and the generated corpus.
 //!
-//! The environment is `target/pyenv` (made by `.ci/setup-python`), or the
-//! one `SWM_PYENV` names. Without it, or when pytest skips tests of its
+//! The environment is the one `SWM_PYENV` names, else `target/pyenv`
+//! (made by `.ci/setup-python`), else `.venv` (made as README's "Use from
+//! Python" says). Without it, or when pytest skips tests of its
 //! own, the test reports a skip (`common::skip`) and passes, unless
 //! `SWM_CI=1`, where a skip is a failure.
 
@@ -46,12 +47,24 @@ fn pytest_skips(report: &str) -> Vec<String> {
         .collect()
 }
 
+/// The Python environment: `$SWM_PYENV`, else `target/pyenv` (what
+/// `.ci/setup-python` makes), else `.venv` (what README's "Use from
+/// Python" makes), else `target/pyenv` to name in the skip.
+fn pyenv(root: &Path) -> PathBuf {
+    if let Some(venv) = std::env::var_os("SWM_PYENV") {
+        return PathBuf::from(venv);
+    }
+    ["target/pyenv", ".venv"]
+        .iter()
+        .map(|dir| root.join(dir))
+        .find(|venv| venv.join("bin/python").is_file())
+        .unwrap_or_else(|| root.join("target/pyenv"))
+}
+
 #[test]
 fn pytest_suite() {
     let root = root();
-    let venv = std::env::var_os("SWM_PYENV")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target/pyenv"));
+    let venv = pyenv(&root);
     let python = venv.join("bin/python");
     if !python.is_file() {
         return missing(&format!("Python environment {}", venv.display()));

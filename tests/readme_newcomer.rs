@@ -46,7 +46,7 @@ fn install_names_what_the_manifests_declare() {
     let binary = bin.split('"').nth(1).expect("the binary's name");
     for needle in [
         format!("Rust {rust} or newer"),
-        "cargo install --path tools".to_string(),
+        "cargo install --locked --path tools".to_string(),
         format!("package is `{package}`, the binary `{binary}`"),
         format!("target/release/{binary}"),
         "crates.io".to_string(),

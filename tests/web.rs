@@ -107,11 +107,21 @@ fn build() {
 /// a hole and with handles; swing, with `HOLE` and with `REST`) and the
 /// golden files, each with what `swm decode` writes for it (PLY, PLY after
 /// `--sharpen --bend 1`, GLB for the normals), and a damaged file with the
-/// message `swm decode` gives for it. Made once per test binary.
+/// message `swm decode` gives for it. Made once per test binary, in a
+/// scratch folder or the one `SWM_WEB_CASES_OUT` names (`npm test` in
+/// `web/` asks for `web/test/cases/` through `web_cases_are_made`).
 fn cases() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
-        let dir = common::scratch("web_cases");
+        let dir = match std::env::var_os("SWM_WEB_CASES_OUT") {
+            Some(dir) => {
+                let dir = PathBuf::from(dir);
+                let _ = std::fs::remove_dir_all(&dir);
+                std::fs::create_dir_all(&dir).expect("create SWM_WEB_CASES_OUT");
+                dir
+            }
+            None => common::scratch("web_cases"),
+        };
         let mut files: Vec<(String, Vec<u8>)> = common::samples()
             .iter()
             .map(|s| (s.name.replace([' ', '+'], "-"), s.bytes.clone()))
@@ -187,6 +197,25 @@ fn cases() -> &'static Path {
         std::fs::write(dir.join("manifest.json"), manifest.to_string()).unwrap();
         dir
     })
+}
+
+/// The test files are made, each named in the manifest and present (no
+/// Node needed); `npm test` in `web/` runs this test to make its files.
+#[test]
+fn web_cases_are_made() {
+    let dir = cases();
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap();
+    let cases = manifest["cases"].as_array().expect("a list of cases");
+    let modes: std::collections::BTreeSet<_> = cases.iter().map(|c| c["mode"].as_str()).collect();
+    assert_eq!(modes.len(), 2, "both modes: {modes:?}");
+    for c in cases {
+        for key in ["swm", "ply", "sharpened_ply", "glb"] {
+            let file = dir.join(c[key].as_str().unwrap());
+            assert!(std::fs::metadata(&file).is_ok_and(|m| m.len() > 0), "{}", file.display());
+        }
+    }
+    assert!(dir.join(manifest["corrupt"]["swm"].as_str().unwrap()).is_file());
 }
 
 #[test]
