@@ -51,6 +51,8 @@ pub mod simplify;
 mod stream;
 mod swing;
 #[cfg(all(test, feature = "std"))]
+pub(crate) mod test_alloc;
+#[cfg(all(test, feature = "std"))]
 pub(crate) mod test_skip;
 mod varint;
 
