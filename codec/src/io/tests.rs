@@ -572,6 +572,7 @@ vertex 0 1 0\nendloop\nendfacet\nendsolid t\n"
         noise[k] as usize
     };
     let started = Instant::now();
+    let (mut accepted, mut refused) = (0u32, 0u32);
     for (original, format) in &inputs {
         for _ in 0..1500 {
             let mut bytes = original.clone();
@@ -605,10 +606,22 @@ vertex 0 1 0\nendloop\nendfacet\nendsolid t\n"
                     }
                 }
             }
-            let _ = read(&bytes, *format);
+            // What a reader accepts is a mesh the library can work on:
+            // finite positions, every index in range.
+            match read(&bytes, *format) {
+                Ok(mesh) => {
+                    mesh.validate()
+                        .unwrap_or_else(|e| panic!("{format:?}: read into an invalid mesh: {e}"));
+                    accepted += 1;
+                }
+                Err(_) => refused += 1,
+            }
         }
     }
-    assert!(started.elapsed().as_secs() < 60);
+    // Both sides of the readers' checks were reached.
+    assert!(accepted > 0 && refused > 0, "{accepted} accepted, {refused} refused");
+    // A hang guard, generous so that a loaded machine passes.
+    assert!(started.elapsed().as_secs() < 300);
 }
 
 /// What each reader reports as dropped, by what the file declares or
