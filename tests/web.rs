@@ -232,6 +232,39 @@ fn node_package_decodes_as_the_cli() {
     println!("{out}");
 }
 
+/// The module's size that README.md gives ("the decoder compiled to
+/// WebAssembly (NN KB gzipped)", KB of 1000 bytes, `gzip -9`) is within 5%
+/// of what `npm run build` makes now, so that the figure follows the code.
+#[test]
+fn readme_gives_the_built_module_size() {
+    if !node_ready() {
+        return;
+    }
+    build();
+    let readme = std::fs::read_to_string(web_dir().join("../README.md")).unwrap();
+    let marker = "the decoder compiled to WebAssembly (";
+    let at = readme.find(marker).expect("README gives the module's size") + marker.len();
+    let figure: f64 = readme[at..]
+        .split(" KB gzipped")
+        .next()
+        .and_then(|n| n.trim().parse().ok())
+        .expect("a size in KB");
+    let gzip = Command::new("gzip")
+        .args(["-9c"])
+        .arg(web_dir().join("dist/swm.wasm"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success());
+    let Some(gzip) = gzip else {
+        return common::skip("gzip not found");
+    };
+    let built = gzip.stdout.len() as f64 / 1000.0;
+    assert!(
+        (figure / built - 1.0).abs() <= 0.05,
+        "README says {figure} KB gzipped, the build gives {built:.1} KB: update README.md and BENCHMARKS.md (\"Web\")"
+    );
+}
+
 /// The hand-written TypeScript declarations accept the README's usage and
 /// reject misuse (`web/test/types/usage.ts`, compiled with the lock
 /// file's TypeScript, never run).
