@@ -72,7 +72,10 @@ fn rms_depth_below_unit_sphere(mesh: &swm::TriMesh) -> f64 {
         for i in 0..N {
             for j in 0..N - i {
                 // The centre of each small triangle of the grid.
-                let (s, r) = ((i as f64 + 1.0 / 3.0) / N as f64, (j as f64 + 1.0 / 3.0) / N as f64);
+                let (s, r) = (
+                    (i as f64 + 1.0 / 3.0) / N as f64,
+                    (j as f64 + 1.0 / 3.0) / N as f64,
+                );
                 let p = [0, 1, 2].map(|k| a[k] + s * u[k] + r * w[k]);
                 let depth = 1.0 - p.iter().map(|x| x * x).sum::<f64>().sqrt();
                 face += depth * depth;
@@ -99,7 +102,14 @@ fn two_parallel_squares_are_their_gap_apart() {
     };
     let a = write(&dir, "a.obj", &square(0.0));
     let b = write(&dir, "b.obj", &square(d));
-    let v = json(&swm(&["distance", s(&a), s(&b), "--samples", "2000", "--json"]));
+    let v = json(&swm(&[
+        "distance",
+        s(&a),
+        s(&b),
+        "--samples",
+        "2000",
+        "--json",
+    ]));
     for key in ["l2", "mean", "hausdorff"] {
         let x = v[key].as_f64().unwrap();
         assert!((x - f64::from(d)).abs() < 1e-6, "{key} {x}: {v}");

@@ -81,7 +81,10 @@ fn a_polygon_face_of_thousands_of_vertices_costs_work_linear_in_it() {
     // work (a factor of 8 leaves room for the graded mesh's rounding; a
     // quadratic cost would give 16).
     let (w1, w4) = (steps[0], steps[1]);
-    assert!(w4 <= 8 * w1, "n = 1000: {w1} steps, n = 4000: {w4}: not linear in n");
+    assert!(
+        w4 <= 8 * w1,
+        "n = 1000: {w1} steps, n = 4000: {w4}: not linear in n"
+    );
 }
 
 #[test]

@@ -188,10 +188,17 @@ fn generated_meshes_encode_at_every_rate() {
             // or the whole mesh is short of the request.
             let requested = j["size"]["requested"].as_f64().unwrap();
             let bytes = j["bytes"].as_f64().unwrap();
-            assert!(bytes <= 1.03 * requested, "{cell}: {bytes} bytes for {requested}");
+            assert!(
+                bytes <= 1.03 * requested,
+                "{cell}: {bytes} bytes for {requested}"
+            );
             // `within_tolerance`'s own rule (tools/src/encode.rs).
             let on_size = |b: f64| b * 100.0 >= requested * 97.0 && b * 100.0 <= requested * 103.0;
-            assert_eq!(within, on_size(bytes), "{cell}: {bytes} bytes of {requested}");
+            assert_eq!(
+                within,
+                on_size(bytes),
+                "{cell}: {bytes} bytes of {requested}"
+            );
             if !within && !whole {
                 let chosen = j["method"]["chosen"].as_str().unwrap();
                 let l2 = j["method"][chosen]["l2_rel"].as_f64();

@@ -109,7 +109,10 @@ impl Tally {
     /// Fails the test unless both outcomes occurred.
     fn both(&self, what: &str) {
         println!("{what}: {self:?}");
-        assert!(self.refused > 0, "{what}: no mutation was refused ({self:?})");
+        assert!(
+            self.refused > 0,
+            "{what}: no mutation was refused ({self:?})"
+        );
         assert!(self.decoded > 0, "{what}: no mutation decoded ({self:?})");
     }
 }
@@ -120,7 +123,6 @@ fn format_error(e: &Error) -> Option<&Malformed> {
         _ => None,
     }
 }
-
 
 /// How long one refused decode may take before a test calls it hung: a
 /// guard against allocating or looping through what a header declares,
@@ -313,7 +315,10 @@ fn overwritten_payload_bytes_with_the_crc_fixed() {
                 let mut b = s.bytes.clone();
                 b[at] = v;
                 fix_crc(&mut b);
-                tally.add(refused_or_valid(&b, &format!("{} with byte {at} = {v:#x}", s.name)));
+                tally.add(refused_or_valid(
+                    &b,
+                    &format!("{} with byte {at} = {v:#x}", s.name),
+                ));
             }
         }
         tally.both(&format!("{} payload bytes", s.name));
@@ -519,7 +524,10 @@ fn random_multi_byte_overwrites_with_the_crc_fixed() {
                 b[at] = rng.next() as u8;
             }
             fix_crc(&mut b);
-            tally.add(refused_or_valid(&b, &format!("{} random case {case}", s.name)));
+            tally.add(refused_or_valid(
+                &b,
+                &format!("{} random case {case}", s.name),
+            ));
         }
         tally.both(&format!("{} random overwrites", s.name));
     }
@@ -543,7 +551,10 @@ fn mutations_inside_rest_reach_the_nested_decoder() {
             b[at] = v;
             fix_crc(&mut b[start..start + len]);
             fix_crc(&mut b);
-            tally.add(refused_or_valid(&b, &format!("REST byte {} = {v:#x}", at - start)));
+            tally.add(refused_or_valid(
+                &b,
+                &format!("REST byte {} = {v:#x}", at - start),
+            ));
         }
     }
     tally.both("REST bytes");

@@ -107,24 +107,31 @@ fn lossless_keeps_every_triangle(name: &str, mesh: &TriMesh) {
     assert_eq!(decoded.positions.len(), mesh.positions.len(), "{name}");
     // Each decoded vertex lies near an input vertex: within a grid step
     // of the bounding box's longest side at 12 bits.
-    let (lo, hi) = mesh.positions.iter().fold(
-        ([f32::MAX; 3], [f32::MIN; 3]),
-        |(lo, hi), p| {
+    let (lo, hi) = mesh
+        .positions
+        .iter()
+        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
             (
                 [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
                 [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
             )
-        },
-    );
+        });
     let side = (0..3).map(|i| f64::from(hi[i] - lo[i])).fold(0.0, f64::max);
     let step = side / 4095.0;
     for p in &decoded.positions {
         let nearest = mesh
             .positions
             .iter()
-            .map(|q| (0..3).map(|i| (f64::from(p[i]) - f64::from(q[i])).abs()).fold(0.0, f64::max))
+            .map(|q| {
+                (0..3)
+                    .map(|i| (f64::from(p[i]) - f64::from(q[i])).abs())
+                    .fold(0.0, f64::max)
+            })
             .fold(f64::MAX, f64::min);
-        assert!(nearest <= step, "{name}: {p:?} is {nearest:e} from the input (step {step:e})");
+        assert!(
+            nearest <= step,
+            "{name}: {p:?} is {nearest:e} from the input (step {step:e})"
+        );
     }
 }
 

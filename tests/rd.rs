@@ -535,7 +535,10 @@ fn committed_shared_table_holds_for_the_mesh_of_the_day() {
     for r in read_csv(&table) {
         // `--only` takes the name without its extension.
         let file = r["mesh"].trim_start_matches("shared:");
-        let name = file.rsplit_once('.').map_or(file, |(stem, _)| stem).to_string();
+        let name = file
+            .rsplit_once('.')
+            .map_or(file, |(stem, _)| stem)
+            .to_string();
         if name != "fandisk" && !meshes.contains(&name) {
             meshes.push(name);
         }

@@ -150,8 +150,13 @@ fn the_mode_table_covers_every_mode() {
 #[test]
 fn the_test_command_is_what_ci_runs_and_counts_skips() {
     let readme = readme();
-    let at = readme.find("Run all tests:").expect("README says how to run all tests");
-    let block = readme[at..].split("```").nth(1).expect("a code block after it");
+    let at = readme
+        .find("Run all tests:")
+        .expect("README says how to run all tests");
+    let block = readme[at..]
+        .split("```")
+        .nth(1)
+        .expect("a code block after it");
     let command = block.trim_start_matches("sh").trim();
     assert_eq!(command, "tests/run", "README's test command");
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -162,7 +167,10 @@ fn the_test_command_is_what_ci_runs_and_counts_skips() {
     );
     assert!(ci.contains("export SWM_CI=1"), ".ci/run makes skips fatal");
     let run = std::fs::read_to_string(root.join(command)).expect("tests/run");
-    assert!(run.contains("cargo test --workspace"), "{command} runs cargo test");
+    assert!(
+        run.contains("cargo test --workspace"),
+        "{command} runs cargo test"
+    );
     assert!(run.contains("SWM_SKIP_LOG"), "{command} reads the skip log");
 }
 

@@ -212,10 +212,16 @@ fn web_cases_are_made() {
     for c in cases {
         for key in ["swm", "ply", "sharpened_ply", "glb"] {
             let file = dir.join(c[key].as_str().unwrap());
-            assert!(std::fs::metadata(&file).is_ok_and(|m| m.len() > 0), "{}", file.display());
+            assert!(
+                std::fs::metadata(&file).is_ok_and(|m| m.len() > 0),
+                "{}",
+                file.display()
+            );
         }
     }
-    assert!(dir.join(manifest["corrupt"]["swm"].as_str().unwrap()).is_file());
+    assert!(dir
+        .join(manifest["corrupt"]["swm"].as_str().unwrap())
+        .is_file());
 }
 
 #[test]

@@ -1017,7 +1017,11 @@ mod tests {
         for eol in ["\n", "\r\n", "\r"] {
             for encoding in ENCODINGS {
                 let bytes = square(encoding, "float", "uchar", "int", true);
-                let end = bytes.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+                let end = bytes
+                    .windows(11)
+                    .position(|w| w == b"end_header\n")
+                    .unwrap()
+                    + 11;
                 let mut text = String::from_utf8_lossy(&bytes[..end]).replace('\n', eol);
                 let mut file = if encoding == "ascii" {
                     text.push_str(&String::from_utf8_lossy(&bytes[end..]).replace('\n', eol));
@@ -1029,7 +1033,10 @@ mod tests {
                     .unwrap_or_else(|e| panic!("{eol:?} {encoding}: {e}"));
                 check_square(&mesh, "float");
                 // A header error names the line it is on.
-                let at = file.windows(16).position(|w| w == b"element material").unwrap();
+                let at = file
+                    .windows(16)
+                    .position(|w| w == b"element material")
+                    .unwrap();
                 file[at..at + 7].copy_from_slice(b"elemenX");
                 let (_, at) = malformed(read(&file, MeshFormat::Ply));
                 assert_eq!(at, Some(Location::Line(5)), "{eol:?} {encoding}");
@@ -1057,7 +1064,10 @@ mod tests {
             file.push(3);
             file.extend([0i32, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
             let mesh = read(&file, MeshFormat::Ply).unwrap_or_else(|e| panic!("{eol:?}: {e}"));
-            assert_eq!(mesh.positions, [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+            assert_eq!(
+                mesh.positions,
+                [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+            );
             assert_eq!(mesh.triangles, [[0, 1, 2]], "{eol:?}");
         }
     }
@@ -1175,7 +1185,10 @@ property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
             // Refused before reserving anything for 2e9 vertices (the
             // measure is the allocation, not the time: a loaded machine
             // passes).
-            assert!(largest < 1 << 20, "{encoding}: {largest} bytes allocated at once");
+            assert!(
+                largest < 1 << 20,
+                "{encoding}: {largest} bytes allocated at once"
+            );
             let possible = if encoding == "ascii" { 20 } else { 10 };
             assert_eq!(
                 what,

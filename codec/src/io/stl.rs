@@ -283,7 +283,9 @@ endsolid two triangles\n";
         let bad = ASCII.replacen("vertex 1 0 0", "vertex 1 zero 0", 1);
         for eol in ["\n", "\r\n", "\r"] {
             let text = ASCII.replace('\n', eol);
-            check(&read(text.as_bytes(), MeshFormat::Stl).unwrap_or_else(|e| panic!("{eol:?}: {e}")));
+            check(
+                &read(text.as_bytes(), MeshFormat::Stl).unwrap_or_else(|e| panic!("{eol:?}: {e}")),
+            );
             let bad = bad.replace('\n', eol);
             let (_, at) = malformed(read(bad.as_bytes(), MeshFormat::Stl));
             assert_eq!(at, Some(Location::Line(5)), "{eol:?}");

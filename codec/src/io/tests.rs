@@ -619,7 +619,10 @@ vertex 0 1 0\nendloop\nendfacet\nendsolid t\n"
         }
     }
     // Both sides of the readers' checks were reached.
-    assert!(accepted > 0 && refused > 0, "{accepted} accepted, {refused} refused");
+    assert!(
+        accepted > 0 && refused > 0,
+        "{accepted} accepted, {refused} refused"
+    );
     // A hang guard, generous so that a loaded machine passes.
     assert!(started.elapsed().as_secs() < 300);
 }

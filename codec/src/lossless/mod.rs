@@ -880,7 +880,10 @@ mod tests {
             let (result, largest) = crate::test_alloc::largest_allocation(|| decode_bytes(&b));
             assert!(result.is_err(), "count {value} at {at} accepted");
             // The file's own decode allocates a few KiB at most.
-            assert!(largest < 1 << 20, "count {value} at {at}: {largest} bytes allocated at once");
+            assert!(
+                largest < 1 << 20,
+                "count {value} at {at}: {largest} bytes allocated at once"
+            );
         }
         // A TOPO section claiming 2^40 symbols: its first varu.
         let file = parse_container(&bytes, &Limits::default()).unwrap();
@@ -890,7 +893,10 @@ mod tests {
         crate::container::fix_crc(&mut b);
         let (result, largest) = crate::test_alloc::largest_allocation(|| decode_bytes(&b));
         assert!(result.is_err());
-        assert!(largest < 1 << 20, "2^40 symbols: {largest} bytes allocated at once");
+        assert!(
+            largest < 1 << 20,
+            "2^40 symbols: {largest} bytes allocated at once"
+        );
     }
 
     #[test]

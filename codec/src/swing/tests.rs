@@ -780,7 +780,10 @@ fn absurd_counts_are_refused_before_allocating() {
         let (result, largest) = crate::test_alloc::largest_allocation(|| decode_bytes(&b));
         assert!(result.is_err(), "count {value} at {at} accepted");
         // The file's own decode allocates a few KiB at most.
-        assert!(largest < 1 << 20, "count {value} at {at}: {largest} bytes allocated at once");
+        assert!(
+            largest < 1 << 20,
+            "count {value} at {at}: {largest} bytes allocated at once"
+        );
     }
 }
 
