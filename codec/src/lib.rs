@@ -48,6 +48,7 @@ pub mod post;
 mod retile;
 #[cfg(feature = "encoder")]
 pub mod simplify;
+mod sort;
 mod stream;
 mod swing;
 #[cfg(all(test, feature = "std"))]
