@@ -159,7 +159,7 @@ fn a_fifo_is_refused_without_waiting_for_a_writer() {
         let fifo = dir.join(format!("fifo.{ext}"));
         let made = Command::new("mkfifo").arg(&fifo).status();
         if !made.is_ok_and(|s| s.success()) {
-            println!("skipped: mkfifo not found");
+            skip("mkfifo not found");
             return;
         }
         all_refuse(
@@ -230,7 +230,7 @@ fn the_default_limit_refuses_a_huge_file_unread() {
         let huge = dir.join(name);
         let file = std::fs::File::create(&huge).unwrap();
         if file.set_len(20 << 30).is_err() {
-            println!("skipped: this file system has no 20 GiB sparse files");
+            skip("this file system has no 20 GiB sparse files");
             return;
         }
         let why = format!(

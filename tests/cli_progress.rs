@@ -173,25 +173,39 @@ fn quiet_is_accepted_by_encode_and_rd() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Runs `command` (a shell command line) under a pseudo-terminal made by
+/// `script`, which passes on its exit status (`-e`).
+fn script(command: &str) -> std::io::Result<Output> {
+    Command::new("script")
+        .args(["-qec", command, "/dev/null"])
+        .env("TERM", "xterm")
+        .env(NO_DELAY.0, NO_DELAY.1)
+        .output()
+}
+
+/// Whether `script` is here and can make a pseudo-terminal: it runs
+/// `true` under one. Only this probe decides a skip.
+fn pseudo_terminal() -> bool {
+    script("true").is_ok_and(|o| o.status.success())
+}
+
 /// Runs swm under a pseudo-terminal made by `script`, whose output is
-/// what the terminal showed (stdout and stderr together); `None` where
-/// `script` is missing or cannot make one.
-fn on_terminal(args: &[String]) -> Option<String> {
+/// what the terminal showed (stdout and stderr together). A failing swm
+/// fails the test (`pseudo_terminal` said `script` works).
+fn on_terminal(args: &[String]) -> String {
     let mut command = String::from("exec");
     for a in std::iter::once(env!("CARGO_BIN_EXE_swm")).chain(args.iter().map(String::as_str)) {
         command.push_str(&format!(" '{}'", a.replace('\'', r"'\''")));
     }
-    let out = Command::new("script")
-        .args(["-qec", &command, "/dev/null"])
-        .env("TERM", "xterm")
-        .env(NO_DELAY.0, NO_DELAY.1)
-        .output()
-        .ok()?;
-    if !out.status.success() {
-        println!("script: {}", String::from_utf8_lossy(&out.stderr));
-        return None;
-    }
-    Some(String::from_utf8_lossy(&out.stdout).into_owned())
+    let out = script(&command).expect("run script");
+    let shown = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "swm {args:?} failed on a terminal ({}):\n{shown}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    shown
 }
 
 /// The control: on a terminal the same long runs show their progress
@@ -199,21 +213,21 @@ fn on_terminal(args: &[String]) -> Option<String> {
 /// not.
 #[test]
 fn a_terminal_shows_progress_unless_quiet() {
+    if !pseudo_terminal() {
+        return skip("no pseudo-terminal (`script -qec true /dev/null` failed)");
+    }
     let dir = scratch("progress-terminal");
     let (_, encode) = long_encode(&dir);
     for (args, prefix, detail) in [
         (encode, "swm encode [00:00:0", "encoding"),
         (long_rd(), "swm rd [00:00:0", "/8 cells"),
     ] {
-        let Some(shown) = on_terminal(&args) else {
-            println!("skipped: no pseudo-terminal (script)");
-            return;
-        };
+        let shown = on_terminal(&args);
         assert!(shown.contains(prefix), "{args:?}: {shown:?}");
         assert!(shown.contains(detail), "{args:?}: {shown:?}");
         let mut quiet = args.clone();
         quiet.push("--quiet".into());
-        let shown = on_terminal(&quiet).expect("ran above");
+        let shown = on_terminal(&quiet);
         // The terminal turns "\n" into "\r\n": only the progress marks.
         let shown = shown.replace("\r\n", "\n");
         assert_no_progress(&format!("{quiet:?}"), shown.as_bytes());

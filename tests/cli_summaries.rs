@@ -204,6 +204,13 @@ fn cleaning_and_component_lines_go_to_stderr() {
         stdout.lines().any(|l| l.starts_with(&line)),
         "{line}: {stdout}"
     );
+    // Why they differ: the speck, kept by lossless coding.
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.starts_with(&line) && l.contains(" of the lossless rest")),
+        "{stdout}"
+    );
     // With `-o -` everything but the file is on stderr, as before.
     let piped = swm(&[
         "encode",
@@ -328,4 +335,88 @@ fn suzanne_at_two_bits_per_vertex_is_a_warning() {
         stderr(&out)
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The report's lines say what happened and why (issue 48, item 4): the
+/// decoded counts name only what this file has (the generated cube: no
+/// hole, no lossless rest, EdgeSharpener by its hint); a candidate short of
+/// the request says so with the size asked; a rate control that fell back
+/// to shorter edges does not claim the rate was missed.
+#[test]
+fn report_lines_say_what_happened() {
+    let dir = scratch("summaries-why");
+    let output = dir.join("o.swm");
+    let cube = dir.join("cube.obj");
+    swm::io::write_mesh(&cube, &swm_corpus::by_name("cube").unwrap()).unwrap();
+    let text = ok(&swm(&[
+        "encode",
+        s(&cube),
+        "-o",
+        s(&output),
+        "--mode",
+        "swing",
+    ]));
+    let decoded = text
+        .lines()
+        .find(|l| l.starts_with("decoded mesh: "))
+        .unwrap_or_else(|| panic!("no decoded counts: {text}"));
+    let info = json(&swm(&["info", s(&output), "--json"]));
+    assert!(info["post"]["sharpen"] == true, "{info}");
+    assert!(decoded.contains("as the file's hint asks"), "{decoded}");
+    assert!(decoded.contains("EdgeSharpener"), "{decoded}");
+    assert!(
+        !decoded.contains("rest") && !decoded.contains("hole"),
+        "{decoded}"
+    );
+    // The counts are the decoder's.
+    let back = dir.join("cube-back.obj");
+    ok(&swm(&["decode", s(&output), "-o", s(&back)]));
+    let mesh = swm::io::read_mesh(&back).unwrap();
+    let counts = format!(
+        "decoded mesh: {} vertices, {} triangles (",
+        mesh.vertex_count(),
+        mesh.face_count()
+    );
+    assert!(decoded.starts_with(&counts), "{decoded} against {counts}");
+
+    // The whole cube takes a few hundred bytes: 3000 asked, the file is
+    // short, and the method line says so.
+    let text = ok(&swm(&[
+        "encode",
+        s(&cube),
+        "-o",
+        s(&output),
+        "--size",
+        "3000",
+    ]));
+    let method = text.lines().find(|l| l.starts_with("method: ")).unwrap();
+    assert!(
+        method.contains("short of the 3000 asked: the largest file this method made within it"),
+        "{method}"
+    );
+
+    // A thin torus: rate control's longer edges do not retile it.
+    let torus = dir.join("thin-torus.obj");
+    swm::io::write_mesh(&torus, &swm_corpus::torus(1.0, 0.02, 48, 8)).unwrap();
+    let text = ok(&swm(&[
+        "encode",
+        s(&torus),
+        "-o",
+        s(&output),
+        "--mode",
+        "swing",
+        "--bpv",
+        "1",
+    ]));
+    let edge = text
+        .lines()
+        .find(|l| l.starts_with("edge length "))
+        .unwrap();
+    assert!(
+        edge.contains(
+            " failed: longer edges did not retile this shape, so the longest that did was used)"
+        ),
+        "{edge}"
+    );
+    assert!(!edge.contains("needed a longer edge"), "{edge}");
 }

@@ -51,6 +51,71 @@ fn json_keys_and_zero_for_identical_meshes() {
     assert!(v["l2_relative"].as_f64().unwrap() <= 1e-9, "{v}");
 }
 
+/// The area-weighted RMS of 1 - |p| over the faces of `mesh` (a polyhedron
+/// inscribed in the unit sphere), from a barycentric grid on each face.
+fn rms_depth_below_unit_sphere(mesh: &swm::TriMesh) -> f64 {
+    const N: usize = 40;
+    let (mut sum, mut area_sum) = (0.0, 0.0);
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize].map(f64::from));
+        let (u, w) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        );
+        let cross = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
+        let area = 0.5 * cross.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let (mut face, mut count) = (0.0, 0.0);
+        for i in 0..N {
+            for j in 0..N - i {
+                // The centre of each small triangle of the grid.
+                let (s, r) = (
+                    (i as f64 + 1.0 / 3.0) / N as f64,
+                    (j as f64 + 1.0 / 3.0) / N as f64,
+                );
+                let p = [0, 1, 2].map(|k| a[k] + s * u[k] + r * w[k]);
+                let depth = 1.0 - p.iter().map(|x| x * x).sum::<f64>().sqrt();
+                face += depth * depth;
+                count += 1.0;
+            }
+        }
+        sum += area * face / count;
+        area_sum += area;
+    }
+    (sum / area_sum).sqrt()
+}
+
+/// Two parallel unit squares a distance d apart: every point of one is d
+/// from the other, so L2, mean and Hausdorff are d, both ways.
+#[test]
+fn two_parallel_squares_are_their_gap_apart() {
+    let dir = scratch("distance-squares");
+    let d = 0.125f32;
+    let square = |z: f32| {
+        swm::TriMesh::new(
+            vec![[0., 0., z], [1., 0., z], [1., 1., z], [0., 1., z]],
+            vec![[0, 1, 2], [0, 2, 3]],
+        )
+    };
+    let a = write(&dir, "a.obj", &square(0.0));
+    let b = write(&dir, "b.obj", &square(d));
+    let v = json(&swm(&[
+        "distance",
+        s(&a),
+        s(&b),
+        "--samples",
+        "2000",
+        "--json",
+    ]));
+    for key in ["l2", "mean", "hausdorff"] {
+        let x = v[key].as_f64().unwrap();
+        assert!((x - f64::from(d)).abs() < 1e-6, "{key} {x}: {v}");
+    }
+}
+
 #[test]
 fn two_spheres_differ_by_their_facets() {
     let dir = scratch("distance-spheres");
@@ -67,8 +132,17 @@ fn two_spheres_differ_by_their_facets() {
     let v = json(&swm(&args));
     let f = |k: &str| v[k].as_f64().unwrap();
     // A level-1 icosphere's faces sink below the unit sphere by a few
-    // percent of the radius; vertices of both lie on it.
-    assert!(f("l2") > 0.005 && f("l2") < 0.2, "{v}");
+    // percent of the radius; vertices of both lie on it. The fine sphere
+    // is the unit sphere to a few thousandths, so the backward distance
+    // (coarse faces to the fine sphere) at a point p of a face is about
+    // 1 - |p|: its RMS over the faces, worked out here, is the figure.
+    let by_hand = rms_depth_below_unit_sphere(&swm_corpus::icosphere(1.0, 1));
+    let backward = v["backward"]["rms"].as_f64().unwrap();
+    assert!(
+        (backward / by_hand - 1.0).abs() < 0.1,
+        "backward RMS {backward} against {by_hand} worked out: {v}"
+    );
+    assert!(f("l2") >= backward && f("l2") < 1.5 * by_hand, "{v}");
     assert!(f("hausdorff") >= f("l2") && f("l2") >= f("mean"), "{v}");
     assert!(
         (f("l2_relative") - f("l2") / f("diagonal")).abs() < 1e-12,

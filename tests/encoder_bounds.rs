@@ -66,6 +66,7 @@ fn work(input: &str, out: &Path, target: &[&str]) -> u64 {
 fn a_polygon_face_of_thousands_of_vertices_costs_work_linear_in_it() {
     let dir = scratch("bounds-polygon");
     let out = dir.join("p.swm");
+    let mut steps = Vec::new();
     for n in [1000, 4000] {
         // One edge length, so that the count of rate-control runs (which
         // follows how efficient the file is, not n) stays out of it.
@@ -74,7 +75,16 @@ fn a_polygon_face_of_thousands_of_vertices_costs_work_linear_in_it() {
         // across it n crossings: about 31,000 steps per input corner at
         // n = 1000. Rebuilt as a graded mesh, a few hundred.
         assert!(w <= 3000 * 3 * u64::from(n), "n = {n}: {w} steps");
+        steps.push(w);
     }
+    // Linear: four times the corners cost at most about four times the
+    // work (a factor of 8 leaves room for the graded mesh's rounding; a
+    // quadratic cost would give 16).
+    let (w1, w4) = (steps[0], steps[1]);
+    assert!(
+        w4 <= 8 * w1,
+        "n = 1000: {w1} steps, n = 4000: {w4}: not linear in n"
+    );
 }
 
 #[test]

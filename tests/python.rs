@@ -5,9 +5,11 @@
 //! runs the batch encoder on a two-worker Dask cluster over the shared
 //! and the generated corpus.
 //!
-//! The environment is `target/pyenv` (made by `.ci/setup-python`), or the
-//! one `SWM_PYENV` names. Without it the test prints a `skipped:` line and
-//! passes, unless `SWM_CI=1`, where a missing toolchain is a failure.
+//! The environment is the one `SWM_PYENV` names, else `target/pyenv`
+//! (made by `.ci/setup-python`), else `.venv` (made as README's "Use from
+//! Python" says). Without it, or when pytest skips tests of its
+//! own, the test reports a skip (`common::skip`) and passes, unless
+//! `SWM_CI=1`, where a skip is a failure.
 
 mod common;
 use std::path::{Path, PathBuf};
@@ -23,18 +25,46 @@ fn root() -> PathBuf {
 /// Skips (or, under `SWM_CI=1`, fails) for want of `what`.
 fn missing(what: &str) {
     let how = "run .ci/setup-python, or see README.md, \"Use from Python\"";
-    if std::env::var("SWM_CI").is_ok_and(|v| v == "1") {
-        panic!("{what} not found ({how}); SWM_CI=1 requires it");
+    common::skip(&format!("{what} not found ({how})"));
+}
+
+/// What pytest's report (`-rs`) says it skipped: its `SKIPPED [n] file:
+/// reason` lines, and the suite's own `skipped: ...` warnings (a test
+/// that runs with less than it could, such as the batch without the
+/// shared corpus).
+fn pytest_skips(report: &str) -> Vec<String> {
+    report
+        .lines()
+        .filter_map(|line| {
+            let line = line.trim();
+            if let Some(rest) = line.strip_prefix("SKIPPED ") {
+                Some(rest.to_string())
+            } else {
+                line.find("Warning: skipped: ")
+                    .map(|at| line[at + "Warning: ".len()..].to_string())
+            }
+        })
+        .collect()
+}
+
+/// The Python environment: `$SWM_PYENV`, else `target/pyenv` (what
+/// `.ci/setup-python` makes), else `.venv` (what README's "Use from
+/// Python" makes), else `target/pyenv` to name in the skip.
+fn pyenv(root: &Path) -> PathBuf {
+    if let Some(venv) = std::env::var_os("SWM_PYENV") {
+        return PathBuf::from(venv);
     }
-    println!("skipped: {what} not found ({how})");
+    ["target/pyenv", ".venv"]
+        .iter()
+        .map(|dir| root.join(dir))
+        .find(|venv| venv.join("bin/python").is_file())
+        .unwrap_or_else(|| root.join("target/pyenv"))
 }
 
 #[test]
 fn pytest_suite() {
     let root = root();
-    let venv = std::env::var_os("SWM_PYENV")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target/pyenv"));
+    let venv = pyenv(&root);
     let python = venv.join("bin/python");
     if !python.is_file() {
         return missing(&format!("Python environment {}", venv.display()));
@@ -89,5 +119,37 @@ fn pytest_suite() {
     assert!(
         out.status.success(),
         "the Python suite failed (report above)"
+    );
+    // pytest's own skips count as this test's: visible, and fatal in CI.
+    let skips = pytest_skips(&String::from_utf8_lossy(&out.stdout));
+    if !skips.is_empty() {
+        common::skip(&format!(
+            "pytest skipped {}: {}",
+            skips.len(),
+            skips.join("; ")
+        ));
+    }
+}
+
+#[test]
+fn pytest_skips_are_found_in_its_report() {
+    let report = "\
+..s.
+=============================== warnings summary ===============================
+tests/test_batch.py::test_batch_over_both_corpora
+  /x/tests/test_batch.py:71: UserWarning: skipped: ../shared/corpus not found; the batch runs over the generated corpus only
+    warnings.warn(\"skipped: ../shared/corpus not found\")
+=========================== short test summary info ============================
+SKIPPED [1] tests/conftest.py:45: ../shared/corpus not found
+SKIPPED [2] tests/test_batch.py:200: the dask command not found beside the Python interpreter
+3 passed, 3 skipped, 1 warning in 2.50s
+";
+    assert_eq!(
+        pytest_skips(report),
+        [
+            "skipped: ../shared/corpus not found; the batch runs over the generated corpus only",
+            "[1] tests/conftest.py:45: ../shared/corpus not found",
+            "[2] tests/test_batch.py:200: the dask command not found beside the Python interpreter",
+        ]
     );
 }

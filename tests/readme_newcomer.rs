@@ -46,7 +46,7 @@ fn install_names_what_the_manifests_declare() {
     let binary = bin.split('"').nth(1).expect("the binary's name");
     for needle in [
         format!("Rust {rust} or newer"),
-        "cargo install --path tools".to_string(),
+        "cargo install --locked --path tools".to_string(),
         format!("package is `{package}`, the binary `{binary}`"),
         format!("target/release/{binary}"),
         "crates.io".to_string(),
@@ -142,5 +142,69 @@ fn the_mode_table_covers_every_mode() {
     for mode in modes {
         let cell = format!("| `--mode {mode}");
         assert!(install.contains(&cell), "the mode table has no {cell}");
+    }
+}
+
+/// The README's test command is the one `.ci/run` runs, and it ends with
+/// the skip count that the skip helper feeds (issue 48, item 1).
+#[test]
+fn the_test_command_is_what_ci_runs_and_counts_skips() {
+    let readme = readme();
+    let at = readme
+        .find("Run all tests:")
+        .expect("README says how to run all tests");
+    let block = readme[at..]
+        .split("```")
+        .nth(1)
+        .expect("a code block after it");
+    let command = block.trim_start_matches("sh").trim();
+    assert_eq!(command, "tests/run", "README's test command");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let ci = std::fs::read_to_string(root.join(".ci/run")).expect(".ci/run");
+    assert!(
+        ci.lines().any(|l| l.trim() == command),
+        ".ci/run should run {command:?} as a line of its own"
+    );
+    assert!(ci.contains("export SWM_CI=1"), ".ci/run makes skips fatal");
+    let run = std::fs::read_to_string(root.join(command)).expect("tests/run");
+    assert!(
+        run.contains("cargo test --workspace"),
+        "{command} runs cargo test"
+    );
+    assert!(run.contains("SWM_SKIP_LOG"), "{command} reads the skip log");
+}
+
+/// A skip through the helper reaches the log `tests/run` counts, and
+/// names the test that skipped.
+#[test]
+fn a_skip_is_logged_with_its_test() {
+    let log = common::scratch("skip-log").join("skips.log");
+    // A child process of this very test binary, running only the helper
+    // test below, with the log pointed elsewhere so a run's own log holds
+    // no entry for it; under SWM_CI=1 the skip fails it instead.
+    let exe = std::env::current_exe().unwrap();
+    for (ci, expect_ok) in [("0", true), ("1", false)] {
+        let out = Command::new(&exe)
+            .args(["--exact", "skip_helper_child"])
+            .env("SWM_SKIP_LOG", &log)
+            .env("SWM_SKIP_CHILD", "1")
+            .env("SWM_CI", ci)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.success(), expect_ok, "SWM_CI={ci}: {out:?}");
+    }
+    let text = std::fs::read_to_string(&log).unwrap();
+    assert_eq!(
+        text,
+        "skipped: readme_newcomer::skip_helper_child: nothing to test here\n"
+    );
+}
+
+/// Not a test of its own: skips only when `a_skip_is_logged_with_its_test`
+/// runs it (`SWM_SKIP_CHILD`), and passes doing nothing otherwise.
+#[test]
+fn skip_helper_child() {
+    if std::env::var_os("SWM_SKIP_CHILD").is_some() {
+        common::skip("nothing to test here");
     }
 }

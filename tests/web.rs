@@ -7,7 +7,8 @@
 //! Needs Node with `npm ci` done in `web/`, the `wasm32-unknown-unknown`
 //! Rust target and, for the browser test, Chromium (`/usr/bin/chromium`
 //! or `$SWM_CHROMIUM`); `.ci/setup-web` installs them all. Without them
-//! the tests print `skipped: ...` and pass, unless `SWM_CI=1`.
+//! the tests report a skip (`common::skip`: on the terminal and in
+//! `tests/run`'s summary) and pass, unless `SWM_CI=1`.
 
 mod common;
 
@@ -19,14 +20,11 @@ fn web_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../web")
 }
 
-/// Whether a toolchain piece is present; prints the skip notice (or fails
+/// Whether a toolchain piece is present; reports the skip (a failure
 /// under `SWM_CI=1`) when it is not.
 fn present(found: bool, what: &str, how: &str) -> bool {
     if !found {
-        if std::env::var("SWM_CI").as_deref() == Ok("1") {
-            panic!("{what} not found ({how}); SWM_CI=1 makes this a failure");
-        }
-        println!("skipped: {what} not found ({how})");
+        common::skip(&format!("{what} not found ({how})"));
     }
     found
 }
@@ -109,11 +107,21 @@ fn build() {
 /// a hole and with handles; swing, with `HOLE` and with `REST`) and the
 /// golden files, each with what `swm decode` writes for it (PLY, PLY after
 /// `--sharpen --bend 1`, GLB for the normals), and a damaged file with the
-/// message `swm decode` gives for it. Made once per test binary.
+/// message `swm decode` gives for it. Made once per test binary, in a
+/// scratch folder or the one `SWM_WEB_CASES_OUT` names (`npm test` in
+/// `web/` asks for `web/test/cases/` through `web_cases_are_made`).
 fn cases() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
-        let dir = common::scratch("web_cases");
+        let dir = match std::env::var_os("SWM_WEB_CASES_OUT") {
+            Some(dir) => {
+                let dir = PathBuf::from(dir);
+                let _ = std::fs::remove_dir_all(&dir);
+                std::fs::create_dir_all(&dir).expect("create SWM_WEB_CASES_OUT");
+                dir
+            }
+            None => common::scratch("web_cases"),
+        };
         let mut files: Vec<(String, Vec<u8>)> = common::samples()
             .iter()
             .map(|s| (s.name.replace([' ', '+'], "-"), s.bytes.clone()))
@@ -191,6 +199,31 @@ fn cases() -> &'static Path {
     })
 }
 
+/// The test files are made, each named in the manifest and present (no
+/// Node needed); `npm test` in `web/` runs this test to make its files.
+#[test]
+fn web_cases_are_made() {
+    let dir = cases();
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap();
+    let cases = manifest["cases"].as_array().expect("a list of cases");
+    let modes: std::collections::BTreeSet<_> = cases.iter().map(|c| c["mode"].as_str()).collect();
+    assert_eq!(modes.len(), 2, "both modes: {modes:?}");
+    for c in cases {
+        for key in ["swm", "ply", "sharpened_ply", "glb"] {
+            let file = dir.join(c[key].as_str().unwrap());
+            assert!(
+                std::fs::metadata(&file).is_ok_and(|m| m.len() > 0),
+                "{}",
+                file.display()
+            );
+        }
+    }
+    assert!(dir
+        .join(manifest["corrupt"]["swm"].as_str().unwrap())
+        .is_file());
+}
+
 #[test]
 fn node_package_decodes_as_the_cli() {
     if !node_ready() {
@@ -203,6 +236,39 @@ fn node_package_decodes_as_the_cli() {
         Some(cases()),
     );
     println!("{out}");
+}
+
+/// The module's size that README.md gives ("the decoder compiled to
+/// WebAssembly (NN KB gzipped)", KB of 1000 bytes, `gzip -9`) is within 5%
+/// of what `npm run build` makes now, so that the figure follows the code.
+#[test]
+fn readme_gives_the_built_module_size() {
+    if !node_ready() {
+        return;
+    }
+    build();
+    let readme = std::fs::read_to_string(web_dir().join("../README.md")).unwrap();
+    let marker = "the decoder compiled to WebAssembly (";
+    let at = readme.find(marker).expect("README gives the module's size") + marker.len();
+    let figure: f64 = readme[at..]
+        .split(" KB gzipped")
+        .next()
+        .and_then(|n| n.trim().parse().ok())
+        .expect("a size in KB");
+    let gzip = Command::new("gzip")
+        .args(["-9c"])
+        .arg(web_dir().join("dist/swm.wasm"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success());
+    let Some(gzip) = gzip else {
+        return common::skip("gzip not found");
+    };
+    let built = gzip.stdout.len() as f64 / 1000.0;
+    assert!(
+        (figure / built - 1.0).abs() <= 0.05,
+        "README says {figure} KB gzipped, the build gives {built:.1} KB: update README.md and BENCHMARKS.md (\"Web\")"
+    );
 }
 
 /// The hand-written TypeScript declarations accept the README's usage and

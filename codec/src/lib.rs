@@ -48,8 +48,13 @@ pub mod post;
 mod retile;
 #[cfg(feature = "encoder")]
 pub mod simplify;
+mod sort;
 mod stream;
 mod swing;
+#[cfg(all(test, feature = "std"))]
+pub(crate) mod test_alloc;
+#[cfg(all(test, feature = "std"))]
+pub(crate) mod test_skip;
 mod varint;
 
 #[cfg(feature = "io")]

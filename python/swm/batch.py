@@ -49,10 +49,11 @@ from __future__ import annotations
 
 import argparse
 import csv
+import dataclasses
 import io
 import os
+import secrets
 import sys
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -66,9 +67,10 @@ MESH_EXTENSIONS = (".obj", ".ply", ".off", ".stl")
 #: Columns of the summary table. ``status`` is ``encoded``, ``skipped``
 #: (a valid output was already there) or ``failed``; ``method`` is what
 #: made the file: ``swing``, ``simplified`` (simplification, then the
-#: lossless coder) or ``lossless`` (every input triangle), for a skipped
-#: input the file's mode (``swing`` or ``lossless``, which a simplified
-#: file is too); ``bits_per_vertex`` counts against the input's
+#: lossless coder) or ``lossless`` (every input triangle). For a skipped
+#: input it is what the earlier run's summary says made that file, or,
+#: without one, what the file shows (:func:`method_of`);
+#: ``bits_per_vertex`` counts against the input's
 #: vertices; ``l2_estimate`` is the symmetric L2 distance between input
 #: and decoded mesh over the input's bounding-box diagonal, from
 #: area-uniform face samples (``--samples``); ``seconds`` is the encode
@@ -98,6 +100,9 @@ class Job:
     #: Encode lossless when SwingWrapper retiling fails (``mode="swing"``;
     #: the automatic mode falls back by itself).
     fallback: bool = True
+    #: What made the output, as an earlier run's summary records it
+    #: (``None``: no summary, or no row for it), for a skipped input.
+    earlier_method: Optional[str] = None
 
 
 def find_inputs(manifest: Path) -> List[Path]:
@@ -147,11 +152,28 @@ def _temp_prefix(path: Path) -> str:
     return f".{path.name}."
 
 
+def _create_temp(folder: Path, prefix: str) -> Tuple[int, str]:
+    """A new file ``PREFIX<random>.tmp`` in ``folder``, created exclusively
+    (never an existing entry, never through a symbolic link) with mode
+    0o666 less the umask, as ``swm``'s CLI creates its outputs
+    (``tempfile.mkstemp`` would give 0o600, unreadable to the other users
+    of a shared file system)."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+    for _ in range(100):
+        temp = str(folder / f"{prefix}{secrets.token_hex(6)}.tmp")
+        try:
+            return os.open(temp, flags, 0o666), temp
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"{folder}: no free temporary name for {prefix}*.tmp")
+
+
 def write_atomic(path: Path, data: bytes) -> None:
     """Writes ``data`` to ``path`` complete or not at all: a temporary file
     in the same folder (so the rename stays on one file system), synced,
     then renamed over ``path``. Leftovers of an earlier attempt at the same
-    output (a worker killed while writing) are removed first."""
+    output (a worker killed while writing) are removed first. The file
+    gets the mode the CLI gives its outputs: 0o666 less the umask."""
     path.parent.mkdir(parents=True, exist_ok=True)
     prefix = _temp_prefix(path)
     for stale in path.parent.glob(prefix + "*.tmp"):
@@ -159,7 +181,7 @@ def write_atomic(path: Path, data: bytes) -> None:
             stale.unlink()
         except FileNotFoundError:
             pass
-    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=prefix, suffix=".tmp")
+    fd, temp = _create_temp(path.parent, prefix)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data)
@@ -193,6 +215,24 @@ def verified(path: Path) -> Optional[Tuple[bytes, Any]]:
         return None
 
 
+def method_of(data: bytes, faces: Any, earlier: Optional[str] = None) -> str:
+    """What made an existing ``.swm`` file: ``earlier`` (an earlier run's
+    summary) when the file's mode agrees with it; else ``swing`` for a
+    SwingWrapper file, and for a lossless-mode one ``simplified`` when it
+    holds fewer triangles than the input's ``faces`` without repeated
+    corners (what cleaning keeps, bar duplicates), ``lossless`` otherwise."""
+    info = swm.info(data)
+    if info["mode"] == "swing":
+        return "swing"
+    if earlier in ("lossless", "simplified"):
+        return earlier
+    import numpy as np
+
+    f = np.asarray(faces)
+    proper = int(np.count_nonzero((f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])))
+    return "simplified" if info["triangles"] < proper else "lossless"
+
+
 def compress(job: Job) -> Dict[str, Any]:
     """Encodes one input (on a worker) and returns its summary row.
 
@@ -207,7 +247,7 @@ def compress(job: Job) -> Dict[str, Any]:
         if found is not None:
             data, decoded = found
             row["status"] = "skipped"
-            method = swm.info(data)["mode"]
+            method = method_of(data, faces, job.earlier_method)
         else:
             start = time.perf_counter()
             try:
@@ -235,6 +275,20 @@ def compress(job: Job) -> Dict[str, Any]:
     except swm.SwmError as e:
         row.update(status="failed", error=f"{type(e).__name__}: {e}")
     return row
+
+
+def earlier_methods(csv_path: Path) -> Dict[str, str]:
+    """Output path -> method, from an earlier run's summary at ``csv_path``
+    (empty when there is none or it cannot be read)."""
+    try:
+        with open(csv_path, newline="") as f:
+            return {
+                r["output"]: r["method"]
+                for r in csv.DictReader(f)
+                if r.get("status") in ("encoded", "skipped") and r.get("method")
+            }
+    except (OSError, csv.Error, KeyError):
+        return {}
 
 
 def failed_row(job: Job, error: BaseException) -> Dict[str, Any]:
@@ -399,6 +453,9 @@ def main(argv: Optional[Iterable[str]] = None) -> int:
         parser.error("--samples must be at least 1")
     out = args.out.absolute()
     jobs = plan(args.manifest.absolute(), out, options, args.samples, args.fallback == "lossless")
+    summary = args.summary.absolute() if args.summary else out / "summary.csv"
+    earlier = earlier_methods(summary)
+    jobs = [dataclasses.replace(j, earlier_method=earlier.get(j.output)) for j in jobs]
     if not jobs:
         print(f"swm.batch: {args.manifest}: no mesh files", file=sys.stderr)
         return 1
@@ -431,7 +488,6 @@ def main(argv: Optional[Iterable[str]] = None) -> int:
         client.close()
         if cluster is not None:
             cluster.close()
-    summary = args.summary.absolute() if args.summary else out / "summary.csv"
     written = write_summary(rows, summary)
     counts = {s: sum(r["status"] == s for r in rows) for s in ("encoded", "skipped", "failed")}
     print(

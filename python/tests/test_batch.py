@@ -7,8 +7,10 @@ and the pieces (manifests, atomic writes, the worker task) on their own."""
 from __future__ import annotations
 
 import csv
+import dataclasses
 import os
 import signal
+import stat
 import subprocess
 import sys
 import time
@@ -158,9 +160,9 @@ def test_batch_with_a_worker_killed_then_a_rerun(library, tmp_path):
         # Relative to the bounding-box diagonal; suzanne at 1 bit per
         # vertex is the coarsest (about 0.12).
         assert 0 < float(row["l2_estimate"]) < 0.2, row
-        # What made each file (the automatic mode's choice), or for a
-        # file found there, its mode.
-        assert row["method"] in (("swing", "simplified") if row["status"] == "encoded" else ("swing", "lossless"))
+        # What made each file (the automatic mode's choice), also for a
+        # file found there: a simplified file is not called lossless.
+        assert row["method"] in ("swing", "simplified"), row
     assert sum(r["status"] == "encoded" for r in rows.values()) >= len(inputs) - 2
     files = check_outputs(out, names)
     # The batch's files are those swm.encode makes (small inputs checked).
@@ -261,6 +263,15 @@ def test_write_atomic(tmp_path, monkeypatch):
     batch.write_atomic(target, b"new")
     assert target.read_bytes() == b"new"
     assert os.listdir(tmp_path / "d") == ["f.swm"]
+    # The mode the CLI gives its outputs: 0o666 less the umask, not
+    # mkstemp's 0o600 (other users of a shared file system read them).
+    for umask in (0o022, 0o077, 0o002):
+        old = os.umask(umask)
+        try:
+            batch.write_atomic(target, b"new")
+        finally:
+            os.umask(old)
+        assert stat.S_IMODE(os.stat(target).st_mode) == 0o666 & ~umask, oct(umask)
 
     class Boom(Exception):
         pass
@@ -303,6 +314,22 @@ def test_compress_task(generated_corpus, tmp_path):
     assert row["method"] == report["method"] and (tmp_path / "a.swm").read_bytes() == data
     row = batch.compress(batch.Job(str(mesh), str(tmp_path / "s.swm"), {"mode": "lossless", "size": 600}, 1000))
     assert row["method"] == "simplified" and int(row["bytes"]) <= 600
+    # Found there on a rerun, each file keeps its label: from the earlier
+    # summary, or without one from the file (fewer triangles than the
+    # input's: simplified).
+    for name, options, method in (("s.swm", {"mode": "lossless", "size": 600}, "simplified"),
+                                  ("l.swm", {"mode": "lossless"}, "lossless"),
+                                  ("t.swm", {"mode": "swing", "bpv": 2.0}, "swing")):
+        job = batch.Job(str(mesh), str(tmp_path / name), options, 1000)
+        assert batch.compress(job)["status"] in ("encoded", "skipped")
+        for earlier in (None, method):
+            row = batch.compress(dataclasses.replace(job, earlier_method=earlier))
+            assert (row["status"], row["method"]) == ("skipped", method), (name, earlier)
+    # The earlier summary is read by output path.
+    summary = tmp_path / "summary.csv"
+    batch.write_summary([row], summary)
+    assert batch.earlier_methods(summary) == {str(tmp_path / "t.swm"): "swing"}
+    assert batch.earlier_methods(tmp_path / "none.csv") == {}
     row = batch.compress(batch.Job(str(mesh), str(tmp_path / "w.swm"), {"size": 10, "max_size": 10}, 1000))
     assert row["status"] == "failed" and row["error"].startswith("SizeError: no file of 10 bytes")
     assert not (tmp_path / "w.swm").exists()

@@ -371,25 +371,41 @@ def test_outputs_are_plain_numpy_arrays(torus):
 
 
 def test_the_gil_is_released_while_encoding(generated_corpus):
+    # Python code runs in this thread while the other one is inside the
+    # library. Were the GIL held there, this thread could not run until
+    # each encode returned: ticks would fall between encodes, none while
+    # one is running. The encodes are made long enough (a finer retiling
+    # each time one takes under 50 ms) for that to tell, on any machine:
+    # the check is about where the ticks fall, not how fast anything is.
     v, f = swm.read(generated_corpus / "double-torus.obj")
+    spans: list = []
     done = threading.Event()
-    ticks = 0
 
     def encode() -> None:
-        for bpv in (4, 5, 6):
+        bpv = 4.0
+        for _ in range(6):
+            start = time.perf_counter()
             swm.encode(v, f, mode="swing", bpv=bpv)
+            end = time.perf_counter()
+            spans.append((start, end))
+            if end - start >= 0.05:
+                break
+            bpv *= 2
         done.set()
 
+    ticks: list = []
     worker = threading.Thread(target=encode)
     worker.start()
-    # Python code runs in this thread while the other one is inside the
-    # library. Were the GIL held there, this loop could not run again
-    # before the encodes ended: a tick or two at most.
     while not done.is_set():
-        ticks += 1
+        ticks.append(time.perf_counter())
         time.sleep(0.001)
     worker.join()
-    assert ticks >= 20, ticks
+    start, end = spans[-1]
+    assert end - start >= 0.05 or len(spans) == 6, spans
+    inside = sum(start < t < end for t in ticks)
+    # Released: about one tick per millisecond of the last encode; held:
+    # none (a tick or two at its edges at most).
+    assert inside >= 10, (inside, end - start)
 
 
 # -- trimesh -----------------------------------------------------------------

@@ -470,16 +470,15 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         say!("error to the input: L2 {:.3}, Hausdorff {:.3} (x 1e-4 of the diagonal, as swm distance measures it)", 1e4 * l2, 1e4 * h);
     }
     // The counts above are the file's (of a swing file, the retiled
-    // mesh); what a decoder gets differs by the hole masks and the
-    // lossless rest.
+    // mesh); what a decoder gets differs by what this file has of the
+    // hole masks, the loops' fans, the lossless rest and the hint.
     if let Some(f) =
         fidelity.filter(|f| (f.vertices as u64, f.triangles as u64) != (vertices, triangles))
     {
-        let why = if stats.swing().is_some() {
-            " (the retiled triangles less the hole masks, plus the lossless rest)"
-        } else {
-            ""
-        };
+        let why = stats
+            .swing()
+            .map(|s| crate::report::decoded_counts_why(s, stats.hint().map(|h| h.chosen)))
+            .unwrap_or_default();
         say!(
             "decoded mesh: {} vertices, {} triangles{why}",
             f.vertices,
@@ -487,7 +486,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         );
     }
     if !stats.candidates.is_empty() {
-        say!("{}", crate::report::choice_line(stats, options.effort));
+        say!(
+            "{}",
+            crate::report::choice_line(stats, options.effort, requested)
+        );
     }
     if let Some(h) = stats.hint() {
         let chosen = match (h.chosen.sharpen, h.chosen.bend_steps) {
@@ -535,7 +537,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             r.edge_length,
             r.attempts.len(),
             if r.reduced {
-                format!(" ({failed} failed: the requested rate needed a longer edge than this shape allows, so the largest working one was used)")
+                format!(" ({failed} failed: longer edges did not retile this shape, so the longest that did was used)")
             } else {
                 String::new()
             },

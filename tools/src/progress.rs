@@ -63,6 +63,16 @@ impl Progress {
     /// A bar hidden from the start; when it may be `shown`, a thread
     /// draws it after [`DELAY`] unless the work is over by then.
     fn start(len: Option<u64>, style: ProgressStyle, shown: bool) -> Progress {
+        Progress::start_after(len, style, shown, delay())
+    }
+
+    /// [`Progress::start`] with the delay given.
+    fn start_after(
+        len: Option<u64>,
+        style: ProgressStyle,
+        shown: bool,
+        delay: Duration,
+    ) -> Progress {
         let bar =
             ProgressBar::with_draw_target(len, ProgressDrawTarget::hidden()).with_style(style);
         let reveal = shown.then(|| {
@@ -71,7 +81,7 @@ impl Progress {
             let handle = std::thread::spawn(move || {
                 // Only the timeout reveals; a dropped sender (the work
                 // ended) leaves the bar hidden.
-                if let Err(mpsc::RecvTimeoutError::Timeout) = rx.recv_timeout(delay()) {
+                if let Err(mpsc::RecvTimeoutError::Timeout) = rx.recv_timeout(delay) {
                     b.set_draw_target(ProgressDrawTarget::stderr());
                     b.enable_steady_tick(TICK);
                 }
@@ -147,16 +157,19 @@ mod tests {
 
     /// A run shorter than the delay, where progress may be shown, ends
     /// with its bar never drawn, and drop returns at once (it wakes the
-    /// reveal thread instead of waiting out the delay).
+    /// reveal thread instead of waiting out the delay). The delay is an
+    /// hour, so that a loaded machine cannot make the check flake: only a
+    /// drop that waited it out takes anywhere near that.
     #[test]
     fn a_short_run_stays_hidden() {
+        let hour = Duration::from_secs(3600);
         let start = std::time::Instant::now();
         let style = ProgressStyle::default_spinner();
-        let p = Progress::start(None, style, true);
+        let p = Progress::start_after(None, style, true, hour);
         assert!(p.may_show());
         p.phase("reading");
         assert!(p.bar.is_hidden());
         drop(p);
-        assert!(start.elapsed() < DELAY / 2, "{:?}", start.elapsed());
+        assert!(start.elapsed() < hour / 60, "{:?}", start.elapsed());
     }
 }

@@ -172,20 +172,67 @@ pub fn choice_json(stats: &swm::EncodeStats, effort: swm::Effort) -> Value {
     out
 }
 
+/// Why a retiled file decodes to other counts than its own, from what it
+/// holds: " (the retiled triangles less N over holes, ..., as the file's
+/// hint asks)", naming only what applies; empty when nothing does.
+pub fn decoded_counts_why(s: &swm::SwingStats, hint: Option<swm::PostProcessing>) -> String {
+    let mut parts = Vec::new();
+    if s.holes_masked_triangles > 0 {
+        parts.push(format!(
+            "less {} masked over holes",
+            s.holes_masked_triangles
+        ));
+    }
+    if s.loop_points > 0 {
+        parts.push(format!(
+            "less the {} of the boundary loops' fans",
+            s.loop_points
+        ));
+    }
+    if s.rest_triangles > 0 {
+        parts.push(format!("plus {} of the lossless rest", s.rest_triangles));
+    }
+    match hint {
+        Some(h) if h.bend_steps > 0 => parts.push(format!(
+            "after EdgeSharpener and {} Bender step{}, as the file's hint asks",
+            h.bend_steps,
+            if h.bend_steps == 1 { "" } else { "s" }
+        )),
+        Some(h) if h.sharpen => parts.push("after EdgeSharpener, as the file's hint asks".into()),
+        _ => {}
+    }
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!(" (the retiled triangles {})", parts.join(", "))
+    }
+}
+
 /// One line: which method the automatic mode wrote, and what each
 /// candidate measured (or why it made no file), errors in the unit used
-/// throughout: x 1e-4 of the diagonal.
-pub fn choice_line(stats: &swm::EncodeStats, effort: swm::Effort) -> String {
+/// throughout: x 1e-4 of the diagonal. A file more than 3% short of the
+/// `requested` size says so, with the size asked for.
+pub fn choice_line(
+    stats: &swm::EncodeStats,
+    effort: swm::Effort,
+    requested: Option<u64>,
+) -> String {
     let parts: Vec<String> = stats
         .candidates
         .iter()
         .filter(|c| !matches!(c.outcome, Err(swm::CandidateFailure::NotApplicable)))
         .map(|c| {
             let what = match &c.outcome {
-                Ok(m) => match m.l2_relative {
-                    Some(l2) => format!("L2 {:.3} at {} bytes", 1e4 * l2, m.bytes),
-                    None => format!("{} bytes, not measured", m.bytes),
-                },
+                Ok(m) => {
+                    let short = requested
+                        .filter(|&r| m.bytes * 100 < r * 97)
+                        .map(|r| format!(", short of the {r} asked: the largest file this method made within it"))
+                        .unwrap_or_default();
+                    match m.l2_relative {
+                        Some(l2) => format!("L2 {:.3} at {} bytes{short}", 1e4 * l2, m.bytes),
+                        None => format!("{} bytes, not measured{short}", m.bytes),
+                    }
+                }
                 Err(f) => format!("none: {f}"),
             };
             format!("{} {what}", c.method.name())

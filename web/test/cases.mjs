@@ -3,15 +3,31 @@
 // decodes them to (binary PLY, and GLB for the normals), and a damaged
 // file with the CLI's error message. Parsers for those outputs, and
 // bit-for-bit comparison.
+import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 
-/** The folder of test files, from SWM_WEB_CASES or the first argument. */
+/**
+ * The folder of test files: SWM_WEB_CASES or the first argument (what
+ * tests/web.rs passes), else web/test/cases/, made afresh on each run by
+ * the test `web_cases_are_made` of tests/web.rs (cargo, from the
+ * repository's root), so that `npm test` works on its own after
+ * `npm run build` and never compares with an older CLI's output.
+ */
 export function casesDir() {
-  const dir = process.env.SWM_WEB_CASES ?? process.argv[2];
-  if (!dir) {
-    throw new Error('set SWM_WEB_CASES to a folder made by tests/web.rs (cargo test -p swm-cli --test web)');
-  }
+  const given = process.env.SWM_WEB_CASES ?? process.argv[2];
+  if (given) return given;
+  const here = dirname(fileURLToPath(import.meta.url));
+  const dir = join(here, 'cases');
+  const root = join(here, '..', '..');
+  const args = ['test', '-p', 'swm-cli', '--test', 'web', '--', '--exact', 'web_cases_are_made'];
+  console.error(`making the test files in ${dir}: cargo ${args.join(' ')} (the first build takes minutes)`);
+  execFileSync('cargo', args, {
+    cwd: root,
+    stdio: ['ignore', 'ignore', 'inherit'],
+    env: { ...process.env, SWM_WEB_CASES_OUT: dir },
+  });
   return dir;
 }
 

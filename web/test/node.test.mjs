@@ -2,7 +2,8 @@
 // what the `swm` CLI decodes it to, with and without Sharpen&Bend, with
 // the CLI's normals; errors are SWMErrors with the decoder's message and
 // leave the decoder usable; SWMLoader builds the same BufferGeometry.
-// Run by tests/web.rs: SWM_WEB_CASES=DIR node --test test/node.test.mjs
+// Run by tests/web.rs: SWM_WEB_CASES=DIR node --test test/node.test.mjs;
+// `npm test` (after `npm run build`) makes its own files (cases.mjs).
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { DEFAULT_LIMITS, decode, init, isReady, SWMError } from '../src/swm.js';

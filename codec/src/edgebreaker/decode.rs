@@ -295,7 +295,10 @@ pub fn decode_from<S: SymbolSource>(
     // (a later symbol, so decoded earlier) is built.
     let mut event_corner = vec![UNSET; conn.splits.len()];
     let mut events_by_source: Vec<u32> = (0..conn.splits.len() as u32).collect();
-    events_by_source.sort_unstable_by_key(|&e| (conn.splits[e as usize].source, e));
+    // `e` makes the key unique.
+    crate::sort::sort_by_unique_key(&mut events_by_source, |&e| {
+        (conn.splits[e as usize].source, e)
+    });
     let mut next_source = events_by_source.len(); // walks backwards
     let mut next_split = conn.splits.len();
 

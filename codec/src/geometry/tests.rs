@@ -399,7 +399,7 @@ fn corpus(name: &str) -> Option<crate::TriMesh> {
         .join("../../shared/corpus")
         .join(name);
     if !path.exists() {
-        eprintln!("skipped: ../shared/corpus not found");
+        crate::test_skip::skip("../shared/corpus not found");
         return None;
     }
     Some(crate::io::read_mesh(&path).unwrap())

@@ -320,10 +320,7 @@ impl<'a> Feed<'a> {
     /// Moves to the next `v` or `f` line of the file; false at the end.
     fn next_line(&mut self) -> bool {
         while !self.rest.is_empty() {
-            let (line, rest) = match self.rest.iter().position(|&b| b == b'\n') {
-                Some(n) => (&self.rest[..n], &self.rest[n + 1..]),
-                None => (self.rest, &[][..]),
-            };
+            let (line, rest) = text::split_line(self.rest);
             self.rest = rest;
             self.line += 1;
             let line = uncomment(line);
@@ -466,6 +463,21 @@ mod tests {
         }
         let pentagon = obj("v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n").unwrap();
         assert_eq!(pentagon.triangles, [[0, 1, 2], [0, 2, 3], [0, 3, 4]]);
+    }
+
+    /// `\n`, `\r\n` and a lone `\r` end lines alike: the same mesh, and
+    /// an error on the same line.
+    #[test]
+    fn every_line_ending_reads_alike() {
+        let text = "# a square\nv 0 0 0\nv 1 0 0\n\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+        let bad = "v 0 0 0\nv 1 0 0\n# comment\nv 0 1 0\nf 1 2 3\nf 1 2 9\n";
+        for eol in ["\n", "\r\n", "\r"] {
+            let mesh = obj(&text.replace('\n', eol)).unwrap_or_else(|e| panic!("{eol:?}: {e}"));
+            assert_eq!(mesh.positions, SQUARE, "{eol:?}");
+            assert_eq!(mesh.triangles, [[0, 1, 2], [0, 2, 3]], "{eol:?}");
+            let (_, at) = malformed(obj(&bad.replace('\n', eol)));
+            assert_eq!(at, Some(Location::Line(6)), "{eol:?}");
+        }
     }
 
     #[test]

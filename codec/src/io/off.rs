@@ -249,6 +249,22 @@ mod tests {
         }
     }
 
+    /// `\n`, `\r\n` and a lone `\r` end lines alike: the same mesh, and
+    /// an error on the same line.
+    #[test]
+    fn every_line_ending_reads_alike() {
+        let text = "OFF\n# a square\n4 1 0\n0 0 0\n1 0 0\n\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+        let bad = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n# end\n";
+        for eol in ["\n", "\r\n", "\r"] {
+            let mesh = off(&text.replace('\n', eol)).unwrap_or_else(|e| panic!("{eol:?}: {e}"));
+            assert_eq!(mesh.positions.len(), 4, "{eol:?}");
+            assert_eq!(mesh.positions[2], [1.0, 1.0, 0.0], "{eol:?}");
+            assert_eq!(mesh.triangles, [[0, 1, 2], [0, 2, 3]], "{eol:?}");
+            let (_, at) = malformed(off(&bad.replace('\n', eol)));
+            assert_eq!(at, Some(Location::Line(6)), "{eol:?}");
+        }
+    }
+
     #[test]
     fn malformed_files() {
         // Each file ends in a comment so that the counts check (a face

@@ -310,7 +310,7 @@ mod tests {
         let is_device =
             |p: &Path| std::fs::symlink_metadata(p).is_ok_and(|m| m.file_type().is_char_device());
         if !is_device(null) {
-            println!("skipped: /dev/null is not a character device here");
+            crate::test_skip::skip("/dev/null is not a character device here");
             return;
         }
         write_atomic(null, |f| Ok(f.write_all(b"gone")?)).unwrap();
@@ -327,7 +327,7 @@ mod tests {
         match std::process::Command::new("mkfifo").arg(&fifo).status() {
             Ok(status) if status.success() => {}
             _ => {
-                println!("skipped: mkfifo is not available");
+                crate::test_skip::skip("mkfifo is not available");
                 return;
             }
         }

@@ -276,6 +276,22 @@ endsolid two triangles\n";
         assert_eq!(mesh.triangles, [[0, 1, 2], [3, 4, 5]]);
     }
 
+    /// `\n`, `\r\n` and a lone `\r` end lines alike: the same mesh, and
+    /// an error on the same line.
+    #[test]
+    fn every_line_ending_reads_alike() {
+        let bad = ASCII.replacen("vertex 1 0 0", "vertex 1 zero 0", 1);
+        for eol in ["\n", "\r\n", "\r"] {
+            let text = ASCII.replace('\n', eol);
+            check(
+                &read(text.as_bytes(), MeshFormat::Stl).unwrap_or_else(|e| panic!("{eol:?}: {e}")),
+            );
+            let bad = bad.replace('\n', eol);
+            let (_, at) = malformed(read(bad.as_bytes(), MeshFormat::Stl));
+            assert_eq!(at, Some(Location::Line(5)), "{eol:?}");
+        }
+    }
+
     #[test]
     fn ascii_and_binary() {
         check(&read(ASCII.as_bytes(), MeshFormat::Stl).unwrap());

@@ -7,6 +7,10 @@
 //! line the cursor is on, so errors can say where.
 //! Floats go through the standard library's correctly rounded parser, so a
 //! shortest round-trip decimal written by our writers reads back bit-exactly.
+//!
+//! Lines end in `\n` (Unix), `\r\n` (Windows) or a lone `\r` (classic Mac
+//! OS, which old exporters still write): every reader takes all three,
+//! through [`split_line`] and the cursor's line count.
 
 /// A cursor over ASCII text.
 pub(super) struct Text<'a> {
@@ -36,13 +40,15 @@ impl<'a> Text<'a> {
         self.bytes.len() - self.pos
     }
 
-    /// Moves past whitespace, counting lines.
+    /// Moves past whitespace, counting lines (`\n`, `\r\n` or `\r` each
+    /// end one).
     pub(super) fn skip_space(&mut self) {
         while let Some(&b) = self.bytes.get(self.pos) {
             if !b.is_ascii_whitespace() {
                 break;
             }
-            if b == b'\n' {
+            let crlf = b == b'\r' && self.bytes.get(self.pos + 1) == Some(&b'\n');
+            if b == b'\n' || (b == b'\r' && !crlf) {
                 self.line += 1;
             }
             self.pos += 1;
@@ -63,25 +69,18 @@ impl<'a> Text<'a> {
         (self.pos > start).then(|| &bytes[start..self.pos])
     }
 
-    /// The rest of the current line without its terminator (`\n` or
-    /// `\r\n`) and that line's number; `None` at the end of the text.
-    /// The cursor moves to the start of the next line.
+    /// The rest of the current line without its terminator (`\n`,
+    /// `\r\n` or `\r`) and that line's number; `None` at the end of the
+    /// text. The cursor moves to the start of the next line.
     pub(super) fn next_line(&mut self) -> Option<(u64, &'a [u8])> {
-        let bytes = self.bytes;
-        let rest = bytes.get(self.pos..).filter(|r| !r.is_empty())?;
+        let rest = self.bytes.get(self.pos..).filter(|r| !r.is_empty())?;
         let number = self.line;
-        let line = match rest.iter().position(|&b| b == b'\n') {
-            Some(n) => {
-                self.pos += n + 1;
-                self.line += 1;
-                &rest[..n]
-            }
-            None => {
-                self.pos = bytes.len();
-                rest
-            }
-        };
-        Some((number, line.strip_suffix(b"\r").unwrap_or(line)))
+        let (line, after) = split_line(rest);
+        if after.len() < rest.len() - line.len() {
+            self.line += 1;
+        }
+        self.pos = self.bytes.len() - after.len();
+        Some((number, line))
     }
 
     /// Skips the rest of the current line (after a token).
@@ -92,6 +91,23 @@ impl<'a> Text<'a> {
     /// The offset of the cursor in the bytes.
     pub(super) fn pos(&self) -> usize {
         self.pos
+    }
+}
+
+/// The first line of `bytes` without its terminator, and the bytes after
+/// that terminator: `\n`, `\r\n` or a lone `\r`. Without one, the whole
+/// of `bytes` is the line and nothing follows.
+pub(super) fn split_line(bytes: &[u8]) -> (&[u8], &[u8]) {
+    match bytes.iter().position(|&b| b == b'\n' || b == b'\r') {
+        Some(n) => {
+            let end = if bytes[n] == b'\r' && bytes.get(n + 1) == Some(&b'\n') {
+                n + 2
+            } else {
+                n + 1
+            };
+            (&bytes[..n], &bytes[end..])
+        }
+        None => (bytes, &[]),
     }
 }
 
@@ -224,5 +240,25 @@ mod tests {
         assert_eq!(t.line(), 5);
         assert_eq!(t.token(), None);
         assert_eq!(t.next_line(), None);
+    }
+
+    /// `\n`, `\r\n` and a lone `\r` end lines alike, for tokens and lines.
+    #[test]
+    fn every_line_ending_counts() {
+        for eol in ["\n", "\r\n", "\r"] {
+            let text = ["a b", "", " c", "last line", ""].join(eol);
+            let mut t = Text::new(text.as_bytes(), 1);
+            assert_eq!(t.token(), Some(&b"a"[..]), "{eol:?}");
+            assert_eq!(t.token(), Some(&b"b"[..]));
+            assert_eq!(t.line(), 1, "{eol:?}");
+            assert_eq!(t.token(), Some(&b"c"[..]));
+            assert_eq!(t.line(), 3, "{eol:?}");
+            t.skip_line();
+            assert_eq!(t.next_line(), Some((4, &b"last line"[..])), "{eol:?}");
+            assert_eq!(t.line(), 5, "{eol:?}");
+            assert_eq!(t.next_line(), None);
+        }
+        assert_eq!(split_line(b"a\r\r\nb"), (&b"a"[..], &b"\r\nb"[..]));
+        assert_eq!(split_line(b"a"), (&b"a"[..], &b""[..]));
     }
 }

@@ -164,7 +164,7 @@ pub(crate) fn pair_edges(triangles: &[[u32; 3]], vertex_count: usize, undirected
         } else {
             // Sorting puts the half-edges of each undirected edge next to
             // each other: O(k log k) for a vertex of huge valence.
-            bucket.sort_unstable();
+            crate::sort::sort_unstable(bucket);
             bucket.chunk_by(|a, b| a.0 == b.0).for_each(&mut settle);
         }
     }
@@ -271,7 +271,7 @@ pub(crate) fn vertex_fans(
             }
         }
     }
-    extra.sort_unstable();
+    crate::sort::sort_unstable(&mut extra);
     (first, extra.into_iter().map(|(_, vv, c)| (vv, c)).collect())
 }
 
@@ -344,7 +344,7 @@ impl CornerTable {
         let (vertex_corner, extra) = vertex_fans(&v, &pairing.o, vertex_count);
         if pairing.cut_edges > 0 || !extra.is_empty() {
             let mut vs: Vec<u32> = extra.iter().map(|e| e.0 .0).collect();
-            vs.sort_unstable();
+            crate::sort::sort_unstable(&mut vs);
             vs.dedup();
             return Err(TopologyError::NonManifold {
                 edges: pairing.cut_edges,

@@ -46,7 +46,7 @@ impl TriMesh {
     pub fn distinct_positions(&self) -> usize {
         let key = |p: &[f32; 3]| p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
         let mut keys: Vec<[u32; 3]> = self.positions.iter().map(key).collect();
-        keys.sort_unstable();
+        crate::sort::sort_unstable(&mut keys);
         keys.dedup();
         keys.len()
     }

@@ -38,7 +38,7 @@ impl SharpEdges {
             .filter(|[a, b]| a != b)
             .map(|[a, b]| [a.min(b), a.max(b)])
             .collect();
-        pairs.sort_unstable();
+        crate::sort::sort_unstable(&mut pairs);
         pairs.dedup();
         SharpEdges { pairs }
     }

@@ -205,7 +205,7 @@ fn decode(bytes: &[u8], options: &DecodeOptions, with_normals: bool) -> Owned {
     });
     let (mesh, header) = match result {
         Ok(x) => x,
-        Err(e) => return failure(status_of(&e), e.to_string()),
+        Err(e) => return failure(status_of(&e), message(&e)),
     };
     let normals = if with_normals {
         swm::vertex_normals(&mesh)
@@ -257,6 +257,30 @@ fn failure(status: u32, message: String) -> Owned {
         _mesh: TriMesh::default(),
         _normals: Vec::new(),
         _message: message,
+    }
+}
+
+/// The error's message, as `e.to_string()` words it for every error a
+/// decode can give, without linking the `Display` of the encoder's, the
+/// file system's and the options' errors: with them `core`'s float
+/// formatting and `std::io::Error`'s descriptions came in, 14 KB of the
+/// module gzipped (BENCHMARKS.md, "Web"). An option out of range, which the
+/// module's own options never are, is worded without its value.
+fn message(e: &Error) -> String {
+    use swm::ParameterError as P;
+    match e {
+        Error::Format(f) => f.to_string(),
+        Error::LimitExceeded(l) => l.to_string(),
+        Error::Unsupported(u) => u.to_string(),
+        Error::Parameter(P::OutOfRange { name, .. } | P::NotPositive { name, .. }) => {
+            let mut m = String::from(*name);
+            m.push_str(" is out of its range");
+            m
+        }
+        Error::Parameter(_) => String::from("an argument is out of its range"),
+        _ => String::from(
+            "internal error: the decoder gave an error of the encoder or the file system",
+        ),
     }
 }
 

@@ -116,7 +116,15 @@ fn errors_carry_the_status_and_the_library_message() {
             &bytes,
             [2.0, DEFAULT[1], DEFAULT[2]],
             STATUS_LIMIT,
-            String::new(),
+            swm::decode(
+                &bytes,
+                &DecodeOptions {
+                    limits: super::limits(2.0, DEFAULT[1], DEFAULT[2]).unwrap(),
+                    ..Default::default()
+                },
+            )
+            .unwrap_err()
+            .to_string(),
         ),
         (
             &bytes,

@@ -189,7 +189,7 @@ pub(super) fn cleanup(
     }
 
     // Slivers left: only faces that were examined can be.
-    touched.sort_unstable();
+    crate::sort::sort_unstable(&mut touched);
     touched.dedup();
     let left = touched
         .iter()
@@ -200,7 +200,7 @@ pub(super) fn cleanup(
     // any more, which can only be vertices of dead faces (vertices the
     // input left unreferenced stay).
     let mut dropped: Vec<u32> = m.killed.iter().flat_map(|&f| m.tris[f as usize]).collect();
-    dropped.sort_unstable();
+    crate::sort::sort_unstable(&mut dropped);
     dropped.dedup();
     dropped.retain(|&v| {
         m.faces_of(v, &mut around);

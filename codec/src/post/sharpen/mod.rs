@@ -226,7 +226,7 @@ fn sharp_edges(triangles: &[[u32; 3]], tagged: &[bool]) -> SharpEdges {
 /// LSD radix sort by bytes, skipping the bytes in which all keys agree.
 fn radix_sort(keys: &mut Vec<u64>) {
     if keys.len() < 64 {
-        keys.sort_unstable();
+        crate::sort::sort_unstable(keys);
         return;
     }
     let (or, and) = keys
