@@ -126,8 +126,8 @@ fn bumpy_ellipsoid(levels: u32) -> TriMesh {
 fn run(c: &mut Criterion, name: &str, mesh: &TriMesh) {
     let triangles = mesh.face_count() as u64;
     let encoded = swm::encode(mesh, &options(1.0)).expect("encode at 1 b/v");
-    let l = encoded.stats.rate.as_ref().unwrap().edge_length;
-    let out = encoded.stats.swing.as_ref().unwrap().triangles;
+    let l = encoded.stats.rate().unwrap().edge_length;
+    let out = encoded.stats.swing().unwrap().triangles;
     let decode_options = DecodeOptions::plain();
 
     let mut g = c.benchmark_group("swing-encode");
