@@ -133,6 +133,7 @@ pub fn triangle_distance2(p: [f64; 3], t: &Tri) -> f64 {
 
 /// [`triangle_distance2`] for a triangle of `f64` corners (the retiler's
 /// tip fitting).
+#[cfg(feature = "encoder")]
 #[inline]
 pub fn triangle_distance2_f64(p: [f64; 3], t: &[[f64; 3]; 3]) -> f64 {
     distance2(p, closest_point_f64(p, t))
