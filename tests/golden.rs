@@ -176,7 +176,7 @@ fn lossless_compact_v1_1_reencodes_to_the_same_bytes() {
 }
 
 /// Writes the compact golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_lossless_compact_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_lossless_compact_golden`).
 #[test]
 #[ignore]
 fn write_lossless_compact_golden() {
@@ -292,16 +292,27 @@ fn golden_swing_options() -> EncodeOptions {
     }
 }
 
-/// Encodes `mesh` with `options`, writes the bytes to
-/// `format-spec/golden/NAME` and prints the figures its spec page quotes.
+/// Encodes `mesh` with `options`, writes the bytes and prints the
+/// figures its spec page quotes. The file goes to `format-spec/golden/NAME`
+/// only when `SWM_WRITE_GOLDEN=1` asks for it (a golden file is made once,
+/// by hand); otherwise to a temporary folder, so that `cargo test --
+/// --include-ignored` never rewrites the committed files (issue 48).
 fn write_golden(name: &str, mesh: &TriMesh, options: &EncodeOptions) {
     let encoded = swm::encode(mesh, options).unwrap();
     let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
-    let path = format!(
-        "{}/../format-spec/golden/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    std::fs::write(path, &encoded.bytes).unwrap();
+    let dir = if std::env::var_os("SWM_WRITE_GOLDEN").is_some_and(|v| v == "1") {
+        std::path::PathBuf::from(format!(
+            "{}/../format-spec/golden",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+    } else {
+        let dir = std::env::temp_dir().join(format!("swm-golden-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    };
+    let path = dir.join(name);
+    std::fs::write(&path, &encoded.bytes).unwrap();
+    println!("{}", path.display());
     println!(
         "{} bytes, {} vertices, {} triangles, hash {:#018X}",
         encoded.bytes.len(),
@@ -312,7 +323,7 @@ fn write_golden(name: &str, mesh: &TriMesh, options: &EncodeOptions) {
 }
 
 /// Writes the golden swing file (run once, by hand, when the file is
-/// made: `cargo test --test golden -- --ignored write_swing_golden`).
+/// made: `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_golden`).
 #[test]
 #[ignore]
 fn write_swing_golden() {
@@ -391,7 +402,7 @@ fn golden_adaptive_options() -> EncodeOptions {
 }
 
 /// Writes the 1.1 golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_swing_v1_1_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_v1_1_golden`).
 #[test]
 #[ignore]
 fn write_swing_v1_1_golden() {
@@ -458,7 +469,7 @@ fn golden_front_options() -> EncodeOptions {
 }
 
 /// Writes the CLRF golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_swing_front_v1_1_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_front_v1_1_golden`).
 #[test]
 #[ignore]
 fn write_swing_front_v1_1_golden() {
@@ -546,7 +557,7 @@ fn golden_loop_options() -> EncodeOptions {
 }
 
 /// Writes the LOOP golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_swing_loop_v1_1_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_loop_v1_1_golden`).
 #[test]
 #[ignore]
 fn write_swing_loop_v1_1_golden() {
@@ -661,7 +672,7 @@ fn golden_post_options() -> EncodeOptions {
 }
 
 /// Writes the hint golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_swing_post_v1_1_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_post_v1_1_golden`).
 #[test]
 #[ignore]
 fn write_swing_post_v1_1_golden() {
@@ -846,7 +857,7 @@ const SWING_BEND_V1_1_POST: [(u32, usize, usize, u64); 3] = [
 const SWING_BEND_V1_1_PLAIN: (usize, usize, u64) = (394, 784, 0xE7FE_2652_FCBC_EAB5);
 
 /// Writes the Sharpen&Bend golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_swing_bend_v1_1_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_bend_v1_1_golden`).
 #[test]
 #[ignore]
 fn write_swing_bend_v1_1_golden() {
@@ -954,7 +965,7 @@ fn golden_crease_options() -> EncodeOptions {
 }
 
 /// Writes the RADS golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_swing_crease_v1_1_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_crease_v1_1_golden`).
 #[test]
 #[ignore]
 fn write_swing_crease_v1_1_golden() {
@@ -1022,7 +1033,7 @@ const LOSSLESS_DENSE_V1_1: &[u8] = include_bytes!("../format-spec/golden/lossles
 const LOSSLESS_DENSE_V1_1_FNV1A64: u64 = 0xF6EC_ED5E_393D_6A5F;
 
 /// Writes the dense golden file (run once, by hand:
-/// `cargo test --test golden -- --ignored write_lossless_dense_v1_1_golden`).
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_lossless_dense_v1_1_golden`).
 #[test]
 #[ignore]
 fn write_lossless_dense_v1_1_golden() {
