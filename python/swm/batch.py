@@ -26,8 +26,10 @@ What a run guarantees:
   default) writes whichever of SwingWrapper and simplify-then-lossless
   the encoder measures closer to the input, ``swing`` retiles,
   ``lossless`` keeps every triangle (``--qp``) or, with ``--size`` or
-  ``--bpv``, simplifies to fit. Options the mode has no use for are a
-  usage error.
+  ``--bpv``, simplifies to fit. ``--effort`` and ``--max-error`` are
+  ``swm encode``'s too (the effort level of the automatic and simplified
+  searches; the smallest file within an error). Options the mode has no
+  use for are a usage error.
 * In ``--mode swing``, when the encoder finds no retiling of a mesh
   (``swm.RetileError``), the mesh is encoded lossless instead
   (``--fallback lossless``, the default; ``--fallback none`` records the
@@ -388,6 +390,16 @@ def _parser() -> argparse.ArgumentParser:
     )
     target.add_argument("--size", type=int, help="bytes per file (lossless: simplify to fit)")
     target.add_argument("--edge-length", type=float, help="swing and auto: the edge length L")
+    target.add_argument(
+        "--max-error", type=float,
+        help="auto and lossless: the smallest file whose L2 to the input is at most E "
+        "(relative to the bounding-box diagonal, as swm encode --max-error)",
+    )
+    p.add_argument(
+        "--effort", choices=("fast", "default", "max"),
+        help="auto and lossless with a target: how hard the encoder searches, as swm encode "
+        "--effort (default: default)",
+    )
     p.add_argument("--angle-bits", type=int, help="swing: bits per dihedral angle (default: chosen by rate control, as swm encode)")
     p.add_argument("--max-size", type=int, help="never more bytes than this (lossless: with --size or --bpv)")
     p.add_argument("--qp", type=int, help="lossless without a size: bits per coordinate (default 12)")
@@ -419,22 +431,23 @@ def _parser() -> argparse.ArgumentParser:
 def _options(args: argparse.Namespace) -> Dict[str, Any]:
     """The options of :func:`swm.encode`, refusing (``ValueError``) those
     the mode has no use for, as ``swm encode`` does."""
-    sized = args.size is not None or args.bpv is not None
+    sized = args.size is not None or args.bpv is not None or args.max_error is not None
     refused = {
         "auto": {"--qp": args.qp, "--angle-bits": args.angle_bits},
-        "swing": {"--qp": args.qp},
+        "swing": {"--qp": args.qp, "--max-error": args.max_error, "--effort": args.effort},
         "lossless": {
             "--edge-length": args.edge_length,
             "--angle-bits": args.angle_bits,
             "--qp with --size or --bpv": args.qp if sized else None,
             "--max-size without --size or --bpv": None if sized else args.max_size,
+            "--effort without --size, --bpv or --max-error": None if sized else args.effort,
         },
     }[args.mode]
     given = [k for k, v in refused.items() if v is not None]
     if given:
         raise ValueError(f"--mode {args.mode} takes no {', '.join(given)}")
     options: Dict[str, Any] = {"mode": args.mode}
-    for key in ("angle_bits", "bpv", "size", "edge_length", "max_size", "qp"):
+    for key in ("angle_bits", "bpv", "size", "edge_length", "max_size", "qp", "effort", "max_error"):
         if getattr(args, key) is not None:
             options[key] = getattr(args, key)
     return options

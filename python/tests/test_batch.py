@@ -346,6 +346,10 @@ def test_usage_errors(generated_corpus, tmp_path):
         (["--mode", "lossless", "--edge-length", "0.1"], "--mode lossless takes no --edge-length"),
         (["--mode", "lossless", "--bpv", "2", "--qp", "12"], "--mode lossless takes no --qp with --size or --bpv"),
         (["--mode", "lossless", "--max-size", "500"], "--mode lossless takes no --max-size without --size or --bpv"),
+        (["--mode", "swing", "--effort", "fast"], "--mode swing takes no --effort"),
+        (["--mode", "swing", "--max-error", "0.001"], "--mode swing takes no --max-error"),
+        (["--mode", "lossless", "--effort", "max"], "--mode lossless takes no --effort without"),
+        (["--bpv", "2", "--max-error", "0.001"], "not allowed with argument"),
     ):
         run = subprocess.run([sys.executable, "-m", "swm.batch", str(generated_corpus), "--out", str(tmp_path),
                               *args], capture_output=True, text=True)
@@ -357,6 +361,12 @@ def test_usage_errors(generated_corpus, tmp_path):
         "mode": "lossless", "size": 500, "max_size": 400}
     assert batch._options(parse(["m", "--out", "o", "--mode", "lossless", "--qp", "14"])) == {
         "mode": "lossless", "qp": 14}
+    assert batch._options(parse(["m", "--out", "o", "--effort", "fast", "--max-error", "0.002"])) == {
+        "mode": "auto", "effort": "fast", "max_error": 0.002}
+    # What they give is swm.encode's file for the same options.
+    v, f = swm.read(generated_corpus / "torus.obj")
+    fast = swm.encode(v, f, **batch._options(parse(["m", "--out", "o", "--effort", "fast"])))
+    assert fast == swm.encode(v, f, effort="fast") != swm.encode(v, f)
     run = subprocess.run([sys.executable, "-m", "swm.batch", str(tmp_path / "nope"), "--out", str(tmp_path)],
                          capture_output=True, text=True)
     assert run.returncode == 2 and "no such file or directory" in run.stderr
