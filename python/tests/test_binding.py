@@ -281,14 +281,20 @@ def test_lossless_with_a_size_simplifies_to_fit(torus):
     assert len(swm.encode(v, f, mode="lossless", bpv=8 * 700 / len(v))) <= 700
     # Without a size: every triangle, at qp bits (default 12).
     exact, report = swm.encode(v, f, mode="lossless", report=True)
-    assert report == {"method": "lossless", "choice": None, "simplified": None}
+    # Nothing to check either: every triangle, each vertex within half a step.
+    assert report == {"method": "lossless", "choice": None, "simplified": None, "check": None}
     assert len(swm.decode(exact)[1]) == len(f)
     assert exact == swm.encode(v, f, mode="lossless", qp=12) != swm.encode(v, f, mode="lossless", qp=14)
 
 
 def test_swing_mode_report(torus):
     data, report = swm.encode(*torus, mode="swing", bpv=3, report=True)
+    check = report.pop("check")
     assert report == {"method": "swing", "choice": None, "simplified": None}
+    # The file as decoded, measured against the torus as swm distance would.
+    dv, df = swm.decode(data)
+    assert (check["decoded_vertices"], check["decoded_triangles"]) == (len(dv), len(df))
+    assert 0 < check["l2_relative"] <= check["hausdorff_relative"] < 0.05
     assert swm.info(data)["mode"] == "swing"
 
 
