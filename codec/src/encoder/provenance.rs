@@ -31,6 +31,7 @@
 //! thread).
 
 use super::stats::Origin;
+use crate::mesh::clean::position_key as key;
 use crate::metrics::{NearestScratch, Surface};
 use crate::TriMesh;
 use alloc::vec::Vec;
@@ -87,11 +88,6 @@ pub(crate) fn origins(
         });
     }
     out
-}
-
-/// The bits of a position (both zeros alike), as cleaning compares them.
-fn key(p: &[f32; 3]) -> [u32; 3] {
-    p.map(|c| (c + 0.0).to_bits())
 }
 
 /// Input faces by their sorted corner positions.

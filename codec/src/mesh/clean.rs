@@ -179,7 +179,7 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
 
 /// The bits of a position, with -0.0 turned into +0.0 (adding 0.0 does
 /// that), so that the two zeros compare equal.
-fn position_key(p: &[f32; 3]) -> [u32; 3] {
+pub(crate) fn position_key(p: &[f32; 3]) -> [u32; 3] {
     [
         (p[0] + 0.0).to_bits(),
         (p[1] + 0.0).to_bits(),

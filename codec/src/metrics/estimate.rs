@@ -205,16 +205,7 @@ fn thinned(from: &Surface, to: &Surface, faces: u64, samples: u64) -> OneSided {
             sums
         })
         .collect();
-    let total = parts.iter().fold(Sums::default(), |acc, s| acc.merge(s));
-    if total.n == 0 {
-        return OneSided::default();
-    }
-    OneSided {
-        samples: total.n,
-        mean: total.sum / total.n as f64,
-        rms: (total.sum2 / total.n as f64).sqrt(),
-        max: total.max,
-    }
+    Sums::total(&parts)
 }
 
 /// A slice of the measuring work.

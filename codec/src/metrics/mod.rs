@@ -317,6 +317,21 @@ impl Sums {
         self.max = self.max.max(d);
     }
 
+    /// The one-sided figures of all the chunks' sums, added in chunk
+    /// order.
+    fn total(parts: &[Sums]) -> OneSided {
+        let total = parts.iter().fold(Sums::default(), |acc, s| acc.merge(s));
+        if total.n == 0 {
+            return OneSided::default();
+        }
+        OneSided {
+            samples: total.n,
+            mean: total.sum / total.n as f64,
+            rms: (total.sum2 / total.n as f64).sqrt(),
+            max: total.max,
+        }
+    }
+
     fn merge(mut self, o: &Sums) -> Sums {
         self.n += o.n;
         self.sum += o.sum;
@@ -416,16 +431,7 @@ pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOpt
             sums
         })
         .collect();
-    let total = parts.iter().fold(Sums::default(), |acc, s| acc.merge(s));
-    if total.n == 0 {
-        return OneSided::default();
-    }
-    OneSided {
-        samples: total.n,
-        mean: total.sum / total.n as f64,
-        rms: (total.sum2 / total.n as f64).sqrt(),
-        max: total.max,
-    }
+    Sums::total(&parts)
 }
 
 /// The vertices the faces use, each once, in order of first use.
