@@ -19,8 +19,8 @@
 //!    counts, where coarse meshes predict worse), so the search is a
 //!    secant on log size against log faces inside a bracket
 //!    [fits, does not fit], bisecting when the secant creeps; it stops
-//!    when the bracket is within [`PRECISION`] of the face count or the
-//!    file fills [`FILL`] of B. The previous qp's answer is the next qp's
+//!    when the bracket is within `faces::PRECISION` of the face count or the
+//!    file fills `FILL` of B. The previous qp's answer is the next qp's
 //!    first probe (its simplification is made), so after the first qp a
 //!    search costs about two simplifications;
 //! 2. each qp's file is decoded and its L2 distance to the input measured
@@ -48,9 +48,14 @@ use alloc::borrow::Cow;
 use core::ops::RangeInclusive;
 use std::sync::OnceLock;
 
+mod climb;
+mod faces;
 mod heap;
 pub mod qem;
 mod refit;
+
+pub use climb::{best_fit, quick_fit};
+pub use faces::{fit_faces, Fit};
 
 /// Quantizations considered: the lossless mode's coarsest (small meshes
 /// at low rates want it: spot and cow chose 7, the old floor, at 0.5-2
@@ -72,17 +77,6 @@ const REFIT_SWEEPS: usize = 1;
 /// request) may have than one short of it and still be preferred: the
 /// issue's "no worse than the better method by more than 5%".
 pub(crate) const ON_SIZE_SLACK: f64 = 1.05;
-
-/// The search stops when fitting and non-fitting face counts are this
-/// close, relative to the face count...
-const PRECISION: f64 = 0.005;
-/// ... or when a fitting file fills this much of the budget: sizes jitter
-/// by a few tenths of a percent between neighbouring face counts, so
-/// chasing the last percent costs probes and buys noise.
-const FILL: f64 = 0.99;
-/// A bound the search never meets in practice (bisection over 2^32 face
-/// counts takes about 25 probes); if it did, the best fit so far stands.
-const MAX_PROBES: usize = 64;
 
 /// A welded mesh and, once made, its collapse sequence.
 pub struct Simplifier<'a> {
@@ -288,179 +282,6 @@ fn compact(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> TriMesh {
     out
 }
 
-/// The best face count found for one qp.
-#[derive(Clone, Debug)]
-pub struct Fit {
-    /// Bits per coordinate.
-    pub qp: u8,
-    /// Faces asked of the simplifier.
-    pub faces: u32,
-    /// The simplified mesh.
-    pub mesh: TriMesh,
-    /// Its mode-0 file.
-    pub bytes: Vec<u8>,
-    /// d log(size) / d log(faces) near the answer: the next qp's search
-    /// extrapolates with it.
-    slope: f64,
-}
-
-/// The fit of lowest measured L2 against `reference` over [`QPS`], with
-/// `samples` area-uniform face samples per direction, and that L2
-/// relative to the reference's diagonal; `None` when no qp fits even
-/// [`MIN_FACES`] faces in `budget` bytes.
-///
-/// The error is unimodal in qp (coarser positions against fewer faces),
-/// so the search climbs from a predicted qp instead of trying all of
-/// them: a first fit at [`START_QP`] gives the face count F, the best qp
-/// is near `log2 F − 2.5` (measured on the shared corpus: `log2 F` minus
-/// 2.4 to 2.9 on scans, up to 1.4 above on CAD parts), and the climb
-/// moves one qp at a time while the error falls, about four fits in all
-/// instead of nine.
-pub fn best_fit<'r>(
-    s: &Simplifier<'_>,
-    budget: u64,
-    reference: &dyn Fn() -> Result<&'r Surface, Error>,
-    samples: u64,
-) -> Result<Option<(Fit, f64)>, Error> {
-    // Each qp tried, with its fit and that fit's distance to the
-    // reference (`None`: nothing fits at that qp), in the order tried.
-    type Tried = Vec<(u8, Option<(Fit, SurfaceDistance)>)>;
-    let score = |qp: u8, tried: &mut Tried| -> Result<Option<f64>, Error> {
-        if let Some((_, r)) = tried.iter().find(|(q, _)| *q == qp) {
-            return Ok(r.as_ref().map(|r| r.1.l2()));
-        }
-        // The last fit made is the next search's first probe.
-        let prev = tried
-            .iter()
-            .rev()
-            .find_map(|(_, r)| r.as_ref().map(|r| &r.0));
-        let scored = match fit_faces(s, qp, budget, prev)? {
-            Some(fit) => {
-                let d = file_distance(&fit.bytes, reference()?, samples)?;
-                Some((fit, d))
-            }
-            None => None,
-        };
-        let l2 = scored.as_ref().map(|r| r.1.l2());
-        tried.push((qp, scored));
-        Ok(l2)
-    };
-    let mut tried = Tried::new();
-    // The first fit; coarser qps until something fits.
-    let mut start = START_QP;
-    while score(start, &mut tried)?.is_none() {
-        if start == *QPS.start() {
-            return Ok(None);
-        }
-        start -= 1;
-    }
-    let faces = tried
-        .iter()
-        .find_map(|(_, r)| r.as_ref().map(|r| r.0.faces))
-        .unwrap_or(MIN_FACES);
-    let predicted = ((faces.max(1) as f64).log2() - 2.5).round() as i64;
-    let mut qp = predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8;
-    let inf = f64::INFINITY;
-    let mut best = score(qp, &mut tried)?.unwrap_or(inf);
-    // Climb: the direction whose neighbour is better, while it improves.
-    for step in [-1i8, 1] {
-        loop {
-            let next = qp as i16 + step as i16;
-            if !(*QPS.start() as i16..=*QPS.end() as i16).contains(&next) {
-                break;
-            }
-            let e = score(next as u8, &mut tried)?.unwrap_or(inf);
-            if e < best {
-                best = e;
-                qp = next as u8;
-            } else {
-                break;
-            }
-        }
-    }
-    // The first minimum in qp order: the smaller qp wins a tie. A fit
-    // that lands within rate control's tolerance of the budget (or holds
-    // the whole mesh, when nothing more is there to code) is preferred
-    // to one further below it, the request's size being part of the
-    // answer, unless the short one's error is lower by more than
-    // ON_SIZE_SLACK (a cube exact at 32 faces is not traded for a worse
-    // file that fills the last two bytes).
-    tried.sort_by_key(|(q, _)| *q);
-    let in_band = |f: &Fit| {
-        f.faces >= s.faces()
-            || f.bytes.len() as f64 >= (1.0 - crate::retile::rate::TOLERANCE) * budget as f64
-    };
-    let lowest = |fits: Vec<(Fit, SurfaceDistance)>| {
-        fits.into_iter()
-            .reduce(|a, b| if b.1.l2() < a.1.l2() { b } else { a })
-    };
-    let (band, short): (Vec<_>, Vec<_>) = tried
-        .into_iter()
-        .filter_map(|(_, r)| r)
-        .partition(|(f, _)| in_band(f));
-    let best = match (lowest(band), lowest(short)) {
-        (Some(b), Some(s)) if b.1.l2() > ON_SIZE_SLACK * s.1.l2() => Some(s),
-        (Some(b), _) => Some(b),
-        (None, s) => s,
-    };
-    Ok(best.map(|(fit, d)| (fit, d.l2_relative())))
-}
-
-/// The quick search of effort `fast`: the fit at [`START_QP`] (coarser
-/// until something fits), then the fit at the quantization its face
-/// count predicts (as [`best_fit`] starts its climb); the one of lower
-/// L2 against `reference` with [`QUICK_SAMPLES`] samples each way is
-/// kept. About two size searches instead of four to six, and two small
-/// measures instead of four to six large ones. When the whole mesh fits, the
-/// finest quantization whose whole-mesh file still fits. `None` when
-/// nothing fits.
-pub fn quick_fit<'r>(
-    s: &Simplifier<'_>,
-    budget: u64,
-    reference: &dyn Fn() -> Result<&'r Surface, Error>,
-) -> Result<Option<Fit>, Error> {
-    let mut start = START_QP;
-    let first = loop {
-        match fit_faces(s, start, budget, None)? {
-            Some(fit) => break fit,
-            None if start == *QPS.start() => return Ok(None),
-            None => start -= 1,
-        }
-    };
-    // The whole mesh fits: the finest quantization whose whole-mesh file
-    // still fits (nothing is simplified; only the grid can improve).
-    if first.faces >= s.faces() {
-        let mut best = first;
-        for qp in best.qp + 1..=*QPS.end() {
-            let bytes = s.whole_bytes(qp)?;
-            if bytes.len() as u64 > budget {
-                break;
-            }
-            best = Fit { qp, bytes, ..best };
-        }
-        return Ok(Some(best));
-    }
-    let predicted = ((first.faces.max(1) as f64).log2() - 2.5).round() as i64;
-    let qp = predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8;
-    if qp == first.qp {
-        return Ok(Some(first));
-    }
-    let Some(second) = fit_faces(s, qp, budget, Some(&first))? else {
-        return Ok(Some(first));
-    };
-    // The prediction holds on scans and misses on CAD parts, whose best
-    // quantization is finer (alligator at 2 b/v: 6 predicted, 11 best);
-    // a few samples tell the two fits apart at a fraction of a decode.
-    let l2 = |f: &Fit| -> Result<f64, Error> {
-        Ok(file_distance(&f.bytes, reference()?, QUICK_SAMPLES)?.l2())
-    };
-    Ok(Some(if l2(&second)? <= l2(&first)? {
-        second
-    } else {
-        first
-    }))
-}
-
 /// The smallest file this method writes for the input: [`MIN_FACES`]
 /// faces at the coarsest qp.
 ///
@@ -487,171 +308,6 @@ fn coded(mesh: &TriMesh, qp: u8, framing: Framing) -> Result<Option<Vec<u8>>, Er
         Err(Error::Topology(TopologyError::NoTriangles)) => Ok(None),
         Err(e) => Err(e),
     }
-}
-
-/// A probed face count and its file size.
-#[derive(Clone, Copy)]
-struct Probe {
-    faces: u32,
-    size: u64,
-}
-
-impl Probe {
-    fn ln(self) -> (f64, f64) {
-        ((self.faces as f64).ln(), (self.size as f64).ln())
-    }
-}
-
-/// Log-log slope between two probes, kept in a sane range so that a noisy
-/// pair cannot throw the next probe far away.
-fn slope(a: Probe, b: Probe) -> f64 {
-    let ((fa, sa), (fb, sb)) = (a.ln(), b.ln());
-    if (fa - fb).abs() < 1e-12 {
-        return 1.0;
-    }
-    ((sa - sb) / (fa - fb)).clamp(0.5, 1.5)
-}
-
-/// The face count at which the line through `p` with log-log `slope`
-/// reaches `size`.
-fn aim(p: Probe, slope: f64, size: f64) -> f64 {
-    let (f, s) = p.ln();
-    (f + (size.ln() - s) / slope).exp()
-}
-
-/// The largest face count (within [`PRECISION`], or filling [`FILL`] of
-/// the budget) whose file at `qp` fits `budget`; `None` when even
-/// [`MIN_FACES`] faces do not fit.
-pub fn fit_faces(
-    s: &Simplifier<'_>,
-    qp: u8,
-    budget: u64,
-    prev: Option<&Fit>,
-) -> Result<Option<Fit>, Error> {
-    let full = s.faces();
-    let full_bytes = s.whole_bytes(qp)?;
-    // Face counts below this clean to nothing (a simplification of only
-    // zero-area faces): they neither fit nor overflow, they are out.
-    let mut degenerate_below = MIN_FACES;
-    if full_bytes.len() as u64 <= budget {
-        return Ok(Some(Fit {
-            qp,
-            faces: full,
-            mesh: s.mesh.clone(),
-            bytes: full_bytes,
-            slope: 1.0,
-        }));
-    }
-    if full <= MIN_FACES {
-        return Ok(None);
-    }
-    let budget_f = budget as f64;
-    // `hi`: the fewest faces known not to fit; `lo`: the most known to fit.
-    let mut hi = Probe {
-        faces: full,
-        size: full_bytes.len() as u64,
-    };
-    let mut lo: Option<(Probe, TriMesh, Vec<u8>)> = None;
-    // Simplified probes only: the unsimplified mesh is far cheaper per
-    // face than any simplification, so slopes through it mislead.
-    let mut probes: Vec<Probe> = Vec::new();
-    let mut last_fitted: Option<bool> = None;
-    let mut slope_down = prev.map_or(1.0, |p| p.slope);
-    let mut guess = aim(hi, slope_down, 0.98 * budget_f);
-    // The first probe is the previous qp's face count (its replay is a
-    // linear pass; the answer's mesh is refitted, the probes are not).
-    let mut made = prev
-        .filter(|p| p.faces < full)
-        .map(|p| (p.faces, s.simplify(p.faces)));
-    for _ in 0..MAX_PROBES {
-        let (faces, mesh) = match made.take() {
-            Some(made) => made,
-            None => {
-                let floor = lo
-                    .as_ref()
-                    .map_or(MIN_FACES, |l| l.0.faces + 1)
-                    .max(degenerate_below);
-                if floor >= hi.faces {
-                    break;
-                }
-                let faces = (guess.round() as u32).clamp(floor, hi.faces - 1);
-                (faces, s.simplify(faces))
-            }
-        };
-        let Some(bytes) = coded(&mesh, qp, s.framing)? else {
-            degenerate_below = degenerate_below.max(faces + 1).max(2 * faces);
-            continue;
-        };
-        let probe = Probe {
-            faces,
-            size: bytes.len() as u64,
-        };
-        let fits = probe.size <= budget;
-        let same_side = last_fitted == Some(fits);
-        last_fitted = Some(fits);
-        probes.push(probe);
-        if fits {
-            lo = Some((probe, mesh, bytes));
-        } else if faces <= MIN_FACES {
-            return Ok(None);
-        } else {
-            hi = probe;
-        }
-        let Some((l, ..)) = &lo else {
-            // Nothing fits yet: extrapolate down from `hi` along the slope
-            // of the last two probes (both too big), aiming a little under
-            // the budget so that the next probe fits.
-            if let [.., a, b] = probes[..] {
-                slope_down = slope(a, b);
-            }
-            guess = aim(hi, slope_down, 0.98 * budget_f);
-            continue;
-        };
-        let narrow = (hi.faces - l.faces) as f64 <= (l.faces as f64 * PRECISION).max(1.0);
-        if narrow || l.size as f64 >= FILL * budget_f {
-            break;
-        }
-        guess = if same_side {
-            // Two probes on the same side: the secant is creeping.
-            (l.faces as f64 * hi.faces as f64).sqrt()
-        } else {
-            // Aim inside the accepted band, not at its edge.
-            aim(*l, slope(*l, hi), (1.0 + FILL) / 2.0 * budget_f)
-        };
-    }
-    // The answer refitted to the input, when its file still fits (moving
-    // the vertices changes the residuals a little): once per qp, not per
-    // probe.
-    let lo = match lo {
-        Some((l, mesh, bytes)) => {
-            let mut fitted = mesh.clone();
-            s.refit(&mut fitted);
-            match coded(&fitted, qp, s.framing)? {
-                Some(b) if b.len() as u64 <= budget => Some((l, fitted, b)),
-                _ => Some((l, mesh, bytes)),
-            }
-        }
-        None => None,
-    };
-    Ok(lo.map(|(l, mesh, bytes)| {
-        // The widest pair gives the steadiest slope for the next qp.
-        let far = probes
-            .iter()
-            .copied()
-            .filter(|p| p.faces != l.faces)
-            .max_by(|a, b| {
-                let d = |p: &Probe| (p.faces as f64 / l.faces as f64).ln().abs();
-                d(a).total_cmp(&d(b))
-            });
-        let slope = far.map_or(1.0, |p| slope(l, p));
-        Fit {
-            qp,
-            faces: l.faces,
-            mesh,
-            bytes,
-            slope,
-        }
-    }))
 }
 
 #[cfg(test)]

@@ -1,0 +1,204 @@
+//! The size search for one quantization: the largest face count of the
+//! collapse sequence whose mode-0 file at that qp fits a byte budget
+//! (step 1 of the module's search, [`super`]).
+//!
+//! Size grows with the face count almost linearly, so the search is a
+//! secant on log size against log faces inside a bracket [fits, does not
+//! fit], bisecting when the secant creeps. Invariants: every file it
+//! returns fits the budget; its probes depend only on the mesh, the qp,
+//! the budget and the previous qp's answer (deterministic).
+
+use super::{coded, Simplifier, MIN_FACES};
+use crate::{Error, TriMesh};
+
+/// The search stops when fitting and non-fitting face counts are this
+/// close, relative to the face count...
+const PRECISION: f64 = 0.005;
+/// ... or when a fitting file fills this much of the budget: sizes jitter
+/// by a few tenths of a percent between neighbouring face counts, so
+/// chasing the last percent costs probes and buys noise.
+const FILL: f64 = 0.99;
+/// A bound the search never meets in practice (bisection over 2^32 face
+/// counts takes about 25 probes); if it did, the best fit so far stands.
+const MAX_PROBES: usize = 64;
+
+/// The best face count found for one qp.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    /// Bits per coordinate.
+    pub qp: u8,
+    /// Faces asked of the simplifier.
+    pub faces: u32,
+    /// The simplified mesh.
+    pub mesh: TriMesh,
+    /// Its mode-0 file.
+    pub bytes: Vec<u8>,
+    /// d log(size) / d log(faces) near the answer: the next qp's search
+    /// extrapolates with it.
+    pub(super) slope: f64,
+}
+
+/// A probed face count and its file size.
+#[derive(Clone, Copy)]
+struct Probe {
+    faces: u32,
+    size: u64,
+}
+
+impl Probe {
+    fn ln(self) -> (f64, f64) {
+        ((self.faces as f64).ln(), (self.size as f64).ln())
+    }
+}
+
+/// Log-log slope between two probes, kept in a sane range so that a noisy
+/// pair cannot throw the next probe far away.
+fn slope(a: Probe, b: Probe) -> f64 {
+    let ((fa, sa), (fb, sb)) = (a.ln(), b.ln());
+    if (fa - fb).abs() < 1e-12 {
+        return 1.0;
+    }
+    ((sa - sb) / (fa - fb)).clamp(0.5, 1.5)
+}
+
+/// The face count at which the line through `p` with log-log `slope`
+/// reaches `size`.
+fn aim(p: Probe, slope: f64, size: f64) -> f64 {
+    let (f, s) = p.ln();
+    (f + (size.ln() - s) / slope).exp()
+}
+
+/// The largest face count (within [`PRECISION`], or filling [`FILL`] of
+/// the budget) whose file at `qp` fits `budget`; `None` when even
+/// `MIN_FACES` faces do not fit.
+pub fn fit_faces(
+    s: &Simplifier<'_>,
+    qp: u8,
+    budget: u64,
+    prev: Option<&Fit>,
+) -> Result<Option<Fit>, Error> {
+    let full = s.faces();
+    let full_bytes = s.whole_bytes(qp)?;
+    // Face counts below this clean to nothing (a simplification of only
+    // zero-area faces): they neither fit nor overflow, they are out.
+    let mut degenerate_below = MIN_FACES;
+    if full_bytes.len() as u64 <= budget {
+        return Ok(Some(Fit {
+            qp,
+            faces: full,
+            mesh: s.mesh.clone(),
+            bytes: full_bytes,
+            slope: 1.0,
+        }));
+    }
+    if full <= MIN_FACES {
+        return Ok(None);
+    }
+    let budget_f = budget as f64;
+    // `hi`: the fewest faces known not to fit; `lo`: the most known to fit.
+    let mut hi = Probe {
+        faces: full,
+        size: full_bytes.len() as u64,
+    };
+    let mut lo: Option<(Probe, TriMesh, Vec<u8>)> = None;
+    // Simplified probes only: the unsimplified mesh is far cheaper per
+    // face than any simplification, so slopes through it mislead.
+    let mut probes: Vec<Probe> = Vec::new();
+    let mut last_fitted: Option<bool> = None;
+    let mut slope_down = prev.map_or(1.0, |p| p.slope);
+    let mut guess = aim(hi, slope_down, 0.98 * budget_f);
+    // The first probe is the previous qp's face count (its replay is a
+    // linear pass; the answer's mesh is refitted, the probes are not).
+    let mut made = prev
+        .filter(|p| p.faces < full)
+        .map(|p| (p.faces, s.simplify(p.faces)));
+    for _ in 0..MAX_PROBES {
+        let (faces, mesh) = match made.take() {
+            Some(made) => made,
+            None => {
+                let floor = lo
+                    .as_ref()
+                    .map_or(MIN_FACES, |l| l.0.faces + 1)
+                    .max(degenerate_below);
+                if floor >= hi.faces {
+                    break;
+                }
+                let faces = (guess.round() as u32).clamp(floor, hi.faces - 1);
+                (faces, s.simplify(faces))
+            }
+        };
+        let Some(bytes) = coded(&mesh, qp, s.framing)? else {
+            degenerate_below = degenerate_below.max(faces + 1).max(2 * faces);
+            continue;
+        };
+        let probe = Probe {
+            faces,
+            size: bytes.len() as u64,
+        };
+        let fits = probe.size <= budget;
+        let same_side = last_fitted == Some(fits);
+        last_fitted = Some(fits);
+        probes.push(probe);
+        if fits {
+            lo = Some((probe, mesh, bytes));
+        } else if faces <= MIN_FACES {
+            return Ok(None);
+        } else {
+            hi = probe;
+        }
+        let Some((l, ..)) = &lo else {
+            // Nothing fits yet: extrapolate down from `hi` along the slope
+            // of the last two probes (both too big), aiming a little under
+            // the budget so that the next probe fits.
+            if let [.., a, b] = probes[..] {
+                slope_down = slope(a, b);
+            }
+            guess = aim(hi, slope_down, 0.98 * budget_f);
+            continue;
+        };
+        let narrow = (hi.faces - l.faces) as f64 <= (l.faces as f64 * PRECISION).max(1.0);
+        if narrow || l.size as f64 >= FILL * budget_f {
+            break;
+        }
+        guess = if same_side {
+            // Two probes on the same side: the secant is creeping.
+            (l.faces as f64 * hi.faces as f64).sqrt()
+        } else {
+            // Aim inside the accepted band, not at its edge.
+            aim(*l, slope(*l, hi), (1.0 + FILL) / 2.0 * budget_f)
+        };
+    }
+    // The answer refitted to the input, when its file still fits (moving
+    // the vertices changes the residuals a little): once per qp, not per
+    // probe.
+    let lo = match lo {
+        Some((l, mesh, bytes)) => {
+            let mut fitted = mesh.clone();
+            s.refit(&mut fitted);
+            match coded(&fitted, qp, s.framing)? {
+                Some(b) if b.len() as u64 <= budget => Some((l, fitted, b)),
+                _ => Some((l, mesh, bytes)),
+            }
+        }
+        None => None,
+    };
+    Ok(lo.map(|(l, mesh, bytes)| {
+        // The widest pair gives the steadiest slope for the next qp.
+        let far = probes
+            .iter()
+            .copied()
+            .filter(|p| p.faces != l.faces)
+            .max_by(|a, b| {
+                let d = |p: &Probe| (p.faces as f64 / l.faces as f64).ln().abs();
+                d(a).total_cmp(&d(b))
+            });
+        let slope = far.map_or(1.0, |p| slope(l, p));
+        Fit {
+            qp,
+            faces: l.faces,
+            mesh,
+            bytes,
+            slope,
+        }
+    }))
+}
