@@ -6,7 +6,7 @@
 //! | level     | methods (first wins a tie)                         | work                       |
 //! |-----------|----------------------------------------------------|----------------------------|
 //! | `fast`    | simplified, quick search                           | one collapse sequence, two size searches |
-//! | `default` | SwingWrapper (within [`swing_budget`]), simplified | + a retiling of small outputs |
+//! | `default` | SwingWrapper (within [`swing_budget`]), simplified's lean climb | + a retiling of small outputs |
 //! | `max`     | mixed, SwingWrapper, simplified: every search      | unbounded by the level     |
 //!
 //! Invariants: `max` is the automatic mode as it was before levels
@@ -73,7 +73,7 @@ pub(crate) fn methods(effort: Effort, faces: usize) -> Vec<Entry> {
         Effort::Fast => vec![entry(&Simplified::QUICK, None)],
         Effort::Default => vec![
             entry(&Swing::AUTO, Some(swing_budget(faces))),
-            entry(&Simplified::FULL, None),
+            entry(&Simplified::LEAN, None),
         ],
         Effort::Max => vec![
             entry(&Mixed, None),

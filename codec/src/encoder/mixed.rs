@@ -41,7 +41,7 @@ use super::stats::{Method, MethodStats};
 use crate::metrics::Surface;
 use crate::options::{EncodeOptions, SwingTarget};
 use crate::retile::fill::Piece;
-use crate::simplify::{best_fit, file_distance, Simplifier};
+use crate::simplify::{best_fit, file_distance, Climb, Simplifier};
 use crate::{Error, TriMesh};
 use rayon::prelude::*;
 
@@ -292,8 +292,12 @@ fn resize(
 /// fits.
 fn fit_at(m: &Measured<'_>, bytes: u64) -> Result<Option<Fit>, Error> {
     let diagonal = m.simplifier.reference().bbox_diagonal();
-    let Some((fit, l2_relative)) =
-        best_fit(&m.simplifier, bytes, &|| Ok(&m.surface), TRIAL_SAMPLES)?
+    let Some((fit, l2_relative)) = best_fit(
+        &m.simplifier,
+        bytes,
+        &|| Ok(&m.surface),
+        Climb::Full(TRIAL_SAMPLES),
+    )?
     else {
         return Ok(None);
     };

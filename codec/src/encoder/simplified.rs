@@ -2,21 +2,26 @@
 //! then the lossless mode (`crate::simplify`): the largest face count and
 //! the quantization of lowest measured error whose file fits the budget.
 //!
-//! Two searches ([`Search`]): the full one climbs over quantizations and
-//! measures each file against the input (`simplify::best_fit`); the
-//! quick one (effort `fast`) fits two quantizations, the start and the
-//! one its face count predicts, and ranks them with a few samples
-//! (`simplify::quick_fit`). Both return a file that fits the budget.
+//! Three searches ([`Search`]): the full one climbs over quantizations
+//! and measures each file against the input (`simplify::best_fit`); the
+//! lean one (effort `default`) climbs alike at about half the work
+//! (`simplify::Climb::Lean`); the quick one (effort `fast`) fits two
+//! quantizations, the start and the one its face count predicts, and
+//! ranks them with a few samples (`simplify::quick_fit`). All return a
+//! file that fits the budget.
 
 use super::method::{Ask, CodingMethod, Job, Made};
 use super::stats::{Method, MethodStats, SimplifiedStats};
+use crate::simplify::Climb;
 use crate::{CleanOptions, Error};
 
 /// How far the simplified method searches.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Search {
-    /// Every promising quantization, each file measured.
+    /// Every promising quantization, each file refitted and measured.
     Full,
+    /// The same climb, ranking fits as simplified with fewer samples.
+    Lean,
     /// The predicted quantization only, nothing measured.
     Quick,
 }
@@ -28,9 +33,13 @@ pub(crate) struct Simplified {
 }
 
 impl Simplified {
-    /// The full search (effort `default` and `max`).
+    /// The full search (effort `max`).
     pub const FULL: Simplified = Simplified {
         search: Search::Full,
+    };
+    /// The lean search (effort `default`).
+    pub const LEAN: Simplified = Simplified {
+        search: Search::Lean,
     };
     /// The quick search (effort `fast`).
     pub const QUICK: Simplified = Simplified {
@@ -65,8 +74,12 @@ pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Resul
         || job.reference().map(drop),
         || -> Result<_, Error> {
             Ok(match search {
-                Search::Full => {
-                    crate::simplify::best_fit(s, budget, &reference, crate::AUTO_SAMPLES)?
+                Search::Full | Search::Lean => {
+                    let climb = match search {
+                        Search::Lean => Climb::Lean,
+                        _ => Climb::Full(crate::AUTO_SAMPLES),
+                    };
+                    crate::simplify::best_fit(s, budget, &reference, climb)?
                         .map(|(fit, l2)| (fit, Some(l2)))
                 }
                 Search::Quick => {

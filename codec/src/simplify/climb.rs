@@ -8,15 +8,47 @@
 //! only on the mesh and the budget (the distance's samples are seeded and
 //! summed in a fixed order), never on the thread count.
 
-use super::faces::{fit_faces, Fit};
-use super::{file_distance, Simplifier, MIN_FACES, ON_SIZE_SLACK, QPS, QUICK_SAMPLES, START_QP};
+use super::faces::{fit_faces, whole_estimate, Fit, Whole};
+use super::simplifier::{
+    file_distance, Simplifier, MIN_FACES, ON_SIZE_SLACK, QPS, QUICK_SAMPLES, START_QP,
+};
 use crate::metrics::{Surface, SurfaceDistance};
 use crate::Error;
+use rayon::prelude::*;
 
-/// The fit of lowest measured L2 against `reference` over [`QPS`], with
-/// `samples` area-uniform face samples per direction, and that L2
-/// relative to the reference's diagonal; `None` when no qp fits even
-/// `MIN_FACES` faces in `budget` bytes.
+/// How [`best_fit`] spends its work.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Climb {
+    /// Every qp's answer refitted, coded and measured with this many
+    /// samples per direction as it comes (effort `max`, the
+    /// per-component chooser): the search as it was before effort levels.
+    Full(u64),
+    /// Effort `default`'s: the same climb with less work per fit, which
+    /// leaves the choice within a few percent of the full one's
+    /// (BENCHMARKS.md, "Effort levels"): measures take [`LEAN_SAMPLES`];
+    /// each size search starts where the previous qp's fit predicts
+    /// (`faces::predicted_faces`), so it needs one or two probes instead
+    /// of three or four; and a whole-mesh file that another qp's shows
+    /// far over the budget is not made ([`Whole::Over`]).
+    Lean,
+}
+
+/// Samples per direction of the lean climb's measures: as many as the
+/// full climb's. With 10,000 the default level's geometric-mean L2 over
+/// the shared table rose 7.8% (alligator at 4 and 8 b/v and woody at 8,
+/// whose files are all but exact: their few large errors need many
+/// samples to rank neighbouring quantizations), and saved about 2% of
+/// the time.
+pub const LEAN_SAMPLES: u64 = 30_000;
+
+/// A whole-mesh file estimated at this much over the budget is taken as
+/// over it: the estimate is a lower bound below the qp it starts from
+/// and within a few percent above it.
+const WHOLE_MARGIN: f64 = 1.05;
+
+/// The fit of lowest measured L2 against `reference` over [`QPS`], and
+/// that L2 relative to the reference's diagonal; `None` when no qp fits
+/// even `MIN_FACES` faces in `budget` bytes.
 ///
 /// The error is unimodal in qp (coarser positions against fewer faces),
 /// so the search climbs from a predicted qp instead of trying all of
@@ -24,51 +56,50 @@ use crate::Error;
 /// is near `log2 F − 2.5` (measured on the shared corpus: `log2 F` minus
 /// 2.4 to 2.9 on scans, up to 1.4 above on CAD parts), and the climb
 /// moves one qp at a time while the error falls, about four fits in all
-/// instead of nine.
+/// instead of nine. [`Climb`] says how much each fit costs.
 pub fn best_fit<'r>(
     s: &Simplifier<'_>,
     budget: u64,
-    reference: &dyn Fn() -> Result<&'r Surface, Error>,
-    samples: u64,
+    reference: &(dyn Fn() -> Result<&'r Surface, Error> + Sync),
+    climb: Climb,
 ) -> Result<Option<(Fit, f64)>, Error> {
-    // Each qp tried, with its fit and that fit's distance to the
-    // reference (`None`: nothing fits at that qp), in the order tried.
-    type Tried = Vec<(u8, Option<(Fit, SurfaceDistance)>)>;
-    let score = |qp: u8, tried: &mut Tried| -> Result<Option<f64>, Error> {
-        if let Some((_, r)) = tried.iter().find(|(q, _)| *q == qp) {
-            return Ok(r.as_ref().map(|r| r.1.l2()));
-        }
-        // The last fit made is the next search's first probe.
-        let prev = tried
-            .iter()
-            .rev()
-            .find_map(|(_, r)| r.as_ref().map(|r| &r.0));
-        let scored = match fit_faces(s, qp, budget, prev)? {
-            Some(fit) => {
-                let d = file_distance(&fit.bytes, reference()?, samples)?;
-                Some((fit, d))
-            }
-            None => None,
-        };
-        let l2 = scored.as_ref().map(|r| r.1.l2());
-        tried.push((qp, scored));
-        Ok(l2)
+    let lean = climb == Climb::Lean;
+    let samples = match climb {
+        Climb::Full(samples) => samples,
+        Climb::Lean => LEAN_SAMPLES,
     };
-    let mut tried = Tried::new();
+    let measure = |fit: &Fit| -> Result<SurfaceDistance, Error> {
+        file_distance(&fit.bytes, reference()?, samples)
+    };
+    let measure: &(dyn Fn(&Fit) -> Result<SurfaceDistance, Error> + Sync) = &measure;
+    let mut tried = Climbed::default();
     // The first fit; coarser qps until something fits.
     let mut start = START_QP;
-    while score(start, &mut tried)?.is_none() {
+    while tried.fit(s, start, budget, lean)?.is_none() {
         if start == *QPS.start() {
             return Ok(None);
         }
         start -= 1;
     }
+    let score = |qp: u8, tried: &mut Climbed| -> Result<Option<f64>, Error> {
+        tried.fit(s, qp, budget, lean)?;
+        tried.measure(qp, measure)
+    };
     let faces = tried
+        .fits
         .iter()
-        .find_map(|(_, r)| r.as_ref().map(|r| r.0.faces))
+        .find_map(|t| t.fit.as_ref().map(|f| f.faces))
         .unwrap_or(MIN_FACES);
     let predicted = ((faces.max(1) as f64).log2() - 2.5).round() as i64;
     let mut qp = predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8;
+    // The start is measured even where the climb does not come back to
+    // it: error is not always unimodal in qp on CAD parts (the generated
+    // fandisk at 1 b/v: best at qp 10, worse at 9 than at 8).
+    if lean {
+        tried.first_pair(s, start, qp, budget, &measure)?;
+    } else {
+        score(start, &mut tried)?;
+    }
     let inf = f64::INFINITY;
     let mut best = score(qp, &mut tried)?.unwrap_or(inf);
     // Climb: the direction whose neighbour is better, while it improves.
@@ -94,7 +125,12 @@ pub fn best_fit<'r>(
     // answer, unless the short one's error is lower by more than
     // ON_SIZE_SLACK (a cube exact at 32 faces is not traded for a worse
     // file that fills the last two bytes).
-    tried.sort_by_key(|(q, _)| *q);
+    let mut measured: Vec<(Fit, SurfaceDistance)> = tried
+        .fits
+        .into_iter()
+        .filter_map(|t| Some((t.fit?, t.distance?)))
+        .collect();
+    measured.sort_by_key(|(f, _)| f.qp);
     let in_band = |f: &Fit| {
         f.faces >= s.faces()
             || f.bytes.len() as f64 >= (1.0 - crate::retile::rate::TOLERANCE) * budget as f64
@@ -103,10 +139,7 @@ pub fn best_fit<'r>(
         fits.into_iter()
             .reduce(|a, b| if b.1.l2() < a.1.l2() { b } else { a })
     };
-    let (band, short): (Vec<_>, Vec<_>) = tried
-        .into_iter()
-        .filter_map(|(_, r)| r)
-        .partition(|(f, _)| in_band(f));
+    let (band, short): (Vec<_>, Vec<_>) = measured.into_iter().partition(|(f, _)| in_band(f));
     let best = match (lowest(band), lowest(short)) {
         (Some(b), Some(s)) if b.1.l2() > ON_SIZE_SLACK * s.1.l2() => Some(s),
         (Some(b), _) => Some(b),
@@ -115,6 +148,175 @@ pub fn best_fit<'r>(
     Ok(best.map(|(fit, d)| (fit, d.l2_relative())))
 }
 
+/// One qp's size fit and, once measured, its distance to the input.
+struct Tried {
+    qp: u8,
+    /// `None`: nothing fits at that qp.
+    fit: Option<Fit>,
+    distance: Option<SurfaceDistance>,
+}
+
+/// The fits of one climb, in the order made.
+#[derive(Default)]
+struct Climbed {
+    fits: Vec<Tried>,
+    /// Whole-mesh file sizes this climb made that were over the budget,
+    /// by qp (the lean climb estimates the others' from them).
+    over: Vec<(u8, u64)>,
+}
+
+impl Climbed {
+    /// The fit at `qp`, made once. Its search's first probe comes from
+    /// the last fit made (the full climb) or from the fit nearest in qp
+    /// (the lean one, the coarser on a tie).
+    fn fit(
+        &mut self,
+        s: &Simplifier<'_>,
+        qp: u8,
+        budget: u64,
+        lean: bool,
+    ) -> Result<Option<&Fit>, Error> {
+        if let Some(i) = self.fits.iter().position(|t| t.qp == qp) {
+            return Ok(self.fits[i].fit.as_ref());
+        }
+        let (whole, prev) = if lean {
+            let nearest = self
+                .fits
+                .iter()
+                .filter_map(|t| t.fit.as_ref())
+                .min_by_key(|f| ((f.qp as i16 - qp as i16).abs(), f.qp));
+            (self.whole(s, qp, budget), nearest)
+        } else {
+            let last = self.fits.iter().rev().find_map(|t| t.fit.as_ref());
+            (Whole::Encode, last)
+        };
+        let fit = fit_faces(s, qp, budget, prev, whole, lean)?;
+        self.record(s, qp, whole, fit)?;
+        Ok(self.fits.last().and_then(|t| t.fit.as_ref()))
+    }
+
+    /// Keeps the fit made at `qp` with `whole`, and what it showed of the
+    /// whole mesh's file.
+    fn record(
+        &mut self,
+        s: &Simplifier<'_>,
+        qp: u8,
+        whole: Whole,
+        fit: Option<Fit>,
+    ) -> Result<(), Error> {
+        if whole == Whole::Encode && fit.as_ref().map_or(true, |f| f.faces < s.faces()) {
+            // The whole mesh's file was made (the simplifier keeps it)
+            // and is over the budget.
+            self.over.push((qp, s.whole_bytes(qp)?.len() as u64));
+        }
+        self.fits.push(Tried {
+            qp,
+            fit,
+            distance: None,
+        });
+        Ok(())
+    }
+
+    /// The lean climb's first steps, which it always takes: the fits at
+    /// the predicted `qp` and the one below, both from the `start`'s fit,
+    /// beside the start's measure; then both measured side by side. On
+    /// two cores they take about the time of one (the climb is otherwise
+    /// a chain, each fit starting from the last); the work and the
+    /// result are the same on one.
+    fn first_pair(
+        &mut self,
+        s: &Simplifier<'_>,
+        start: u8,
+        qp: u8,
+        budget: u64,
+        measure: &(dyn Fn(&Fit) -> Result<SurfaceDistance, Error> + Sync),
+    ) -> Result<(), Error> {
+        let below = qp.checked_sub(1).filter(|q| QPS.contains(q));
+        let todo: Vec<(u8, Whole)> = [Some(qp), below]
+            .into_iter()
+            .flatten()
+            .filter(|q| self.fits.iter().all(|t| t.qp != *q))
+            .map(|q| (q, self.whole(s, q, budget)))
+            .collect();
+        let from = self
+            .fits
+            .iter()
+            .find(|t| t.qp == start)
+            .and_then(|t| t.fit.as_ref());
+        let (made, first) = rayon::join(
+            || {
+                todo.par_iter()
+                    .map(|&(q, whole)| fit_faces(s, q, budget, from, whole, true))
+                    .collect::<Vec<_>>()
+            },
+            || from.map(measure).transpose(),
+        );
+        let first = first?;
+        if let Some(t) = self.fits.iter_mut().find(|t| t.qp == start) {
+            t.distance = first;
+        }
+        for (&(q, whole), fit) in todo.iter().zip(made) {
+            self.record(s, q, whole, fit?)?;
+        }
+        let pair: Vec<u8> = [Some(qp), below].into_iter().flatten().collect();
+        let measured: Vec<Option<SurfaceDistance>> = pair
+            .par_iter()
+            .map(|q| {
+                let t = self.fits.iter().find(|t| t.qp == *q);
+                match t.and_then(|t| t.fit.as_ref().filter(|_| t.distance.is_none())) {
+                    Some(fit) => measure(fit).map(Some),
+                    None => Ok(None),
+                }
+            })
+            .collect::<Result<_, Error>>()?;
+        for (q, d) in pair.iter().zip(measured) {
+            if let (Some(t), Some(d)) = (self.fits.iter_mut().find(|t| t.qp == *q), d) {
+                t.distance = Some(d);
+            }
+        }
+        Ok(())
+    }
+
+    /// The lean climb's knowledge of the whole mesh's file at `qp`: over
+    /// the budget when the estimate from the nearest qp whose file this
+    /// climb made says so by [`WHOLE_MARGIN`]. Only this climb's own
+    /// files count, so the bytes never depend on what another search
+    /// sharing the simplifier made first.
+    fn whole(&self, s: &Simplifier<'_>, qp: u8, budget: u64) -> Whole {
+        let nearest = self
+            .over
+            .iter()
+            .min_by_key(|(q, _)| (*q as i16 - qp as i16).abs());
+        let Some(&(from, size)) = nearest else {
+            return Whole::Encode;
+        };
+        let estimate = whole_estimate(size, from, qp, s.mesh.positions.len() as u64);
+        if estimate as f64 > WHOLE_MARGIN * budget as f64 {
+            Whole::Over(estimate)
+        } else {
+            Whole::Encode
+        }
+    }
+
+    /// The L2 of the fit at `qp` (made before), measured once; `None`
+    /// when nothing fits there.
+    fn measure(
+        &mut self,
+        qp: u8,
+        measure: &dyn Fn(&Fit) -> Result<SurfaceDistance, Error>,
+    ) -> Result<Option<f64>, Error> {
+        let Some(t) = self.fits.iter_mut().find(|t| t.qp == qp) else {
+            return Ok(None);
+        };
+        let Some(fit) = &t.fit else {
+            return Ok(None);
+        };
+        if t.distance.is_none() {
+            t.distance = Some(measure(fit)?);
+        }
+        Ok(t.distance.as_ref().map(|d| d.l2()))
+    }
+}
 /// The quick search of effort `fast`: the fit at [`START_QP`] (coarser
 /// until something fits), then the fit at the quantization its face
 /// count predicts (as [`best_fit`] starts its climb); the one of lower
@@ -130,7 +332,7 @@ pub fn quick_fit<'r>(
 ) -> Result<Option<Fit>, Error> {
     let mut start = START_QP;
     let first = loop {
-        match fit_faces(s, start, budget, None)? {
+        match fit_faces(s, start, budget, None, Whole::Encode, false)? {
             Some(fit) => break fit,
             None if start == *QPS.start() => return Ok(None),
             None => start -= 1,
@@ -154,7 +356,7 @@ pub fn quick_fit<'r>(
     if qp == first.qp {
         return Ok(Some(first));
     }
-    let Some(second) = fit_faces(s, qp, budget, Some(&first))? else {
+    let Some(second) = fit_faces(s, qp, budget, Some(&first), Whole::Encode, false)? else {
         return Ok(Some(first));
     };
     // The prediction holds on scans and misses on CAD parts, whose best

@@ -57,82 +57,25 @@
 //! within the rounding slack, the search would read every node for every
 //! query (two meshes in units 1e30 apart measured against each other).
 //!
-//! Construction is iterative with an explicit stack (no recursion depth
-//! to exhaust on adversarial input): a range whose centroids all coincide
-//! is split at its middle, so every split makes progress.
+//! Construction (`build`) splits large ranges on two rayon tasks and
+//! the rest iteratively with an explicit stack (no recursion depth to
+//! exhaust on adversarial input), making the same tree at any thread
+//! count: a range whose centroids all coincide is split at its middle,
+//! so every split makes progress.
 
 use super::triangle::{triangle_distance2, Tri};
+use aabb::{Aabb, Node};
+use build::LEAF_SIZE;
+
+mod aabb;
+mod build;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Triangles per leaf at most. Part of the output: it sets the leaf
-/// order, which is the order `Surface` samples in.
-const LEAF_SIZE: usize = 2;
-/// Bins of the SAH split search (part of the output, as `LEAF_SIZE`).
-const BINS: usize = 12;
 /// Children per node of the searched tree (eight measured about 3% faster
 /// than four; see BENCHMARKS.md).
 const W: usize = 8;
 // Leaf counts are stored in a byte, lanes in a `u32` mask.
 const _: () = assert!(LEAF_SIZE <= u8::MAX as usize && W <= 32);
-
-#[derive(Clone, Copy, Debug)]
-struct Aabb {
-    min: [f32; 3],
-    max: [f32; 3],
-}
-
-impl Aabb {
-    const EMPTY: Aabb = Aabb {
-        min: [f32::INFINITY; 3],
-        max: [f32::NEG_INFINITY; 3],
-    };
-
-    /// Plain comparisons rather than `f32::min`, whose NaN rules cost
-    /// instructions (every value here is finite or an empty box's ±∞).
-    #[inline(always)]
-    fn grow(&mut self, other: &Aabb) {
-        for k in 0..3 {
-            let (lo, hi) = (self.min[k], self.max[k]);
-            self.min[k] = if other.min[k] < lo { other.min[k] } else { lo };
-            self.max[k] = if other.max[k] > hi { other.max[k] } else { hi };
-        }
-    }
-
-    /// Grows the box to hold the point `p` (as [`Self::grow`]).
-    #[inline(always)]
-    fn grow_point(&mut self, p: &[f32; 3]) {
-        for (k, &c) in p.iter().enumerate() {
-            let (lo, hi) = (self.min[k], self.max[k]);
-            self.min[k] = if c < lo { c } else { lo };
-            self.max[k] = if c > hi { c } else { hi };
-        }
-    }
-
-    fn of(t: &Tri) -> Aabb {
-        Aabb {
-            min: core::array::from_fn(|k| t[0][k].min(t[1][k]).min(t[2][k])),
-            max: core::array::from_fn(|k| t[0][k].max(t[1][k]).max(t[2][k])),
-        }
-    }
-
-    fn half_area(&self) -> f64 {
-        if self.min[0] > self.max[0] {
-            return 0.0;
-        }
-        let d: [f64; 3] = core::array::from_fn(|k| self.max[k] as f64 - self.min[k] as f64);
-        d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
-    }
-}
-
-/// A node of the binary tree as it is built (one box per node).
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    bounds: Aabb,
-    /// Leaf: first triangle; inner node: index of the right child.
-    index: u32,
-    /// Leaf: number of triangles (≥ 1); inner node: 0.
-    count: u32,
-}
 
 /// The nearest point found by [`Bvh::nearest`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -330,71 +273,7 @@ impl Bvh {
                 .collect();
             &scaled
         };
-        let n = tris.len();
-        let mut items: Vec<Item> = tris
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let bounds = Aabb::of(t);
-                Item {
-                    centroid: core::array::from_fn(|k| 0.5 * bounds.min[k] + 0.5 * bounds.max[k]),
-                    bounds,
-                    id: i as u32,
-                }
-            })
-            .collect();
-        let mut nodes: Vec<Node> = Vec::with_capacity(2 * n.div_ceil(LEAF_SIZE) + 1);
-        // Ranges still to build, each with its box, its centroids' box and
-        // the parent whose right-child index it must fill in (left
-        // children need none: they follow their parent). Left is pushed
-        // last so that it is built first.
-        let mut todo: Vec<Range> = Vec::new();
-        if n > 0 {
-            let (bounds, centroids) = bounds_of(&items);
-            todo.push(Range {
-                patch: None,
-                first: 0,
-                end: n,
-                bounds,
-                centroids,
-            });
-        }
-        while let Some(r) = todo.pop() {
-            let node = nodes.len();
-            if let Some(parent) = r.patch {
-                nodes[parent].index = node as u32;
-            }
-            let count = r.end - r.first;
-            if count <= LEAF_SIZE {
-                nodes.push(Node {
-                    bounds: r.bounds,
-                    index: r.first as u32,
-                    count: count as u32,
-                });
-                continue;
-            }
-            nodes.push(Node {
-                bounds: r.bounds,
-                index: 0,
-                count: 0,
-            });
-            let [left, right] = split(&mut items[r.first..r.end], &r.centroids);
-            let mid = r.first + left.count;
-            todo.push(Range {
-                patch: Some(node),
-                first: mid,
-                end: r.end,
-                bounds: right.bounds,
-                centroids: right.centroids,
-            });
-            todo.push(Range {
-                patch: None,
-                first: r.first,
-                end: mid,
-                bounds: left.bounds,
-                centroids: left.centroids,
-            });
-        }
+        let (nodes, ids) = build::build(tris);
         static TREES: AtomicU64 = AtomicU64::new(1);
         Bvh {
             id: TREES.fetch_add(1, Ordering::Relaxed),
@@ -404,8 +283,8 @@ impl Bvh {
             extent: largest_coordinate(tris),
             scale,
             unscale: 1.0 / scale,
-            tris: items.iter().map(|it| tris[it.id as usize]).collect(),
-            ids: items.iter().map(|it| it.id).collect(),
+            tris: ids.iter().map(|&i| tris[i as usize]).collect(),
+            ids,
         }
     }
 
@@ -762,145 +641,6 @@ fn widen(nodes: &[Node]) -> Vec<Wide> {
         }
     }
     out
-}
-
-/// A triangle as the builder moves it around: its box, the centre of
-/// the box, and its index. Ranges of these are partitioned in place, so
-/// every pass of the build reads memory in order.
-#[derive(Clone, Copy, Debug)]
-struct Item {
-    bounds: Aabb,
-    centroid: [f32; 3],
-    id: u32,
-}
-
-/// A range of items still to be built into a subtree.
-#[derive(Clone, Copy, Debug)]
-struct Range {
-    /// The parent whose right-child index is this subtree's first node.
-    patch: Option<usize>,
-    first: usize,
-    end: usize,
-    /// The union of the items' boxes.
-    bounds: Aabb,
-    /// The box of the items' centroids.
-    centroids: Aabb,
-}
-
-/// One side of a split: its item count, box and centroids' box.
-#[derive(Clone, Copy, Debug)]
-struct Side {
-    count: usize,
-    bounds: Aabb,
-    centroids: Aabb,
-}
-
-/// The box of the items and the box of their centroids.
-fn bounds_of(items: &[Item]) -> (Aabb, Aabb) {
-    let mut bounds = Aabb::EMPTY;
-    let mut centroids = Aabb::EMPTY;
-    for it in items {
-        bounds.grow(&it.bounds);
-        centroids.grow_point(&it.centroid);
-    }
-    (bounds, centroids)
-}
-
-/// Reorders `items` (at least two) into two non-empty halves, the first
-/// first: the binned SAH split over the three axes, or the middle when
-/// all centroids coincide. `centroids` is the box of the items'
-/// centroids.
-fn split(items: &mut [Item], centroids: &Aabb) -> [Side; 2] {
-    let n = items.len();
-    let (lo, hi) = (centroids.min, centroids.max);
-    // Bin of a centroid coordinate; the same function sorts items into
-    // bins and then partitions them, so both agree exactly.
-    let bin_of = |c: f32, k: usize| -> usize {
-        let x = (c - lo[k]) as f64 / (hi[k] - lo[k]) as f64 * BINS as f64;
-        // `x` is in [0, BINS] (or NaN on a flat axis, never split): `u32`
-        // converts it as `usize` would, in fewer instructions.
-        (x as u32).min(BINS as u32 - 1) as usize
-    };
-    let axes: Vec<usize> = (0..3).filter(|&k| hi[k] > lo[k]).collect();
-    // One pass over the range bins it on every axis at once (a flat axis
-    // is binned too, all in bin 0, but never split).
-    let mut count = [[0usize; BINS]; 3];
-    let mut bounds = [[Aabb::EMPTY; BINS]; 3];
-    for it in items.iter() {
-        for k in 0..3 {
-            let b = bin_of(it.centroid[k], k);
-            count[k][b] += 1;
-            bounds[k][b].grow(&it.bounds);
-        }
-    }
-    // (cost, axis, bins on the left)
-    let mut best: Option<(f64, usize, usize)> = None;
-    for &k in &axes {
-        let (count, bounds) = (&count[k], &bounds[k]);
-        // Right-to-left sweep first, then evaluate left-to-right.
-        let mut right_area = [0.0f64; BINS];
-        let mut acc = Aabb::EMPTY;
-        for b in (1..BINS).rev() {
-            acc.grow(&bounds[b]);
-            right_area[b] = acc.half_area();
-        }
-        let mut left = Aabb::EMPTY;
-        let mut left_count = 0;
-        for b in 1..BINS {
-            left.grow(&bounds[b - 1]);
-            left_count += count[b - 1];
-            if left_count == 0 || left_count == n {
-                continue;
-            }
-            let cost =
-                left.half_area() * left_count as f64 + right_area[b] * (n - left_count) as f64;
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, k, b));
-            }
-        }
-    }
-    let Some((_, k, b)) = best else {
-        let (left, right) = items.split_at(n / 2);
-        return [left, right].map(|half| {
-            let (bounds, centroids) = bounds_of(half);
-            Side {
-                count: half.len(),
-                bounds,
-                centroids,
-            }
-        });
-    };
-    // In-place partition (deterministic for a given input order); the
-    // sides' boxes are the unions of their bins', their centroids' boxes
-    // are gathered on the way.
-    let mut side = [Aabb::EMPTY; 2];
-    for (bin, bounds) in bounds[k].iter().enumerate() {
-        side[(bin >= b) as usize].grow(bounds);
-    }
-    let (mut left, mut right) = (Aabb::EMPTY, Aabb::EMPTY);
-    let mut i = 0;
-    for j in 0..n {
-        let c = &items[j].centroid;
-        if bin_of(c[k], k) < b {
-            left.grow_point(c);
-            items.swap(i, j);
-            i += 1;
-        } else {
-            right.grow_point(c);
-        }
-    }
-    [
-        Side {
-            count: i,
-            bounds: side[0],
-            centroids: left,
-        },
-        Side {
-            count: n - i,
-            bounds: side[1],
-            centroids: right,
-        },
-    ]
 }
 
 #[cfg(test)]

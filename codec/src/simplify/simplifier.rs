@@ -1,0 +1,356 @@
+//! The simplifier of the module's method ([`super`]): a welded mesh,
+//! its collapse sequence made once (`qem`) or meshoptimizer's simplifier
+//! (effort `fast`), the refit, the mode-0 files of its simplifications,
+//! and the distance every candidate file is measured with.
+//!
+//! Invariants: a simplification depends only on the mesh and the face
+//! count asked; the whole mesh's cleaning and files are made once and
+//! kept (`Simplifier::whole_bytes`).
+
+use super::{qem, refit};
+use crate::container::Framing;
+use crate::metrics::{DistanceOptions, Surface, SurfaceDistance};
+use crate::retile::valence::{max_valence, MAX_VALENCE};
+use crate::{CleanOptions, Error, TopologyError, TriMesh};
+use alloc::borrow::Cow;
+use core::ops::RangeInclusive;
+use std::sync::OnceLock;
+
+/// Quantizations considered: the lossless mode's coarsest (small meshes
+/// at low rates want it: spot and cow chose 7, the old floor, at 0.5-2
+/// b/v) to two bits finer than the peers' 14.
+pub const QPS: RangeInclusive<u8> = 6..=16;
+/// Samples per direction with which the quick search (effort `fast`)
+/// tells its two fits apart: enough to rank a quantization several bits
+/// off against one near the best, not to choose between neighbours.
+pub const QUICK_SAMPLES: u64 = 2_000;
+/// The qp of the first fit, whose face count predicts the best qp.
+pub(super) const START_QP: u8 = 10;
+/// Fewer faces than a tetrahedron's make no surface worth coding.
+pub(super) const MIN_FACES: u32 = 4;
+/// Refits of each simplification to the input ([`refit`]): one; three
+/// measured no better.
+const REFIT_SWEEPS: usize = 1;
+
+/// How much more error a file on size (within rate control's 3% of the
+/// request) may have than one short of it and still be preferred: the
+/// issue's "no worse than the better method by more than 5%".
+pub(crate) const ON_SIZE_SLACK: f64 = 1.05;
+
+/// A welded mesh and, once made, its collapse sequence.
+pub struct Simplifier<'a> {
+    pub(super) mesh: &'a TriMesh,
+    /// What is simplified and what distances are measured against:
+    /// `mesh`, or its copy with high-valence fans rebuilt (see `new`).
+    work: Cow<'a, TriMesh>,
+    /// The greedy collapse sequence of `work`, made on first use (an
+    /// automatic encode whose retiling wins early may never need it).
+    collapses: OnceLock<qem::Collapses>,
+    /// Simplify with meshoptimizer instead of the collapse sequence
+    /// ([`Simplifier::quick`]).
+    quick: bool,
+    /// The quick engine's simplifications so far, by target: a target
+    /// asked again is answered from here, and a new one is simplified
+    /// from the smallest of them that is still above it (or from the
+    /// input), so a size search simplifies the input about once.
+    /// Deterministic, as the search's sequence of probes is.
+    made: std::sync::Mutex<Vec<(u32, TriMesh)>>,
+    /// The framing of the files it writes.
+    pub(super) framing: Framing,
+    /// The input cleaned as every probe is (`lossless_bytes`), once:
+    /// each quantization's search starts with the whole mesh's file, and
+    /// cleaning a million triangles again for each took 0.45 s.
+    whole: OnceLock<Option<crate::Cleaned>>,
+    /// The whole mesh's file by quantization, once made (the error
+    /// target runs the same searches at several sizes).
+    whole_files: std::sync::Mutex<Vec<(u8, Vec<u8>)>>,
+}
+
+impl<'a> Simplifier<'a> {
+    /// The framing of the files it writes.
+    pub fn framing(&self) -> Framing {
+        self.framing
+    }
+
+    /// `mesh` must be welded (what [`clean`](crate::clean) returns).
+    ///
+    /// A mesh with a vertex of valence above the retiler's cap (a fanned
+    /// polygon face, a cone's apex) is simplified from a copy whose fans
+    /// are rebuilt as the retiler's are (`retile::valence`, the same
+    /// surface within about 1e-4 of a spoke): a collapse's checks walk the
+    /// rings of its ends, so their time grows as the square of the
+    /// valence, and a distance measured against the fan's slivers visits
+    /// all of them for each sample. Other meshes are used as they are.
+    pub fn new(mesh: &'a TriMesh, framing: Framing) -> Simplifier<'a> {
+        let work = if max_valence(mesh) > MAX_VALENCE {
+            let mut copy = mesh.clone();
+            let mut labels = vec![0u32; copy.face_count()];
+            crate::retile::valence::cap(&mut copy, &mut labels);
+            Cow::Owned(copy)
+        } else {
+            Cow::Borrowed(mesh)
+        };
+        Simplifier {
+            mesh,
+            work,
+            collapses: OnceLock::new(),
+            quick: false,
+            made: std::sync::Mutex::new(Vec::new()),
+            framing,
+            whole: OnceLock::new(),
+            whole_files: std::sync::Mutex::new(Vec::new()),
+        }
+    }
+
+    /// The whole mesh's file at `qp`: [`lossless_bytes`] of the input,
+    /// from the cached cleaning and file (the same bytes).
+    pub(super) fn whole_bytes(&self, qp: u8) -> Result<Vec<u8>, Error> {
+        let lock = || self.whole_files.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some((_, b)) = lock().iter().find(|(q, _)| *q == qp) {
+            return Ok(b.clone());
+        }
+        let cleaned = self
+            .whole
+            .get_or_init(|| crate::clean(self.mesh, &CleanOptions::default()).ok());
+        let bytes = match cleaned {
+            Some(c) => crate::lossless::encode(&c.table, &c.mesh, qp, self.framing)?.0,
+            // The error, made again.
+            None => lossless_bytes(self.mesh, qp, self.framing)?,
+        };
+        lock().push((qp, bytes.clone()));
+        Ok(bytes)
+    }
+
+    /// The same, simplifying with meshoptimizer's `meshopt_simplify`
+    /// (effort `fast`): about a tenth of the time of the quadric collapse
+    /// sequence, which it does not make, for a coarser placement (each
+    /// vertex stays at one of its ends' positions before the refit;
+    /// BENCHMARKS.md, "Effort levels").
+    pub fn quick(mesh: &'a TriMesh, framing: Framing) -> Simplifier<'a> {
+        Simplifier {
+            quick: true,
+            ..Simplifier::new(mesh, framing)
+        }
+    }
+
+    /// Faces of the input.
+    pub fn faces(&self) -> u32 {
+        self.mesh.triangles.len() as u32
+    }
+
+    /// The surface simplified files are measured against: the input, or
+    /// the copy with rebuilt fans (see [`new`](Self::new)).
+    pub fn reference(&self) -> &TriMesh {
+        &self.work
+    }
+
+    /// The input simplified to at most `target` faces (the input itself
+    /// when it has no more), before its refit ([`refit`](Self::refit)):
+    /// what the size search probes. Deterministic.
+    pub fn simplify(&self, target: u32) -> TriMesh {
+        if target >= self.faces() {
+            return self.mesh.clone();
+        }
+        if self.quick {
+            let mut made = self.made.lock().unwrap_or_else(|p| p.into_inner());
+            if let Some((_, m)) = made.iter().find(|(t, _)| *t == target) {
+                return m.clone();
+            }
+            let from = made
+                .iter()
+                .map(|(_, m)| m)
+                .filter(|m| m.face_count() as u32 > target)
+                .min_by_key(|m| m.face_count())
+                .unwrap_or(&*self.work);
+            let mesh = meshopt_simplified(from, target);
+            made.push((target, mesh.clone()));
+            return mesh;
+        }
+        let c = self
+            .collapses
+            .get_or_init(|| qem::Collapses::run(&self.work, MIN_FACES));
+        let r = c.replay(&self.work, target);
+        compact(&r.positions, &r.triangles)
+    }
+
+    /// `mesh` (a simplification) refitted to the input (`refit`).
+    pub fn refit(&self, mesh: &mut TriMesh) {
+        refit::refit(mesh, &self.work, REFIT_SWEEPS);
+    }
+}
+
+/// The distance from `reference` to what the file `bytes` decodes to,
+/// with `samples` area-uniform face samples per direction: how every
+/// candidate file of the encoder is measured.
+pub(crate) fn file_distance(
+    bytes: &[u8],
+    reference: &Surface,
+    samples: u64,
+) -> Result<SurfaceDistance, Error> {
+    let decoded = crate::decoder::decode(bytes, &Default::default())?;
+    crate::metrics::distance_between(
+        reference,
+        &Surface::new(&decoded)?,
+        &DistanceOptions::area_uniform(samples),
+    )
+}
+
+/// The mode-0 file of `mesh` at `qp`, as [`encode`](crate::encode) writes
+/// it (cleaned first: a simplification may leave a degenerate face).
+pub fn lossless_bytes(mesh: &TriMesh, qp: u8, framing: Framing) -> Result<Vec<u8>, Error> {
+    let cleaned = crate::clean(mesh, &CleanOptions::default())?;
+    Ok(crate::lossless::encode(&cleaned.table, &cleaned.mesh, qp, framing)?.0)
+}
+
+/// `mesh` simplified by meshoptimizer toward `target` faces (it may stop
+/// above where a collapse would break the topology). No error bound: the
+/// count decides.
+fn meshopt_simplified(mesh: &TriMesh, target: u32) -> TriMesh {
+    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+    let bytes = meshopt::typed_to_bytes(&mesh.positions);
+    let Ok(vertices) = meshopt::VertexDataAdapter::new(bytes, 12, 0) else {
+        return mesh.clone();
+    };
+    let kept = meshopt::simplify(
+        &indices,
+        &vertices,
+        3 * target as usize,
+        1.0,
+        meshopt::SimplifyOptions::None,
+        None,
+    );
+    let triangles: Vec<[u32; 3]> = kept.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+    compact(&mesh.positions, &triangles)
+}
+
+/// Keeps the vertices `triangles` use, renumbered in order of first use.
+fn compact(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> TriMesh {
+    let mut remap = vec![u32::MAX; positions.len()];
+    let mut out = TriMesh::new(Vec::new(), Vec::with_capacity(triangles.len()));
+    for t in triangles {
+        let tri = t.map(|v| {
+            let slot = &mut remap[v as usize];
+            if *slot == u32::MAX {
+                *slot = out.positions.len() as u32;
+                out.positions.push(positions[v as usize]);
+            }
+            *slot
+        });
+        out.triangles.push(tri);
+    }
+    out
+}
+
+/// The smallest file this method writes for the input: [`MIN_FACES`]
+/// faces at the coarsest qp.
+///
+/// A mesh so thin that its simplification to a few faces leaves only
+/// zero-area triangles (a torus whose tube is a thousandth of its ring)
+/// has no file at [`MIN_FACES`]: the face count doubles until cleaning
+/// leaves a triangle (the whole mesh always does).
+pub fn smallest_bytes(s: &Simplifier<'_>) -> Result<u64, Error> {
+    let mut faces = MIN_FACES;
+    loop {
+        match coded(&s.simplify(faces), *QPS.start(), s.framing)? {
+            Some(bytes) => return Ok(bytes.len() as u64),
+            None if faces >= s.faces() => return Err(TopologyError::NoTriangles.into()),
+            None => faces = faces.saturating_mul(2).min(s.faces()),
+        }
+    }
+}
+
+/// [`lossless_bytes`], or `None` when the simplified mesh cleans to
+/// nothing (every face of zero area).
+pub(super) fn coded(mesh: &TriMesh, qp: u8, framing: Framing) -> Result<Option<Vec<u8>>, Error> {
+    match lossless_bytes(mesh, qp, framing) {
+        Ok(b) => Ok(Some(b)),
+        Err(Error::Topology(TopologyError::NoTriangles)) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simplify::{best_fit, Climb};
+
+    /// One polygon face of `n` vertices on the unit circle, fanned from its
+    /// vertex 0 as the mesh readers triangulate it.
+    fn fanned_polygon(n: u32) -> TriMesh {
+        let positions = (0..n)
+            .map(|i| {
+                let a = core::f32::consts::TAU * i as f32 / n as f32;
+                [a.cos(), a.sin(), 0.0]
+            })
+            .collect();
+        TriMesh::new(positions, (1..n - 1).map(|i| [0, i, i + 1]).collect())
+    }
+
+    #[test]
+    fn a_fanned_polygon_is_simplified_from_rebuilt_fans_and_stays_on_its_plane() {
+        let m = fanned_polygon(3000);
+        let s = Simplifier::new(&m, Framing::default());
+        assert_eq!(s.faces(), 2998);
+        assert!(max_valence(s.reference()) <= MAX_VALENCE);
+        assert!((s.reference().area() - m.area()).abs() < 1e-6 * m.area());
+        let small = s.simplify(200);
+        assert!(small.face_count() <= 200 && small.face_count() > 0);
+        assert!(small.positions.iter().all(|p| p[2] == 0.0));
+        // The whole mesh asked for: the input itself, not the rebuilt copy.
+        assert_eq!(s.simplify(2998), m);
+    }
+
+    #[test]
+    fn an_ordinary_mesh_is_its_own_reference() {
+        let m = fanned_polygon(100);
+        let s = Simplifier::new(&m, Framing::default());
+        assert!(core::ptr::eq(s.reference(), &m));
+    }
+
+    /// A torus of ring radius 1 whose tube has radius `r`.
+    fn torus(r: f32, nu: u32, nv: u32) -> TriMesh {
+        let mut positions = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                let (a, b) = (
+                    core::f32::consts::TAU * i as f32 / nu as f32,
+                    core::f32::consts::TAU * j as f32 / nv as f32,
+                );
+                let rho = 1.0 + r * b.cos();
+                positions.push([rho * a.cos(), rho * a.sin(), r * b.sin()]);
+            }
+        }
+        let id = |i: u32, j: u32| (i % nu) * nv + j % nv;
+        let mut triangles = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            }
+        }
+        TriMesh::new(positions, triangles)
+    }
+
+    #[test]
+    fn a_mesh_whose_coarse_simplifications_are_degenerate_still_fits() {
+        // The tube is a thousandth of the ring: simplified to a few faces,
+        // every triangle has zero area and cleaning leaves nothing. The
+        // search steps over those counts instead of failing (issue 20).
+        let m = crate::clean(&torus(0.001, 24, 6), &CleanOptions::default())
+            .unwrap()
+            .mesh;
+        let s = Simplifier::new(&m, Framing::default());
+        let smallest = smallest_bytes(&s).unwrap();
+        let reference = Surface::new(s.reference()).unwrap();
+        let (fit, _) = best_fit(&s, smallest, &|| Ok(&reference), Climb::Full(2000))
+            .unwrap()
+            .unwrap();
+        assert!(fit.bytes.len() as u64 <= smallest);
+        let (fit, _) = best_fit(&s, 3 * smallest, &|| Ok(&reference), Climb::Full(2000))
+            .unwrap()
+            .unwrap();
+        assert!(fit.bytes.len() as u64 <= 3 * smallest);
+        crate::decode(&fit.bytes, &Default::default()).unwrap();
+    }
+}
