@@ -86,9 +86,12 @@ impl<'a, 's> Job<'a, 's> {
     /// The simplifier of the cleaned input.
     pub fn simplifier(&self) -> &'a Simplifier<'s> {
         let s = self.services;
-        s.simplifier.get_or_init(|| match s.quick {
-            true => Simplifier::quick(&s.cleaned.mesh, s.framing),
-            false => Simplifier::new(&s.cleaned.mesh, s.framing),
+        s.simplifier.get_or_init(|| {
+            match s.quick {
+                true => Simplifier::quick(&s.cleaned.mesh, s.framing),
+                false => Simplifier::new(&s.cleaned.mesh, s.framing),
+            }
+            .of_cleaned(s.cleaned)
         })
     }
 

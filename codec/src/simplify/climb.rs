@@ -356,7 +356,18 @@ pub fn quick_fit<'r>(
     if qp == first.qp {
         return Ok(Some(first));
     }
-    let Some(second) = fit_faces(s, qp, budget, Some(&first), Whole::Encode, false)? else {
+    // The second search as the lean climb's: from the face count the
+    // first predicts, and without the whole mesh's file when the first
+    // one's shows it far over the budget (a million triangles take half
+    // a second to code).
+    let whole = s.whole_bytes(first.qp)?.len() as u64;
+    let estimate = whole_estimate(whole, first.qp, qp, s.mesh.positions.len() as u64);
+    let whole = if estimate as f64 > WHOLE_MARGIN * budget as f64 {
+        Whole::Over(estimate)
+    } else {
+        Whole::Encode
+    };
+    let Some(second) = fit_faces(s, qp, budget, Some(&first), whole, true)? else {
         return Ok(Some(first));
     };
     // The prediction holds on scans and misses on CAD parts, whose best
