@@ -167,8 +167,8 @@ struct Climbed {
 
 impl Climbed {
     /// The fit at `qp`, made once. Its search's first probe comes from
-    /// the last fit made (the full climb) or from the fit nearest in qp
-    /// (the lean one, the coarser on a tie).
+    /// the last fit made (the full climb) or from the simplification
+    /// nearest in qp (the lean one).
     fn fit(
         &mut self,
         s: &Simplifier<'_>,
@@ -180,11 +180,16 @@ impl Climbed {
             return Ok(self.fits[i].fit.as_ref());
         }
         let (whole, prev) = if lean {
+            // A simplification rather than the whole mesh (whose size
+            // predicts nothing of theirs), the finer on a tie.
             let nearest = self
                 .fits
                 .iter()
                 .filter_map(|t| t.fit.as_ref())
-                .min_by_key(|f| ((f.qp as i16 - qp as i16).abs(), f.qp));
+                .min_by_key(|f| {
+                    let whole = f.faces >= s.faces();
+                    (whole, (f.qp as i16 - qp as i16).abs(), u8::MAX - f.qp)
+                });
             (self.whole(s, qp, budget), nearest)
         } else {
             let last = self.fits.iter().rev().find_map(|t| t.fit.as_ref());
