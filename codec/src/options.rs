@@ -119,9 +119,11 @@ pub enum Effort {
     /// measured): about the time of a lossless encode plus one quadric
     /// simplification.
     Fast,
-    /// The simplified method with its full search, and SwingWrapper
-    /// where its retiling fits the level's work budget (small outputs);
-    /// the chooser measures both.
+    /// The simplified method with its lean search (the full search's
+    /// climb over quantizations, each measured, with fewer probes per
+    /// size search; `--mode lossless` with a size keeps the full one),
+    /// and SwingWrapper where its retiling fits the level's work budget
+    /// (small outputs); the chooser measures both.
     #[default]
     Default,
     /// Every method with its whole search: SwingWrapper's rate control,

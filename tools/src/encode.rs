@@ -782,8 +782,9 @@ enum FramingArg {
 pub enum EffortArg {
     /// The simplified method with a short search.
     Fast,
-    /// The simplified method's full search, and SwingWrapper where its
-    /// retiling fits the level's work budget.
+    /// The simplified method's lean search (every promising quantization
+    /// measured, each size search started where the last one predicts),
+    /// and SwingWrapper where its retiling fits the level's work budget.
     Default,
     /// Every method's whole search.
     Max,
