@@ -26,6 +26,10 @@ pub enum ModeArg {
     /// Keep the input's exact triangles, positions quantized to --qp bits;
     /// with --size or --bpv, quadric-simplify first to fit the size.
     Lossless,
+    /// Displaced subdivision (format 1.2): a quadric-simplified base coded
+    /// losslessly, levels of 1-to-4 subdivision, one quantized scalar per
+    /// new vertex along its predicted normal; needs --size or --bpv.
+    Displaced,
 }
 
 #[derive(clap::Args)]
@@ -202,6 +206,26 @@ impl Args {
                     (self.angle_bits.is_some(), "--angle-bits"),
                 ],
             ),
+            ModeArg::Displaced => (
+                "displaced",
+                vec![
+                    (self.qp.is_some(), "--qp"),
+                    (self.effort != EffortArg::Default, "--effort"),
+                    (self.max_error.is_some(), "--max-error"),
+                    (self.max_error_units.is_some(), "--max-error-units"),
+                    (self.edge_length.is_some(), "--edge-length"),
+                    (self.angle_bits.is_some(), "--angle-bits"),
+                    (self.on_surface, "--on-surface"),
+                    (self.adaptive, "--adaptive"),
+                    (self.plain_clers, "--plain-clers"),
+                    (self.inside_start, "--inside-start"),
+                    (self.no_hint, "--no-hint"),
+                    (self.no_creases, "--no-creases"),
+                    (self.max_work.is_some(), "--max-work"),
+                    (self.max_memory.is_some(), "--max-memory"),
+                    (self.time_limit.is_some(), "--time-limit"),
+                ],
+            ),
             ModeArg::Lossless => (
                 "lossless",
                 vec![
@@ -279,6 +303,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
         ModeArg::Lossless => swm::EncodeMode::Simplified { target, max_bytes },
         ModeArg::Auto => swm::EncodeMode::Auto { target, max_bytes },
+        ModeArg::Displaced => swm::EncodeMode::Displaced { target, max_bytes },
         ModeArg::Swing => swm::EncodeMode::Swing {
             target,
             angle_bits: args.angle_bits,
@@ -810,6 +835,9 @@ fn at_size(mode: &swm::EncodeMode, bytes: u64) -> Option<swm::EncodeMode> {
         }
         swm::EncodeMode::Simplified { max_bytes, .. } if fits(&max_bytes) => {
             Some(swm::EncodeMode::Simplified { target, max_bytes })
+        }
+        swm::EncodeMode::Displaced { max_bytes, .. } if fits(&max_bytes) => {
+            Some(swm::EncodeMode::Displaced { target, max_bytes })
         }
         swm::EncodeMode::Swing {
             angle_bits,

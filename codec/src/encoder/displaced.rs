@@ -1,0 +1,200 @@
+//! The displaced-subdivision method (mode 2, `crate::displaced`): a
+//! quadric simplification of the input to `B` faces (refitted to the
+//! input, boundaries kept by the collapse's own rules) as the base, `k`
+//! levels of subdivision, one scalar per new vertex.
+//!
+//! Rate control: for each level count `k` in [`LEVELS`], a first guess of
+//! `B` from a cost model (bits per base face, bits per new vertex), then
+//! at most [`TRIALS`] files, each `B` moved by a secant on log size
+//! against log faces (a power law, exponent 1 after the first file); the
+//! file of each `k` nearest the budget without passing it is
+//! measured with the chooser's distance and the closest to the input
+//! wins. No loop runs until convergence: at most `|LEVELS| × TRIALS`
+//! files.
+
+use super::method::{Ask, CodingMethod, Job, Made};
+use super::stats::{DisplacedStats, Method, MethodStats};
+use crate::displaced::fit::{Fallback, Target};
+use crate::displaced::predict::Rule;
+use crate::displaced::write::{write, Plan, Written};
+use crate::metrics::ray::Lines;
+use crate::{Error, SizeError};
+
+/// Level counts tried.
+const LEVELS: [usize; 3] = [1, 2, 3];
+/// Files per level count.
+const TRIALS: usize = 4;
+/// Rate control's tolerance: a file within this fraction under the
+/// budget stops the trials.
+const TOLERANCE: f64 = 0.03;
+/// Fewer base faces than this make no surface worth refining.
+const MIN_BASE_FACES: u32 = 8;
+
+/// The displaced-subdivision method and its settings.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Displaced {
+    pub rule: Rule,
+    /// Step of the finest level over its mean edge.
+    pub step_scale: f64,
+    /// Coarser levels' steps finer by `2^decay` per level
+    /// ([`Plan::step_decay`]).
+    pub step_decay: f64,
+    /// Base vertices snapped to the input.
+    pub snap_base: bool,
+    /// Reach of a normal line over a level's mean edge.
+    pub reach_scale: f64,
+    pub fallback: Fallback,
+    /// Only crossings facing the normal's way ([`Plan::facing`]).
+    pub facing: bool,
+    /// Bits per coordinate of the base (`None`: chosen from the base's
+    /// edges and the levels, [`Plan::qp_slack`]).
+    pub qp: Option<u8>,
+    /// [`Plan::qp_slack`].
+    pub qp_slack: f64,
+}
+
+impl Displaced {
+    /// The settings measured best (BENCHMARKS.md, "Displaced
+    /// subdivision (issue 46), first measurements").
+    pub const DEFAULT: Displaced = Displaced {
+        rule: Rule::Loop,
+        step_scale: 1.0 / 32.0,
+        step_decay: 1.0,
+        snap_base: false,
+        reach_scale: 2.0,
+        fallback: Fallback::Nearest,
+        facing: true,
+        qp: None,
+        qp_slack: 1.0,
+    };
+}
+
+impl CodingMethod for Displaced {
+    fn method(&self) -> Method {
+        Method::Displaced
+    }
+
+    fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
+        let budget =
+            super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "displaced")?;
+        let s = job.simplifier();
+        let reference = s.reference();
+        let (lines, surface) = rayon::join(
+            || Lines::new(&reference.positions, &reference.triangles),
+            || job.reference(),
+        );
+        let target = Target {
+            lines: &lines,
+            surface: surface?,
+        };
+        let file = |faces: u32, levels: usize| -> Result<Written, Error> {
+            let mut base = s.simplify(faces);
+            s.refit(&mut base);
+            write(&base, &target, &self.plan(levels, job))
+        };
+        let mut smallest = u64::MAX;
+        let mut best: Option<(f64, Written, usize)> = None;
+        for levels in LEVELS {
+            let mut faces = first_guess(budget, levels);
+            let mut fitting: Option<Written> = None;
+            let mut last: Option<(f64, f64)> = None;
+            for _ in 0..TRIALS {
+                let f = faces.clamp(MIN_BASE_FACES, s.faces().max(MIN_BASE_FACES));
+                let w = file(f, levels)?;
+                let size = w.bytes.len() as u64;
+                smallest = smallest.min(size);
+                let fits = size <= budget;
+                if fits
+                    && fitting
+                        .as_ref()
+                        .is_none_or(|b| b.bytes.len() < w.bytes.len())
+                {
+                    fitting = Some(w);
+                }
+                let scale = budget as f64 / size as f64;
+                if (fits && scale <= 1.0 + TOLERANCE) || (f >= s.faces() && fits) {
+                    break;
+                }
+                // Size against faces is close to a power law: its
+                // exponent from the last two files (1 after the first),
+                // aiming a little under the budget so the next file fits.
+                let (lf, ls) = ((f as f64).ln(), (size as f64).ln());
+                let exponent = match last {
+                    Some((pf, ps)) if (lf - pf).abs() > 1e-9 => {
+                        ((ls - ps) / (lf - pf)).clamp(0.3, 3.0)
+                    }
+                    _ => 1.0,
+                };
+                last = Some((lf, ls));
+                let next = (f as f64) * (scale * (1.0 - TOLERANCE / 3.0)).powf(1.0 / exponent);
+                faces = next.round().clamp(1.0, u32::MAX as f64) as u32;
+                if faces == f {
+                    break;
+                }
+            }
+            let Some(w) = fitting else { continue };
+            // The reconstruction is the decoded file, bit for bit: no
+            // need to decode it again to measure it.
+            let l2 = crate::metrics::distance_between(
+                target.surface,
+                &crate::metrics::Surface::new(&w.mesh)?,
+                &crate::metrics::DistanceOptions::area_uniform(crate::AUTO_SAMPLES),
+            )?
+            .l2_relative();
+            if best.as_ref().is_none_or(|b| l2 < b.0) {
+                best = Some((l2, w, levels));
+            }
+        }
+        let Some((l2, w, levels)) = best else {
+            return Err(SizeError {
+                requested: budget,
+                smallest,
+            }
+            .into());
+        };
+        let stats = DisplacedStats {
+            base_faces: w.base_faces as u64,
+            levels: levels as u8,
+            qp: w.qp,
+            base_bytes: w.base_bytes as u64,
+            level_bytes: w.level_bytes.iter().map(|&b| b as u64).collect(),
+            misses: w.misses.iter().map(|&m| m as u64).collect(),
+            l2_relative: Some(l2),
+        };
+        Ok(Some(Made {
+            bytes: w.bytes,
+            stats: MethodStats::Displaced(stats),
+            l2_relative: Some(l2),
+            whole: false,
+        }))
+    }
+}
+
+impl Displaced {
+    fn plan(&self, levels: usize, job: &Job<'_, '_>) -> Plan {
+        Plan {
+            levels,
+            rule: self.rule,
+            step_scale: self.step_scale,
+            step_decay: self.step_decay,
+            snap_base: self.snap_base,
+            reach_scale: self.reach_scale,
+            fallback: self.fallback,
+            facing: self.facing,
+            qp: self.qp,
+            qp_slack: self.qp_slack,
+            framing: job.options.framing,
+        }
+    }
+}
+
+/// Base faces whose file is about `budget` bytes at `levels` levels: a
+/// base face costs about 10 bits (a vertex of the lossless mode, about
+/// 20 bits, per two faces), a new vertex about 1.5 bits, and `k` levels
+/// add about `B/2 · (4^k − 1)` vertices.
+fn first_guess(budget: u64, levels: usize) -> u32 {
+    let per_face = 10.0 + 0.75 * ((1u64 << (2 * levels)) - 1) as f64;
+    (8.0 * budget as f64 / per_face)
+        .round()
+        .min(u32::MAX as f64) as u32
+}
