@@ -1149,3 +1149,68 @@ fn golden_fans() -> TriMesh {
     }
     TriMesh::new(positions, triangles)
 }
+
+// --- Format 1.2: displaced subdivision (mode 2) ---
+
+const DISPLACED_V1_2: &[u8] = include_bytes!("../format-spec/golden/displaced-v1.2.swm");
+
+/// The test vector of format-spec/07-displaced.md ("Golden file").
+const DISPLACED_V1_2_FNV1A64: u64 = 0x6E88_3A5F_1F54_0B2E;
+
+/// The golden cap (a boundary loop, so the midpoint fallback is in the
+/// file) coded by displaced subdivision at 420 bytes.
+fn golden_displaced_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Displaced {
+            target: swm::SwingTarget::Bytes(420),
+            max_bytes: None,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+/// Writes the 1.2 golden file (run once, by hand:
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_displaced_v1_2_golden`).
+#[test]
+#[ignore]
+fn write_displaced_v1_2_golden() {
+    write_golden(
+        "displaced-v1.2.swm",
+        &golden_cap(),
+        &golden_displaced_options(),
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads mode 2
+/// of format 1.2 as specified.
+#[test]
+fn displaced_v1_2_decodes_to_its_test_vector() {
+    let info = swm::inspect(DISPLACED_V1_2, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Displaced));
+    let mesh = swm::decode(DISPLACED_V1_2, &DecodeOptions::default())
+        .expect("golden file displaced-v1.2.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        DISPLACED_V1_2_FNV1A64,
+        "decoded mesh differs from format-spec/07-displaced.md's test vector"
+    );
+    // Each level cut decodes to a quarter of the triangles.
+    let limits = swm::Limits::default();
+    let one = swm::cut_levels(DISPLACED_V1_2, 1, &limits).unwrap();
+    let coarse = swm::decode(&one, &DecodeOptions::default()).unwrap();
+    let levels = (mesh.triangles.len() / coarse.triangles.len()).trailing_zeros() / 2 + 1;
+    assert_eq!(
+        coarse.triangles.len() << (2 * (levels - 1)),
+        mesh.triangles.len()
+    );
+}
+
+/// The encoder still writes the 1.2 golden bytes from the golden cap.
+#[test]
+fn displaced_v1_2_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_cap(), &golden_displaced_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, DISPLACED_V1_2,
+        "re-encoding the golden cap no longer gives golden/displaced-v1.2.swm"
+    );
+}
