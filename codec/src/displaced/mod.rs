@@ -155,22 +155,21 @@ fn parse<'a>(file: &Container<'a>, limits: &Limits) -> Result<Parsed<'a>, Error>
 }
 
 /// One level up: the positions of the new vertices (appended) and the
-/// triangles of the split. `qs` holds one scalar per edge.
+/// triangles of the split. `frames` and `qs` hold one frame and one
+/// scalar per edge.
 pub(crate) fn refine(
     positions: &mut Vec<[f32; 3]>,
     triangles: &[[u32; 3]],
     edges: &Edges,
-    rule: Rule,
+    frames: &[predict::Frame],
     step: f32,
     qs: &[i32],
 ) -> Result<Vec<[u32; 3]>, Error> {
     let n = positions.len();
-    let mut new = Vec::with_capacity(edges.len());
-    for (e, &q) in qs.iter().enumerate().take(edges.len()) {
-        let f = predict::frame(e, edges, triangles, positions, rule);
-        new.push(predict::place(&f, q, step).ok_or(bad("a displaced vertex is not finite"))?);
+    positions.reserve(qs.len());
+    for (f, &q) in frames.iter().zip(qs) {
+        positions.push(predict::place(f, q, step).ok_or(bad("a displaced vertex is not finite"))?);
     }
-    positions.extend_from_slice(&new);
     Ok(subdivide::split(triangles, edges, n as u32))
 }
 
@@ -188,7 +187,7 @@ pub(crate) fn decode_levels(
     let p = parse(file, limits)?;
     let full = p.chunks.len();
     let mut mesh = crate::lossless::decode(&p.base, limits)?;
-    let mut qs = Vec::new();
+    let (mut qs, mut below, mut first) = (Vec::new(), Vec::new(), mesh.positions.len());
     for (level, chunk) in p.chunks.iter().enumerate().take(max_levels) {
         let edges = Edges::new(&mesh.triangles);
         check_count_fits(
@@ -202,16 +201,20 @@ pub(crate) fn decode_levels(
         if total > u64::from(file.header.vertex_count) {
             return Err(bad("more vertices than the header's"));
         }
-        scalars::decode_level(chunk, edges.len(), &mut qs)?;
+        let frames = predict::frames(&edges, &mesh.triangles, &mesh.positions, p.head.rule);
         let step = p.head.steps[level];
+        let contexts = scalars::contexts(&edges, &mesh.triangles, first, &below);
+        scalars::decode_level(chunk, &contexts, &mut qs)?;
+        first = mesh.positions.len();
         mesh.triangles = refine(
             &mut mesh.positions,
             &mesh.triangles,
             &edges,
-            p.head.rule,
+            &frames,
             step,
             &qs,
         )?;
+        core::mem::swap(&mut qs, &mut below);
     }
     if max_levels >= full && mesh.positions.len() as u64 != u64::from(file.header.vertex_count) {
         return Err(bad("fewer vertices than the header's"));

@@ -110,6 +110,13 @@ pub(crate) fn frame(
     }
 }
 
+/// The frames of every edge of a level, in edge order.
+pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rule) -> Vec<Frame> {
+    (0..edges.len())
+        .map(|e| frame(e, edges, tris, pos, rule))
+        .collect()
+}
+
 /// The butterfly's wings: across the two other edges of each triangle of
 /// the edge, the vertex opposite; `None` when one is missing.
 fn wings(edges: &Edges, tris: &[[u32; 3]], first: u32, second: u32) -> Option<[u32; 4]> {

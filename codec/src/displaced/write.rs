@@ -91,6 +91,9 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
     let mut steps = Vec::with_capacity(plan.levels);
     let mut disp = Vec::new();
     let (mut level_bytes, mut misses) = (Vec::new(), Vec::new());
+    // The level below's scalars and its first new vertex: the parents'
+    // contexts (`scalars::parent_contexts`).
+    let (mut below, mut first) = (Vec::new(), mesh.positions.len());
     for level in 0..plan.levels {
         let edges = Edges::new(&mesh.triangles);
         let frames: Vec<Frame> = (0..edges.len())
@@ -114,20 +117,23 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
             plan.facing,
         );
         let qs: Vec<i32> = t.iter().map(|&t| fit::quantize(t, step)).collect();
-        let chunk = super::scalars::encode_level(&qs);
+        let contexts = super::scalars::contexts(&edges, &mesh.triangles, first, &below);
+        let chunk = super::scalars::encode_level(&qs, &contexts);
         crate::varint::put(&mut disp, chunk.len() as u64);
         disp.extend_from_slice(&chunk);
         level_bytes.push(chunk.len());
         misses.push(missed);
         steps.push(step);
+        first = mesh.positions.len();
         mesh.triangles = refine(
             &mut mesh.positions,
             &mesh.triangles,
             &edges,
-            plan.rule,
+            &frames,
             step,
             &qs,
         )?;
+        below = qs;
     }
     let head = Head {
         rule: plan.rule,
