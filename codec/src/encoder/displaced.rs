@@ -6,11 +6,10 @@
 //! Rate control: for each level count `k` in [`LEVELS`], a first guess of
 //! `B` from a cost model (bits per base face, bits per new vertex), then
 //! at most [`TRIALS`] files, each `B` moved by a secant on log size
-//! against log faces (a power law, exponent 1 after the first file); the
-//! file of each `k` nearest the budget without passing it is
-//! measured with the chooser's distance and the closest to the input
-//! wins. No loop runs until convergence: at most `|LEVELS| × TRIALS`
-//! files.
+//! against log faces ([`search`]); the file of each `k` nearest the
+//! budget without passing it is measured with the chooser's distance and
+//! the closest to the input wins. No loop runs until convergence: at most
+//! `|LEVELS| × TRIALS` files.
 
 use super::method::{Ask, CodingMethod, Job, Made};
 use super::stats::{DisplacedStats, Method, MethodStats};
@@ -23,7 +22,7 @@ use crate::{Error, SizeError};
 /// Level counts tried.
 const LEVELS: [usize; 3] = [1, 2, 3];
 /// Files per level count.
-const TRIALS: usize = 4;
+const TRIALS: usize = 6;
 /// Rate control's tolerance: a file within this fraction under the
 /// budget stops the trials.
 const TOLERANCE: f64 = 0.03;
@@ -87,52 +86,26 @@ impl CodingMethod for Displaced {
             lines: &lines,
             surface: surface?,
         };
-        let file = |faces: u32, levels: usize| -> Result<Written, Error> {
+        let file = |faces: u32, levels: usize, qp: Option<u8>| -> Result<Written, Error> {
             let mut base = s.simplify(faces);
             s.refit(&mut base);
-            write(&base, &target, &self.plan(levels, job))
+            write(
+                &base,
+                &target,
+                &Plan {
+                    qp,
+                    ..self.plan(levels, job)
+                },
+            )
         };
         let mut smallest = u64::MAX;
-        let mut best: Option<(f64, Written, usize)> = None;
+        // Each level count's file and its error.
+        let mut found: Vec<(f64, Written, usize)> = Vec::new();
         for levels in LEVELS {
-            let mut faces = first_guess(budget, levels);
-            let mut fitting: Option<Written> = None;
-            let mut last: Option<(f64, f64)> = None;
-            for _ in 0..TRIALS {
-                let f = faces.clamp(MIN_BASE_FACES, s.faces().max(MIN_BASE_FACES));
-                let w = file(f, levels)?;
-                let size = w.bytes.len() as u64;
-                smallest = smallest.min(size);
-                let fits = size <= budget;
-                if fits
-                    && fitting
-                        .as_ref()
-                        .is_none_or(|b| b.bytes.len() < w.bytes.len())
-                {
-                    fitting = Some(w);
-                }
-                let scale = budget as f64 / size as f64;
-                if (fits && scale <= 1.0 + TOLERANCE) || (f >= s.faces() && fits) {
-                    break;
-                }
-                // Size against faces is close to a power law: its
-                // exponent from the last two files (1 after the first),
-                // aiming a little under the budget so the next file fits.
-                let (lf, ls) = ((f as f64).ln(), (size as f64).ln());
-                let exponent = match last {
-                    Some((pf, ps)) if (lf - pf).abs() > 1e-9 => {
-                        ((ls - ps) / (lf - pf)).clamp(0.3, 3.0)
-                    }
-                    _ => 1.0,
-                };
-                last = Some((lf, ls));
-                let next = (f as f64) * (scale * (1.0 - TOLERANCE / 3.0)).powf(1.0 / exponent);
-                faces = next.round().clamp(1.0, u32::MAX as f64) as u32;
-                if faces == f {
-                    break;
-                }
-            }
-            let Some(w) = fitting else { continue };
+            let fitting = search(budget, levels, s.faces(), self.qp, &mut smallest, &file)?;
+            let Some(w) = fitting else {
+                continue;
+            };
             // The reconstruction is the decoded file, bit for bit: no
             // need to decode it again to measure it.
             let l2 = crate::metrics::distance_between(
@@ -141,11 +114,23 @@ impl CodingMethod for Displaced {
                 &crate::metrics::DistanceOptions::area_uniform(crate::AUTO_SAMPLES),
             )?
             .l2_relative();
-            if best.as_ref().is_none_or(|b| l2 < b.0) {
-                best = Some((l2, w, levels));
-            }
+            found.push((l2, w, levels));
         }
-        let Some((l2, w, levels)) = best else {
+        // The closest; but a file within rate control's 3% of the budget
+        // beats a shorter one unless 5% worse (the chooser's rule).
+        let on_size = |w: &Written| w.bytes.len() as f64 >= budget as f64 * (1.0 - TOLERANCE);
+        let closest = |on: bool| {
+            (0..found.len())
+                .filter(|&i| !on || on_size(&found[i].1))
+                .min_by(|&a, &b| found[a].0.total_cmp(&found[b].0))
+        };
+        let pick = match (closest(true), closest(false)) {
+            (Some(a), Some(b)) if found[a].0 <= crate::simplify::ON_SIZE_SLACK * found[b].0 => {
+                Some(a)
+            }
+            (_, b) => b,
+        };
+        let Some((l2, w, levels)) = pick.map(|i| found.swap_remove(i)) else {
             return Err(SizeError {
                 requested: budget,
                 smallest,
@@ -186,6 +171,89 @@ impl Displaced {
             framing: job.options.framing,
         }
     }
+}
+
+/// The largest file of `levels` levels found within `budget` in at most
+/// [`TRIALS`] files (`None` when none fits). The first file's
+/// quantization (its rule's, unless `qp` fixes it) stays for the others,
+/// so that size grows smoothly with the faces: the rule's steps made it
+/// jump by a fifth between neighbouring face counts. Each next face
+/// count comes from a secant on log size against log faces: between the
+/// largest file that fits and the smallest that does not once both are
+/// known (their geometric mean when the secant leaves the bracket),
+/// before that from the last file with the last two files' exponent (1
+/// after the first), aiming 1% under the budget.
+fn search(
+    budget: u64,
+    levels: usize,
+    input_faces: u32,
+    qp: Option<u8>,
+    smallest: &mut u64,
+    file: &dyn Fn(u32, usize, Option<u8>) -> Result<Written, Error>,
+) -> Result<Option<Written>, Error> {
+    let most = input_faces.max(MIN_BASE_FACES);
+    let aim = (budget as f64 * (1.0 - TOLERANCE / 3.0)).ln();
+    let mut faces = first_guess(budget, levels);
+    let mut qp = qp;
+    let mut fitting: Option<Written> = None;
+    // (ln faces, ln size) of the largest fitting and smallest
+    // oversized files, and of the last file.
+    let (mut under, mut over, mut last): (
+        Option<(f64, f64)>,
+        Option<(f64, f64)>,
+        Option<(f64, f64)>,
+    ) = (None, None, None);
+    for _ in 0..TRIALS {
+        let f = faces.clamp(MIN_BASE_FACES, most);
+        let w = file(f, levels, qp)?;
+        qp = Some(w.qp);
+        let size = w.bytes.len() as u64;
+        *smallest = (*smallest).min(size);
+        let point = ((f as f64).ln(), (size as f64).ln());
+        let fits = size <= budget;
+        if fits {
+            if under.is_none_or(|u| point.0 > u.0) {
+                under = Some(point);
+            }
+            if fitting
+                .as_ref()
+                .is_none_or(|b| b.bytes.len() < w.bytes.len())
+            {
+                fitting = Some(w);
+            }
+            if size as f64 >= budget as f64 * (1.0 - TOLERANCE) || f >= most {
+                break;
+            }
+        } else if over.is_none_or(|o| point.0 < o.0) {
+            over = Some(point);
+        }
+        let slope = |a: (f64, f64), b: (f64, f64)| (b.1 - a.1) / (b.0 - a.0);
+        let next = match (under, over) {
+            (Some(u), Some(o)) => {
+                let x = o.0 + (aim - o.1) / slope(u, o);
+                if x > u.0 && x < o.0 {
+                    x
+                } else {
+                    0.5 * (u.0 + o.0)
+                }
+            }
+            _ => {
+                let s = last.map_or(1.0, |l| slope(l, point));
+                let s = if s.is_finite() {
+                    s.clamp(0.3, 3.0)
+                } else {
+                    1.0
+                };
+                point.0 + (aim - point.1) / s
+            }
+        };
+        last = Some(point);
+        faces = next.exp().round().clamp(1.0, u32::MAX as f64) as u32;
+        if faces == f {
+            break;
+        }
+    }
+    Ok(fitting)
 }
 
 /// Base faces whose file is about `budget` bytes at `levels` levels: a
