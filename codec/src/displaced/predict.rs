@@ -71,11 +71,13 @@ fn at(p: &[[f32; 3]], v: u32) -> [f64; 3] {
 }
 
 /// The frame of edge `e`'s new vertex.
+/// `crosses` holds each triangle's [`cross`].
 pub(crate) fn frame(
     e: usize,
     edges: &Edges,
     tris: &[[u32; 3]],
     pos: &[[f32; 3]],
+    crosses: &[[f64; 3]],
     rule: Rule,
 ) -> Frame {
     let corners = edges.corners(e);
@@ -106,14 +108,15 @@ pub(crate) fn frame(
     };
     Frame {
         point,
-        normal: normal(corners, tris, pos),
+        normal: normal(corners, crosses),
     }
 }
 
 /// The frames of every edge of a level, in edge order.
 pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rule) -> Vec<Frame> {
+    let crosses: Vec<[f64; 3]> = tris.iter().map(|t| cross(t, pos)).collect();
     (0..edges.len())
-        .map(|e| frame(e, edges, tris, pos, rule))
+        .map(|e| frame(e, edges, tris, pos, &crosses, rule))
         .collect()
 }
 
@@ -129,17 +132,27 @@ fn wings(edges: &Edges, tris: &[[u32; 3]], first: u32, second: u32) -> Option<[u
     Some([wing(f1)?, wing(next(f1))?, wing(f2)?, wing(next(f2))?])
 }
 
-/// The unit normal of an edge from the triangles around it, or zero.
-fn normal(corners: &[u32], tris: &[[u32; 3]], pos: &[[f32; 3]]) -> [f64; 3] {
+/// A triangle's `(p1 − p0) × (p2 − p0)`, in its stored corner order.
+pub(crate) fn cross(t: &[u32; 3], pos: &[[f32; 3]]) -> [f64; 3] {
+    let (p0, p1, p2) = (at(pos, t[0]), at(pos, t[1]), at(pos, t[2]));
+    let u = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
+    let v = [p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]];
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
+/// The unit normal of an edge from the triangles around it (the sum of
+/// their crosses in corner order), or zero.
+fn normal(corners: &[u32], crosses: &[[f64; 3]]) -> [f64; 3] {
     let mut n = [0f64; 3];
     for &c in corners {
-        let t = tris[(c / 3) as usize];
-        let (p0, p1, p2) = (at(pos, t[0]), at(pos, t[1]), at(pos, t[2]));
-        let u = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
-        let v = [p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]];
-        n[0] += u[1] * v[2] - u[2] * v[1];
-        n[1] += u[2] * v[0] - u[0] * v[2];
-        n[2] += u[0] * v[1] - u[1] * v[0];
+        let x = crosses[(c / 3) as usize];
+        n[0] += x[0];
+        n[1] += x[1];
+        n[2] += x[2];
     }
     let len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     if !(len2 > 0.0 && len2.is_finite()) {
@@ -178,7 +191,7 @@ mod tests {
         let (p, t) = fan();
         let e = Edges::new(&t);
         // Edge 0 is {0, 1}: a spoke, interior.
-        let f = frame(0, &e, &t, &p, Rule::Loop);
+        let f = frames(&e, &t, &p, Rule::Loop)[0];
         let (a, b) = ([0.0, 0.0, 1.0], p[1].map(f64::from));
         let (c, d) = (p[2].map(f64::from), p[6].map(f64::from));
         for k in 0..3 {
@@ -187,13 +200,13 @@ mod tests {
         }
         // A rim edge is on the boundary: its midpoint.
         let rim = (0..e.len()).find(|&i| e.corners(i).len() == 1).unwrap();
-        let f = frame(rim, &e, &t, &p, Rule::Butterfly);
+        let f = frames(&e, &t, &p, Rule::Butterfly)[rim];
         assert_eq!(f.point[2], 0.0);
         let len: f64 = f.normal.iter().map(|x| x * x).sum();
         assert!((len - 1.0).abs() < 1e-12 && f.normal[2] > 0.0);
         // A spoke's butterfly has wings on the rim: missing, so Loop's.
-        let g = frame(0, &e, &t, &p, Rule::Butterfly);
-        assert_eq!(g.point, frame(0, &e, &t, &p, Rule::Loop).point);
+        let g = frames(&e, &t, &p, Rule::Butterfly)[0];
+        assert_eq!(g.point, frames(&e, &t, &p, Rule::Loop)[0].point);
     }
 
     #[test]

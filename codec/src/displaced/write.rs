@@ -96,10 +96,20 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
     let (mut below, mut first) = (Vec::new(), mesh.positions.len());
     for level in 0..plan.levels {
         let edges = Edges::new(&mesh.triangles);
+        // As `predict::frames`, in parallel (each frame is a pure
+        // function of the level, so the same bits).
+        let crosses: Vec<[f64; 3]> = mesh
+            .triangles
+            .par_iter()
+            .map(|t| predict::cross(t, &mesh.positions))
+            .collect();
         let frames: Vec<Frame> = (0..edges.len())
             .into_par_iter()
             .with_min_len(1024)
-            .map(|e| predict::frame(e, &edges, &mesh.triangles, &mesh.positions, plan.rule))
+            .map(|e| {
+                let (t, p) = (&mesh.triangles, &mesh.positions);
+                predict::frame(e, &edges, t, p, &crosses, plan.rule)
+            })
             .collect();
         let mean = mean_edge(&edges, &mesh);
         let finer = (plan.levels - 1 - level) as f64 * plan.step_decay;
