@@ -412,7 +412,24 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             l.triangles,
         ),
         (_, Some(s)) => (crate::report::swing_json(s), s.vertices, s.triangles),
-        _ => (serde_json::json!({}), 0, 0),
+        _ => match (&stats.method, stats.check.as_ref()) {
+            (swm::MethodStats::Displaced(d), check) => {
+                let (v, t) = check.map_or((0, 0), |c| (c.decoded_vertices, c.decoded_triangles));
+                let json = serde_json::json!({
+                    "mode": "displaced",
+                    "base_faces": d.base_faces,
+                    "levels": d.levels,
+                    "qp": d.qp,
+                    "base_bytes": d.base_bytes,
+                    "level_bytes": d.level_bytes,
+                    "misses": d.misses,
+                    "vertices": v,
+                    "triangles": t,
+                });
+                (json, v as u64, t as u64)
+            }
+            _ => (serde_json::json!({}), 0, 0),
+        },
     };
     // The size asked for, when one was.
     let requested = match (args.size, args.bpv) {
@@ -536,6 +553,17 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             1e4 * h.plain_l2,
             1e4 * h.sharpen_l2,
             1e4 * h.bend_l2
+        );
+    }
+    if let swm::MethodStats::Displaced(d) = &stats.method {
+        say!(
+            "displaced subdivision: a base of {} faces at {} bits per coordinate ({} bytes), {} level{} of scalars ({:?} bytes)",
+            d.base_faces,
+            d.qp,
+            d.base_bytes,
+            d.levels,
+            if d.levels == 1 { "" } else { "s" },
+            d.level_bytes
         );
     }
     if let Some(s) = stats.simplified() {
