@@ -150,7 +150,9 @@ impl CodingMethod for Displaced {
             bytes: w.bytes,
             stats: MethodStats::Displaced(stats),
             l2_relative: Some(l2),
-            whole: false,
+            // The whole input as the base: short of the request, there
+            // is nothing more to code.
+            whole: w.base_faces >= s.faces() as usize,
         }))
     }
 }
