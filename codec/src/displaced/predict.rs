@@ -28,6 +28,7 @@
 //! rounded to `f32` once, at the end.
 
 use super::subdivide::{corner_vertices, Edges};
+use crate::prelude::*;
 
 /// The prediction rule of a file (`HEAD`'s `rule` byte).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
