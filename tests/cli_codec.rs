@@ -300,3 +300,73 @@ fn pipes_need_a_format() {
     assert_eq!(mesh.unwrap().face_count(), 80);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--mode displaced` (format 1.2): the file is on size, says mode 2 and
+/// version 1.2, decodes to the counts it announces, is the same on a
+/// second encode, and options of other modes are refused.
+#[test]
+fn displaced_mode_round_trips_on_size() {
+    let dir = scratch("cli-displaced");
+    let input = dir.join("sphere.ply");
+    // Fine enough (20,480 triangles) that 2,000 bytes is far from the
+    // whole mesh, with a hole for the boundary rules.
+    let m = swm_corpus::icosphere(1.0, 5);
+    let keep = m.triangles.iter().copied();
+    let keep = keep.filter(|t| t.iter().any(|&v| m.positions[v as usize][2] < 0.7));
+    let mesh = swm::TriMesh::new(m.positions.clone(), keep.collect());
+    swm::io::write_mesh(&input, &mesh).unwrap();
+    let file = dir.join("sphere.swm");
+    let (i, f) = (input.to_str().unwrap(), file.to_str().unwrap());
+    let args = [
+        "encode",
+        i,
+        "-o",
+        f,
+        "--mode",
+        "displaced",
+        "--size",
+        "2000",
+        "--json",
+    ];
+    let report = json(&swm(&args));
+    assert_eq!(report["mode"], "displaced");
+    let bytes = std::fs::read(&file).unwrap();
+    assert!(
+        (1940..=2000).contains(&bytes.len()),
+        "{} bytes",
+        bytes.len()
+    );
+    ok(&swm(&args));
+    assert_eq!(bytes, std::fs::read(&file).unwrap(), "not deterministic");
+
+    let info = json(&swm(&["info", f, "--json"]));
+    assert_eq!(info["mode"], "displaced");
+    assert_eq!(info["version"], "1.2");
+    let levels = report["levels"].as_u64().unwrap();
+    let base = report["base_faces"].as_u64().unwrap();
+    assert_eq!(info["triangles"].as_u64().unwrap(), base << (2 * levels));
+
+    let back = dir.join("back.ply");
+    ok(&swm(&["decode", f, "-o", back.to_str().unwrap()]));
+    let mesh = swm::io::read_mesh(&back).unwrap();
+    assert_eq!(mesh.face_count() as u64, base << (2 * levels));
+
+    let refused = swm(&[
+        "encode",
+        i,
+        "-o",
+        f,
+        "--mode",
+        "displaced",
+        "--size",
+        "2000",
+        "--qp",
+        "9",
+    ]);
+    assert!(!refused.status.success());
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        err.contains("--qp does not apply to --mode displaced"),
+        "{err}"
+    );
+}

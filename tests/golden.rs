@@ -199,6 +199,11 @@ const SWING_V1_0_FNV1A64: u64 = 0x8249_F4EE_6BE4_5A0B;
 /// `corpus/gen`, whose generators may change: this input is frozen with
 /// the file.
 fn golden_sphere() -> TriMesh {
+    golden_icosphere(3)
+}
+
+/// The golden sphere's construction with `subdivisions` levels.
+fn golden_icosphere(subdivisions: u32) -> TriMesh {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
     let mut p: Vec<[f64; 3]> = vec![
         [-1., t, 0.],
@@ -243,7 +248,7 @@ fn golden_sphere() -> TriMesh {
         [8, 6, 7],
         [9, 8, 1],
     ];
-    for _ in 0..3 {
+    for _ in 0..subdivisions {
         let mut made = std::collections::HashMap::new();
         let mut next = Vec::new();
         for tri in &f {
@@ -1148,4 +1153,89 @@ fn golden_fans() -> TriMesh {
         triangles.push([26, 27 + j, 28 + j]);
     }
     TriMesh::new(positions, triangles)
+}
+
+// --- Format 1.2: displaced subdivision (mode 2) ---
+
+const DISPLACED_V1_2: &[u8] = include_bytes!("../format-spec/golden/displaced-v1.2.swm");
+
+/// The test vector of format-spec/07-displaced.md ("Golden file").
+const DISPLACED_V1_2_FNV1A64: u64 = 0x9D84_E64A_9E33_6F9B;
+
+/// The displaced golden file's input: the golden sphere's construction
+/// with five subdivisions (20,480 triangles) stretched to the golden
+/// ellipsoid, without the triangles whose three vertices have x > 0.5
+/// (binary32 comparisons): one boundary loop, so the midpoint fallback is
+/// in the file.
+fn golden_open_ellipsoid() -> TriMesh {
+    let mut m = golden_icosphere(5);
+    for p in &mut m.positions {
+        p[1] *= 0.5;
+        p[2] *= 0.25;
+    }
+    let high = |v: u32| m.positions[v as usize][0] > 0.5;
+    let kept = m
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| !t.iter().all(|&v| high(v)))
+        .collect();
+    TriMesh::new(m.positions.clone(), kept)
+}
+
+/// The golden open ellipsoid coded by displaced subdivision at 1,500
+/// bytes (two levels).
+fn golden_displaced_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Displaced {
+            target: swm::SwingTarget::Bytes(1500),
+            max_bytes: None,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+/// Writes the 1.2 golden file (run once, by hand:
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_displaced_v1_2_golden`).
+#[test]
+#[ignore]
+fn write_displaced_v1_2_golden() {
+    write_golden(
+        "displaced-v1.2.swm",
+        &golden_open_ellipsoid(),
+        &golden_displaced_options(),
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads mode 2
+/// of format 1.2 as specified.
+#[test]
+fn displaced_v1_2_decodes_to_its_test_vector() {
+    let info = swm::inspect(DISPLACED_V1_2, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Displaced));
+    let mesh = swm::decode(DISPLACED_V1_2, &DecodeOptions::default())
+        .expect("golden file displaced-v1.2.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        DISPLACED_V1_2_FNV1A64,
+        "decoded mesh differs from format-spec/07-displaced.md's test vector"
+    );
+    // Two levels: the file cut after the first decodes to a quarter of
+    // the triangles, and after none to the base.
+    let limits = swm::Limits::default();
+    for (levels, triangles) in [(1, 2344), (0, 586)] {
+        let cut = swm::cut_levels(DISPLACED_V1_2, levels, &limits).unwrap();
+        let coarse = swm::decode(&cut, &DecodeOptions::default()).unwrap();
+        assert_eq!(coarse.triangles.len(), triangles);
+    }
+}
+
+/// The encoder still writes the 1.2 golden bytes from the golden cap.
+#[test]
+fn displaced_v1_2_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode(&golden_open_ellipsoid(), &golden_displaced_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, DISPLACED_V1_2,
+        "re-encoding the golden open ellipsoid no longer gives golden/displaced-v1.2.swm"
+    );
 }

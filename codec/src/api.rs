@@ -14,8 +14,8 @@ pub use crate::swing::SwingStats;
 pub use crate::encoder::check::CHECK_SAMPLES;
 #[cfg(feature = "encoder")]
 pub use crate::encoder::stats::{
-    Attempt, Candidate, CandidateFailure, Check, EncodeStats, Encoded, HintReport, Measured,
-    Method, MethodStats, Origin, PieceOutcome, PieceReport, RateReport, SimplifiedStats,
+    Attempt, Candidate, CandidateFailure, Check, DisplacedStats, EncodeStats, Encoded, HintReport,
+    Measured, Method, MethodStats, Origin, PieceOutcome, PieceReport, RateReport, SimplifiedStats,
     SwingReport,
 };
 #[cfg(feature = "encoder")]

@@ -71,11 +71,35 @@ static SWING: ModeDecoder = ModeDecoder {
     },
 };
 
+/// Mode 2: displaced subdivision (format 1.2).
+static DISPLACED: ModeDecoder = ModeDecoder {
+    decode: crate::displaced::decode,
+    inspect: |file, limits, len| {
+        let (_, qp) = crate::displaced::levels_and_qp(file, limits)?;
+        let h = &file.header;
+        let stats = LosslessStats {
+            vertices: h.vertex_count.into(),
+            triangles: h.triangle_count.into(),
+            components: h.component_count.into(),
+            sections: file.sections().map(|s| (s.tag.0, s.bytes.len())).collect(),
+            file_bytes: len,
+            ..Default::default()
+        };
+        Ok(Inspected {
+            qp,
+            stats,
+            swing: None,
+        })
+    },
+    extra_counts: |_, _| Ok((0, 0, true)),
+};
+
 /// The decoder of `mode`.
 pub(crate) fn for_mode(mode: Mode) -> &'static ModeDecoder {
     match mode {
         Mode::Lossless => &LOSSLESS,
         Mode::Swing => &SWING,
+        Mode::Displaced => &DISPLACED,
     }
 }
 

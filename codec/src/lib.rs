@@ -30,6 +30,7 @@ mod api;
 mod buffers;
 pub mod container;
 mod decoder;
+mod displaced;
 pub mod edgebreaker;
 #[cfg(feature = "encoder")]
 mod encoder;
@@ -65,13 +66,14 @@ pub use api::HintReport;
 pub use api::{decode, inspect, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
-    encode, Attempt, Candidate, CandidateFailure, Check, Effort, EncodeMode, EncodeOptions,
-    EncodeStats, Encoded, ErrorBound, Measured, Method, MethodStats, Origin, PieceOutcome,
-    PieceReport, RateReport, SimplifiedStats, SwingReport, SwingTarget, SwingTuning, AUTO_SAMPLES,
-    CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
+    encode, Attempt, Candidate, CandidateFailure, Check, DisplacedStats, Effort, EncodeMode,
+    EncodeOptions, EncodeStats, Encoded, ErrorBound, Measured, Method, MethodStats, Origin,
+    PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport, SwingTarget, SwingTuning,
+    AUTO_SAMPLES, CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::{Framing, Mode};
+pub use displaced::cut_levels;
 pub use error::{
     Error, ErrorBoundError, FileKind, FormatError, InputError, LimitError, Limited, Location,
     Malformed, ParameterError, RetileError, RetileFailure, SizeError, TopologyError,

@@ -41,6 +41,16 @@ pub enum EncodeMode {
         /// A size in bytes never to exceed. Default none.
         max_bytes: Option<u64>,
     },
+    /// Displaced subdivision (mode 2, format 1.2): a quadric-simplified
+    /// base coded losslessly, levels of 1-to-4 subdivision, one quantized
+    /// scalar per new vertex along its predicted normal; the base's size
+    /// and the level count chosen to fit the size.
+    Displaced {
+        /// A size or a rate; an edge length or an error bound is refused.
+        target: SwingTarget,
+        /// A size in bytes never to exceed. Default none.
+        max_bytes: Option<u64>,
+    },
     /// The methods of [`EncodeOptions::effort`]'s level at the same size
     /// (at [`Effort::Max`]: SwingWrapper, [`Simplified`](EncodeMode::Simplified)
     /// and a method per component), each decoded and measured against

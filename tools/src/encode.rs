@@ -26,6 +26,10 @@ pub enum ModeArg {
     /// Keep the input's exact triangles, positions quantized to --qp bits;
     /// with --size or --bpv, quadric-simplify first to fit the size.
     Lossless,
+    /// Displaced subdivision (format 1.2): a quadric-simplified base coded
+    /// losslessly, levels of 1-to-4 subdivision, one quantized scalar per
+    /// new vertex along its predicted normal; needs --size or --bpv.
+    Displaced,
 }
 
 #[derive(clap::Args)]
@@ -202,6 +206,26 @@ impl Args {
                     (self.angle_bits.is_some(), "--angle-bits"),
                 ],
             ),
+            ModeArg::Displaced => (
+                "displaced",
+                vec![
+                    (self.qp.is_some(), "--qp"),
+                    (self.effort != EffortArg::Default, "--effort"),
+                    (self.max_error.is_some(), "--max-error"),
+                    (self.max_error_units.is_some(), "--max-error-units"),
+                    (self.edge_length.is_some(), "--edge-length"),
+                    (self.angle_bits.is_some(), "--angle-bits"),
+                    (self.on_surface, "--on-surface"),
+                    (self.adaptive, "--adaptive"),
+                    (self.plain_clers, "--plain-clers"),
+                    (self.inside_start, "--inside-start"),
+                    (self.no_hint, "--no-hint"),
+                    (self.no_creases, "--no-creases"),
+                    (self.max_work.is_some(), "--max-work"),
+                    (self.max_memory.is_some(), "--max-memory"),
+                    (self.time_limit.is_some(), "--time-limit"),
+                ],
+            ),
             ModeArg::Lossless => (
                 "lossless",
                 vec![
@@ -279,6 +303,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
         ModeArg::Lossless => swm::EncodeMode::Simplified { target, max_bytes },
         ModeArg::Auto => swm::EncodeMode::Auto { target, max_bytes },
+        ModeArg::Displaced => swm::EncodeMode::Displaced { target, max_bytes },
         ModeArg::Swing => swm::EncodeMode::Swing {
             target,
             angle_bits: args.angle_bits,
@@ -387,7 +412,24 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             l.triangles,
         ),
         (_, Some(s)) => (crate::report::swing_json(s), s.vertices, s.triangles),
-        _ => (serde_json::json!({}), 0, 0),
+        _ => match (&stats.method, stats.check.as_ref()) {
+            (swm::MethodStats::Displaced(d), check) => {
+                let (v, t) = check.map_or((0, 0), |c| (c.decoded_vertices, c.decoded_triangles));
+                let json = serde_json::json!({
+                    "mode": "displaced",
+                    "base_faces": d.base_faces,
+                    "levels": d.levels,
+                    "qp": d.qp,
+                    "base_bytes": d.base_bytes,
+                    "level_bytes": d.level_bytes,
+                    "misses": d.misses,
+                    "vertices": v,
+                    "triangles": t,
+                });
+                (json, v as u64, t as u64)
+            }
+            _ => (serde_json::json!({}), 0, 0),
+        },
     };
     // The size asked for, when one was.
     let requested = match (args.size, args.bpv) {
@@ -511,6 +553,17 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             1e4 * h.plain_l2,
             1e4 * h.sharpen_l2,
             1e4 * h.bend_l2
+        );
+    }
+    if let swm::MethodStats::Displaced(d) = &stats.method {
+        say!(
+            "displaced subdivision: a base of {} faces at {} bits per coordinate ({} bytes), {} level{} of scalars ({:?} bytes)",
+            d.base_faces,
+            d.qp,
+            d.base_bytes,
+            d.levels,
+            if d.levels == 1 { "" } else { "s" },
+            d.level_bytes
         );
     }
     if let Some(s) = stats.simplified() {
@@ -811,6 +864,9 @@ fn at_size(mode: &swm::EncodeMode, bytes: u64) -> Option<swm::EncodeMode> {
         }
         swm::EncodeMode::Simplified { max_bytes, .. } if fits(&max_bytes) => {
             Some(swm::EncodeMode::Simplified { target, max_bytes })
+        }
+        swm::EncodeMode::Displaced { max_bytes, .. } if fits(&max_bytes) => {
+            Some(swm::EncodeMode::Displaced { target, max_bytes })
         }
         swm::EncodeMode::Swing {
             angle_bits,

@@ -96,6 +96,9 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
         return print_swing(args, &info, swing);
     }
     let mut v = crate::report::lossless_json(&info.stats, info.qp);
+    if info.mode == swm::Mode::Displaced {
+        v["mode"] = "displaced".into();
+    }
     v["version"] = version(&info).into();
     v["framing"] = framing(&info).into();
     v["frame_bytes"] = info.frame_bytes.into();
@@ -106,10 +109,17 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     }
     let s = &info.stats;
     print_file_and_version(args, &info);
-    say!(
-        "  mode                  lossless, {} bits per coordinate",
-        info.qp
-    );
+    if info.mode == swm::Mode::Displaced {
+        say!(
+            "  mode                  displaced subdivision, base at {} bits per coordinate",
+            info.qp
+        );
+    } else {
+        say!(
+            "  mode                  lossless, {} bits per coordinate",
+            info.qp
+        );
+    }
     say!("  vertices              {}", s.vertices);
     say!("  triangles             {}", s.triangles);
     say!("  components            {}", s.components);

@@ -21,7 +21,7 @@ pub const FORMAT_MAJOR: u8 = 1;
 /// Minor format version this crate writes. A decoder reads newer minor
 /// versions of its major version as long as they use no feature it does
 /// not know (see `format-spec/versions.md`).
-pub const FORMAT_MINOR: u8 = 1;
+pub const FORMAT_MINOR: u8 = 2;
 
 /// The four bytes every `.swm` file starts with.
 pub const MAGIC: [u8; 4] = *b"SWM\0";
@@ -78,6 +78,10 @@ pub enum Mode {
     /// Code 1: SwingWrapper retiling, connectivity of the new mesh and one
     /// quantized dihedral angle per vertex.
     Swing,
+    /// Code 2 (format 1.2): displaced subdivision, a lossless base mesh,
+    /// levels of 1-to-4 subdivision and one quantized scalar per new
+    /// vertex along its predicted normal (format-spec/07-displaced.md).
+    Displaced,
 }
 
 impl Mode {
@@ -86,6 +90,7 @@ impl Mode {
         match self {
             Mode::Lossless => 0,
             Mode::Swing => 1,
+            Mode::Displaced => 2,
         }
     }
 
@@ -94,6 +99,7 @@ impl Mode {
         match code {
             0 => Some(Mode::Lossless),
             1 => Some(Mode::Swing),
+            2 => Some(Mode::Displaced),
             _ => None,
         }
     }

@@ -54,6 +54,13 @@ impl Tag {
     /// with the decoder's degrees at the active gate as context, in place
     /// of `CLRS` (format-spec/04-lossless.md).
     pub const CLRD: Tag = Tag(*b"CLRD");
+    /// Critical (format 1.2). Displaced subdivision's base mesh: a
+    /// complete lossless (mode 0) file (format-spec/07-displaced.md).
+    pub const BASE: Tag = Tag(*b"BASE");
+    /// Critical (format 1.2). Displaced subdivision's scalars, one
+    /// range-coded chunk per level, coarse to fine
+    /// (format-spec/07-displaced.md).
+    pub const DISP: Tag = Tag(*b"DISP");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
     /// Ancillary (format 1.1). The encoder's post-processing hint:
@@ -93,11 +100,11 @@ impl Tag {
     }
 }
 
-/// Critical tags of format 1.0, then those 1.1 added. A decoder rejects
+/// Critical tags of format 1.0, then those 1.1 and 1.2 added. A decoder rejects
 /// any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
 /// (At most 16: the parser keeps them in a `u16`.)
-pub(crate) const KNOWN_CRITICAL: [Tag; 12] = [
+pub(crate) const KNOWN_CRITICAL: [Tag; 14] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -110,6 +117,8 @@ pub(crate) const KNOWN_CRITICAL: [Tag; 12] = [
     Tag::RADS,
     Tag::GEOF,
     Tag::CLRD,
+    Tag::BASE,
+    Tag::DISP,
 ];
 
 /// Ancillary tags of format 1.0, then those 1.1 added. Other ancillary

@@ -11,6 +11,9 @@
 
 pub(crate) mod check;
 pub(crate) mod choose;
+pub(crate) mod displaced;
+#[cfg(test)]
+mod displaced_tests;
 pub(crate) mod effort;
 pub(crate) mod lossless;
 pub(crate) mod method;
@@ -101,6 +104,9 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
             } else {
                 forced(&simplified::Simplified { search }, ask)?
             }
+        }
+        EncodeMode::Displaced { target, max_bytes } => {
+            forced(&displaced::Displaced::DEFAULT, Ask { target, max_bytes })?
         }
         EncodeMode::Auto { target, max_bytes } => {
             let list = effort::methods(options.effort, cleaned.mesh.triangles.len());

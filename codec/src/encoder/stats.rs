@@ -23,6 +23,9 @@ pub enum Method {
     /// size: a SwingWrapper file (mode 1) whose `REST` holds the
     /// simplified components.
     Mixed,
+    /// Displaced subdivision (mode 2): a simplified base, levels of
+    /// subdivision, one scalar per new vertex.
+    Displaced,
 }
 
 impl Method {
@@ -33,6 +36,7 @@ impl Method {
             Method::Simplified => "simplified",
             Method::Swing => "swing",
             Method::Mixed => "mixed",
+            Method::Displaced => "displaced",
         }
     }
 }
@@ -51,6 +55,29 @@ pub struct SimplifiedStats {
     /// its bounding-box diagonal, as the encoder measured it to choose
     /// `qp` ([`AUTO_SAMPLES`](crate::AUTO_SAMPLES) samples each way);
     /// `None` when the search measured nothing ([`Effort::Fast`](crate::Effort)).
+    pub l2_relative: Option<f64>,
+}
+
+/// What the displaced-subdivision method made.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct DisplacedStats {
+    /// Faces of the base mesh.
+    pub base_faces: u64,
+    /// Subdivision levels.
+    pub levels: u8,
+    /// Bits per coordinate of the base.
+    pub qp: u8,
+    /// Bytes of the base's lossless file (`BASE`).
+    pub base_bytes: u64,
+    /// Bytes of each level's scalars, coarse to fine.
+    pub level_bytes: Vec<u64>,
+    /// New vertices of each level whose normal line missed the input
+    /// within reach (placed by the fallback).
+    pub misses: Vec<u64>,
+    /// The file's L2 distance to the cleaned input over its diagonal, as
+    /// the method measured it ([`AUTO_SAMPLES`](crate::AUTO_SAMPLES)
+    /// samples each way).
     pub l2_relative: Option<f64>,
 }
 
@@ -88,6 +115,8 @@ pub enum MethodStats {
     Swing(SwingReport),
     /// A method per component, in a SwingWrapper file.
     Mixed(SwingReport),
+    /// Displaced subdivision.
+    Displaced(DisplacedStats),
 }
 
 impl MethodStats {
@@ -98,6 +127,7 @@ impl MethodStats {
             MethodStats::Simplified { .. } => Method::Simplified,
             MethodStats::Swing(_) => Method::Swing,
             MethodStats::Mixed(_) => Method::Mixed,
+            MethodStats::Displaced(_) => Method::Displaced,
         }
     }
 }

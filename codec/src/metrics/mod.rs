@@ -28,6 +28,8 @@
 
 mod bvh;
 pub mod estimate;
+#[cfg(feature = "encoder")]
+pub(crate) mod ray;
 mod sample;
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,271 @@
+//! Mode 2 (format 1.2), displaced subdivision: a base mesh coded by the
+//! lossless mode, `L` levels of regular 1-to-4 subdivision, and for each
+//! new vertex one quantized scalar that moves it from its predicted point
+//! along its predicted normal (normative text:
+//! format-spec/07-displaced.md).
+//!
+//! Sources: displaced subdivision surfaces (Lee, Moreton & Hoppe, 2000)
+//! and normal meshes (Guskov, Vidimče, Sweldens & Schröder, 2000): a
+//! coarse base, regular refinement, one scalar per vertex along a normal;
+//! their coders (Khodakovsky & Guskov, 2003) and MPEG's V-DMC code the
+//! scalars level by level, coarse to fine, as here.
+//!
+//! Sections:
+//! * `HEAD`: `u8 rule` (0 Loop, 1 butterfly), `u8 K` (levels, 1..=8),
+//!   `K × f32 step` (each finite and positive);
+//! * `BASE`: a complete mode-0 file (its own frame and CRC), the level-0
+//!   mesh;
+//! * `DISP`: up to `K` chunks, coarse to fine, each `varu length` and that
+//!   many bytes of one level's range-coded scalars (`scalars`).
+//!
+//! The decoded level count `L` is the number of chunks in `DISP`; the
+//! header's triangle count must be the base's times `4^L` and is checked
+//! before anything is subdivided, so the container's triangle limit
+//! bounds every allocation (a hostile header cannot ask for `4^K` of
+//! anything). Dropping the last chunks (and fixing the header's counts
+//! and the CRC, [`cut_levels`]) gives the file of a coarser level.
+//!
+//! One concern per file: `subdivide` (the split and the order of new
+//! vertices), `predict` (rules, normal, placement), `scalars` (the
+//! chunks' coding); encoder side: `fit` (the scalars against the input)
+//! and `write` (the file).
+
+#[cfg(feature = "encoder")]
+pub(crate) mod fit;
+pub(crate) mod predict;
+pub(crate) mod scalars;
+pub(crate) mod subdivide;
+#[cfg(all(test, feature = "encoder"))]
+mod tests;
+#[cfg(feature = "encoder")]
+pub(crate) mod write;
+
+use crate::container::{check_count_fits, parse_container, Container, Mode, Tag};
+use crate::prelude::*;
+use crate::varint::Reader;
+use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
+use predict::Rule;
+use subdivide::Edges;
+
+/// Most subdivision levels a file may declare: 4^8 triangles per base
+/// triangle already exceeds any useful refinement.
+pub(crate) const MAX_LEVELS: usize = 8;
+
+fn bad(why: &'static str) -> Error {
+    Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
+}
+
+/// `HEAD`'s contents.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Head {
+    pub rule: Rule,
+    /// The quantization step of each level, coarse to fine.
+    pub steps: Vec<f32>,
+}
+
+impl Head {
+    #[cfg(feature = "encoder")]
+    pub fn write(&self) -> Vec<u8> {
+        let mut out = vec![self.rule.code(), self.steps.len() as u8];
+        for s in &self.steps {
+            out.extend_from_slice(&s.to_le_bytes());
+        }
+        out
+    }
+
+    fn read(bytes: &[u8]) -> Result<Head, Error> {
+        let mut r = Reader::new(bytes);
+        let rule = Rule::from_code(r.u8()?).ok_or(bad("unknown prediction rule"))?;
+        let k = r.u8()? as usize;
+        if !(1..=MAX_LEVELS).contains(&k) {
+            return Err(bad("level count outside 1..=8"));
+        }
+        let mut steps = Vec::with_capacity(k);
+        for _ in 0..k {
+            let s = r.f32()?;
+            if !(s.is_finite() && s > 0.0) {
+                return Err(bad("a step that is not finite and positive"));
+            }
+            steps.push(s);
+        }
+        r.end()?;
+        Ok(Head { rule, steps })
+    }
+}
+
+/// Moves a nested file's error locations to the outer file's offsets.
+fn in_section(offset: usize) -> impl Fn(Error) -> Error {
+    move |e| match e {
+        Error::Format(mut f) => {
+            let inner = match f.at {
+                Some(Location::Byte(b)) => b,
+                _ => 0,
+            };
+            f.at = Some(Location::Byte(inner.saturating_add(offset as u64)));
+            Error::Format(f)
+        }
+        other => other,
+    }
+}
+
+/// The parsed sections of a mode-2 file, counts checked.
+struct Parsed<'a> {
+    head: Head,
+    base: Container<'a>,
+    /// One slice per decoded level.
+    chunks: Vec<&'a [u8]>,
+}
+
+fn parse<'a>(file: &Container<'a>, limits: &Limits) -> Result<Parsed<'a>, Error> {
+    let head = Head::read(file.require(Tag::HEAD)?.bytes)?;
+    let b = file.require(Tag::BASE)?;
+    let base = parse_container(b.bytes, limits).map_err(in_section(b.offset))?;
+    if base.header.mode != Mode::Lossless {
+        return Err(bad("BASE does not hold a lossless (mode 0) file"));
+    }
+    let d = file.require(Tag::DISP)?;
+    let mut r = Reader::new(d.bytes);
+    let mut chunks = Vec::new();
+    while r.remaining() > 0 {
+        if chunks.len() == head.steps.len() {
+            return Err(bad("DISP has more levels than HEAD"));
+        }
+        let len = r.varu()?;
+        let at = d.bytes.len() - r.remaining();
+        let end = (len as usize)
+            .checked_add(at)
+            .filter(|&e| e <= d.bytes.len() && len <= usize::MAX as u64)
+            .ok_or(bad("a DISP chunk runs past its section"))?;
+        chunks.push(&d.bytes[at..end]);
+        r = Reader::new(&d.bytes[end..]);
+    }
+    // The header's counts against the base's, before any allocation:
+    // the container checked the header's triangles against the limits.
+    let (h, bh) = (&file.header, &base.header);
+    let expected = u64::from(bh.triangle_count)
+        .checked_shl(2 * chunks.len() as u32)
+        .filter(|&t| t >> (2 * chunks.len()) == u64::from(bh.triangle_count));
+    if expected != Some(u64::from(h.triangle_count)) {
+        return Err(bad("triangle count is not the base's times 4^levels"));
+    }
+    if h.component_count != bh.component_count || h.vertex_count < bh.vertex_count {
+        return Err(bad("counts disagree with the base's"));
+    }
+    Ok(Parsed { head, base, chunks })
+}
+
+/// One level up: the positions of the new vertices (appended) and the
+/// triangles of the split. `frames` and `qs` hold one frame and one
+/// scalar per edge.
+pub(crate) fn refine(
+    positions: &mut Vec<[f32; 3]>,
+    triangles: &[[u32; 3]],
+    edges: &Edges,
+    frames: &[predict::Frame],
+    step: f32,
+    qs: &[i32],
+) -> Result<Vec<[u32; 3]>, Error> {
+    let n = positions.len();
+    positions.reserve(qs.len());
+    for (f, &q) in frames.iter().zip(qs) {
+        positions.push(predict::place(f, q, step).ok_or(bad("a displaced vertex is not finite"))?);
+    }
+    Ok(subdivide::split(triangles, edges, n as u32))
+}
+
+/// Decodes a mode-2 file whose container was parsed.
+pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
+    decode_levels(file, limits, usize::MAX)
+}
+
+/// Decodes at most `max_levels` of the file's levels.
+pub(crate) fn decode_levels(
+    file: &Container<'_>,
+    limits: &Limits,
+    max_levels: usize,
+) -> Result<TriMesh, Error> {
+    let p = parse(file, limits)?;
+    let full = p.chunks.len();
+    let mut mesh = crate::lossless::decode(&p.base, limits)?;
+    let (mut qs, mut below, mut first) = (Vec::new(), Vec::new(), mesh.positions.len());
+    for (level, chunk) in p.chunks.iter().enumerate().take(max_levels) {
+        let edges = Edges::new(&mesh.triangles);
+        check_count_fits(
+            "scalar",
+            edges.len() as u64,
+            chunk.len(),
+            scalars::MIN_BITS.0,
+            scalars::MIN_BITS.1,
+        )?;
+        let total = mesh.positions.len() as u64 + edges.len() as u64;
+        if total > u64::from(file.header.vertex_count) {
+            return Err(bad("more vertices than the header's"));
+        }
+        let frames = predict::frames(&edges, &mesh.triangles, &mesh.positions, p.head.rule);
+        let step = p.head.steps[level];
+        let contexts = scalars::contexts(&edges, &mesh.triangles, first, &below);
+        scalars::decode_level(chunk, &contexts, &mut qs)?;
+        first = mesh.positions.len();
+        mesh.triangles = refine(
+            &mut mesh.positions,
+            &mesh.triangles,
+            &edges,
+            &frames,
+            step,
+            &qs,
+        )?;
+        core::mem::swap(&mut qs, &mut below);
+    }
+    if max_levels >= full && mesh.positions.len() as u64 != u64::from(file.header.vertex_count) {
+        return Err(bad("fewer vertices than the header's"));
+    }
+    Ok(mesh)
+}
+
+/// Levels a file holds and its base's quantization bits (for `inspect`).
+pub(crate) fn levels_and_qp(file: &Container<'_>, limits: &Limits) -> Result<(usize, u8), Error> {
+    let p = parse(file, limits)?;
+    let qp = p
+        .base
+        .section(Tag::HEAD)
+        .and_then(|h| h.first().copied())
+        .unwrap_or(0);
+    Ok((p.chunks.len(), qp))
+}
+
+/// The same file with only its first `levels` levels: its `DISP` cut
+/// after that many chunks, its header's counts those of the coarser mesh
+/// (decoded here to count its vertices), its CRC recomputed. What a
+/// decoder that stops at a level boundary holds.
+pub fn cut_levels(bytes: &[u8], levels: usize, limits: &Limits) -> Result<Vec<u8>, Error> {
+    let file = parse_container(bytes, limits)?;
+    if file.header.mode != Mode::Displaced {
+        return Err(bad("not a displaced-subdivision (mode 2) file"));
+    }
+    let p = parse(&file, limits)?;
+    let keep = levels.min(p.chunks.len());
+    let mesh = decode_levels(&file, limits, keep)?;
+    let mut disp = Vec::new();
+    for c in &p.chunks[..keep] {
+        crate::varint::put(&mut disp, c.len() as u64);
+        disp.extend_from_slice(c);
+    }
+    let owned: Vec<(Tag, Vec<u8>)> = file
+        .sections()
+        .map(|s| {
+            (
+                s.tag,
+                if s.tag == Tag::DISP {
+                    disp.clone()
+                } else {
+                    s.bytes.to_vec()
+                },
+            )
+        })
+        .collect();
+    let refs: Vec<(Tag, &[u8])> = owned.iter().map(|(t, b)| (*t, b.as_slice())).collect();
+    let mut header = file.header;
+    header.vertex_count = mesh.positions.len() as u32;
+    header.triangle_count = mesh.triangles.len() as u32;
+    crate::container::write_container(&header, &refs)
+}

@@ -1,0 +1,257 @@
+//! The displaced-subdivision method on the shared corpus: its files fit
+//! the budget, and (ignored, run by hand) the ablation of its settings
+//! that BENCHMARKS.md records.
+
+use super::displaced::Displaced;
+use super::method::{Ask, CodingMethod, Job, Services};
+use super::stats::MethodStats;
+use crate::displaced::fit::Fallback;
+use crate::displaced::predict::Rule;
+use crate::options::{EncodeOptions, SwingTarget};
+use crate::TriMesh;
+
+fn corpus(name: &str) -> Option<TriMesh> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/corpus")
+        .join(name);
+    if !path.is_file() {
+        crate::test_skip::skip("../shared/corpus not found");
+        return None;
+    }
+    Some(crate::io::read_mesh(&path).unwrap())
+}
+
+/// Size and encoder-measured L2 (1e-4 of the diagonal) of `method` on
+/// `mesh` at `bpv`, with the base faces and levels it chose.
+fn run(mesh: &TriMesh, method: &Displaced, bpv: f64) -> (usize, f64, u64, u8) {
+    let cleaned = crate::clean(mesh, &Default::default()).unwrap();
+    let options = EncodeOptions::default();
+    let services = Services::new(mesh, &cleaned, options.framing, false);
+    let job = Job {
+        cleaned: &cleaned,
+        input_vertices: mesh.distinct_positions(),
+        options: &options,
+        services: &services,
+    };
+    let ask = Ask {
+        target: SwingTarget::BitsPerVertex(bpv),
+        max_bytes: None,
+    };
+    let made = method.encode(&job, ask).unwrap().unwrap();
+    let MethodStats::Displaced(s) = &made.stats else {
+        panic!("not a displaced file")
+    };
+    (
+        made.bytes.len(),
+        made.l2_relative.unwrap() * 1e4,
+        s.base_faces,
+        s.levels,
+    )
+}
+
+#[test]
+fn files_fit_their_budget_and_come_near_the_simplified_method() {
+    // A bumpy sphere: subdivision has curvature to predict and detail
+    // to add.
+    let mut mesh = crate::mesh::test_shapes::uv_sphere(64, 64);
+    for p in &mut mesh.positions {
+        let r = 1.0 + 0.05 * (6.0 * p[0]).sin() * (5.0 * p[2]).cos();
+        *p = p.map(|c| c * r);
+    }
+    let cleaned = crate::clean(&mesh, &Default::default()).unwrap();
+    let options = EncodeOptions::default();
+    let services = Services::new(&mesh, &cleaned, options.framing, false);
+    let job = Job {
+        cleaned: &cleaned,
+        input_vertices: mesh.distinct_positions(),
+        options: &options,
+        services: &services,
+    };
+    for bpv in [1.0, 4.0] {
+        let budget = super::request::bytes_for(bpv, job.input_vertices) as usize;
+        let (bytes, l2, faces, levels) = run(&mesh, &Displaced::DEFAULT, bpv);
+        assert!(bytes <= budget, "{bytes} > {budget}");
+        assert!(
+            bytes as f64 >= 0.9 * budget as f64,
+            "{bytes} far below {budget}"
+        );
+        assert!(faces >= 8 && levels >= 1);
+        let simplified =
+            super::simplified::encode_at(&job, budget as u64, super::simplified::Search::Full)
+                .unwrap()
+                .l2_relative
+                .unwrap()
+                * 1e4;
+        println!("{bpv} b/v: displaced {l2:.2}, simplified {simplified:.2}");
+        assert!(
+            l2 < 1.25 * simplified,
+            "{bpv} b/v: {l2} against {simplified}"
+        );
+    }
+}
+
+#[test]
+#[ignore]
+fn ablation() {
+    let d = Displaced::DEFAULT;
+    let c32 = Displaced {
+        step_scale: 1.0 / 32.0,
+        ..d
+    };
+    let variants: Vec<(&str, Displaced)> = vec![
+        ("default", d),
+        (
+            "butterfly",
+            Displaced {
+                rule: Rule::Butterfly,
+                ..d
+            },
+        ),
+        (
+            "fallback zero",
+            Displaced {
+                fallback: Fallback::Zero,
+                ..d
+            },
+        ),
+        ("facing off", Displaced { facing: false, ..d }),
+        (
+            "c 1/8",
+            Displaced {
+                step_scale: 1.0 / 8.0,
+                ..d
+            },
+        ),
+        ("c 1/32", c32),
+        (
+            "c 1/48",
+            Displaced {
+                step_scale: 1.0 / 48.0,
+                ..d
+            },
+        ),
+        (
+            "decay 1",
+            Displaced {
+                step_decay: 1.0,
+                ..d
+            },
+        ),
+        (
+            "decay 0.5",
+            Displaced {
+                step_decay: 0.5,
+                ..d
+            },
+        ),
+        (
+            "c 1/32 decay 0.5",
+            Displaced {
+                step_decay: 0.5,
+                ..c32
+            },
+        ),
+        (
+            "c 1/32 decay 1",
+            Displaced {
+                step_decay: 1.0,
+                ..c32
+            },
+        ),
+        (
+            "snap base",
+            Displaced {
+                snap_base: true,
+                ..d
+            },
+        ),
+        ("qp 10", Displaced { qp: Some(10), ..d }),
+        ("qp 14", Displaced { qp: Some(14), ..d }),
+        (
+            "qp rule 0",
+            Displaced {
+                qp: None,
+                qp_slack: 0.0,
+                ..d
+            },
+        ),
+        (
+            "qp rule 1",
+            Displaced {
+                qp: None,
+                qp_slack: 1.0,
+                ..d
+            },
+        ),
+        (
+            "qp rule 2",
+            Displaced {
+                qp: None,
+                qp_slack: 2.0,
+                ..d
+            },
+        ),
+        (
+            "c 1/32 qp rule 1",
+            Displaced {
+                qp: None,
+                qp_slack: 1.0,
+                ..c32
+            },
+        ),
+        (
+            "c 1/32 qp rule 2",
+            Displaced {
+                qp: None,
+                qp_slack: 2.0,
+                ..c32
+            },
+        ),
+        (
+            "c 1/32 qp rule 1 decay 1",
+            Displaced {
+                qp: None,
+                qp_slack: 1.0,
+                step_decay: 1.0,
+                ..c32
+            },
+        ),
+        (
+            "c 1/32 qp rule 1 decay 0.5",
+            Displaced {
+                qp: None,
+                qp_slack: 1.0,
+                step_decay: 0.5,
+                ..c32
+            },
+        ),
+        (
+            "c 1/24 qp rule 1 decay 0.5",
+            Displaced {
+                qp: None,
+                qp_slack: 1.0,
+                step_decay: 0.5,
+                step_scale: 1.0 / 24.0,
+                ..d
+            },
+        ),
+    ];
+    let only = std::env::var("SWM_ABLATION").ok();
+    for name in ["stanford-bunny.obj", "horse.ply"] {
+        let Some(mesh) = corpus(name) else { return };
+        for (label, m) in &variants {
+            if only
+                .as_deref()
+                .is_some_and(|o| !o.split(',').any(|x| x == *label))
+            {
+                continue;
+            }
+            let mut row = format!("| {name} | {label} |");
+            for bpv in [0.5, 1.0, 2.0, 4.0, 8.0] {
+                let (bytes, l2, faces, levels) = run(&mesh, m, bpv);
+                row += &format!(" {l2:.2} ({bytes} B, {faces}x4^{levels}) |");
+            }
+            println!("{row}");
+        }
+    }
+}
