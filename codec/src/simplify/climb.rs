@@ -116,13 +116,7 @@ pub fn best_fit<'r>(
             if !(*QPS.start() as i16..=*QPS.end() as i16).contains(&next) {
                 break;
             }
-            let e = if lean {
-                let ahead = u8::try_from(next + step as i16).ok();
-                tried.lean_step(s, next as u8, ahead, budget, measure)?
-            } else {
-                score(next as u8, &mut tried)?
-            };
-            let e = e.unwrap_or(inf);
+            let e = score(next as u8, &mut tried)?.unwrap_or(inf);
             if e < best {
                 best = e;
                 qp = next as u8;
@@ -176,17 +170,6 @@ struct Climbed {
     /// Whole-mesh file sizes this climb made that were over the budget,
     /// by qp (the lean climb estimates the others' from them).
     over: Vec<(u8, u64)>,
-    /// The lean climb's fit made ahead of its step (`lean_step`).
-    ahead: Option<Ahead>,
-}
-
-/// A fit made ahead of the climb, and how many fits there were when it
-/// was planned: it stands only if none was made since.
-struct Ahead {
-    qp: u8,
-    made_after: usize,
-    whole: Whole,
-    fit: Option<Fit>,
 }
 
 impl Climbed {
@@ -203,21 +186,7 @@ impl Climbed {
         if let Some(i) = self.fits.iter().position(|t| t.qp == qp) {
             return Ok(self.fits[i].fit.as_ref());
         }
-        let ahead = self.ahead.take();
-        if let Some(a) = ahead.filter(|a| a.qp == qp && a.made_after == self.fits.len()) {
-            self.record(s, qp, a.whole, a.fit)?;
-            return Ok(self.fits.last().and_then(|t| t.fit.as_ref()));
-        }
-        let (whole, prev) = self.plan(s, qp, budget, lean);
-        let fit = fit_faces(s, qp, budget, prev, whole, lean)?;
-        self.record(s, qp, whole, fit)?;
-        Ok(self.fits.last().and_then(|t| t.fit.as_ref()))
-    }
-
-    /// What the fit at `qp` is made from, given the fits so far: what is
-    /// known of the whole mesh's file, and the fit its search starts at.
-    fn plan(&self, s: &Simplifier<'_>, qp: u8, budget: u64, lean: bool) -> (Whole, Option<&Fit>) {
-        if lean {
+        let (whole, prev) = if lean {
             // A simplification rather than the whole mesh (whose size
             // predicts nothing of theirs), the finer on a tie.
             let nearest = self
@@ -232,55 +201,10 @@ impl Climbed {
         } else {
             let last = self.fits.iter().rev().find_map(|t| t.fit.as_ref());
             (Whole::Encode, last)
-        }
-    }
-
-    /// The lean climb's step to `qp`: its fit, then its measure, and on
-    /// more than one thread the fit at `ahead` (the climb's next step if
-    /// this one improves) beside the measure. That fit is made from the
-    /// same fits as it would be after the measure (a measure adds none),
-    /// so the climb's result does not depend on the thread count; on one
-    /// thread it waits until the climb asks for it.
-    fn lean_step(
-        &mut self,
-        s: &Simplifier<'_>,
-        qp: u8,
-        ahead: Option<u8>,
-        budget: u64,
-        measure: &(dyn Fn(&Fit) -> Result<SurfaceDistance, Error> + Sync),
-    ) -> Result<Option<f64>, Error> {
-        self.fit(s, qp, budget, true)?;
-        let ahead = ahead
-            .filter(|q| QPS.contains(q) && self.fits.iter().all(|t| t.qp != *q))
-            .filter(|_| rayon::current_num_threads() > 1);
-        let Some(ahead) = ahead else {
-            return self.measure(qp, measure);
         };
-        let (whole, prev) = self.plan(s, ahead, budget, true);
-        let this = self
-            .fits
-            .iter()
-            .find(|t| t.qp == qp)
-            .and_then(|t| t.fit.as_ref().filter(|_| t.distance.is_none()));
-        let (d, next) = rayon::join(
-            || this.map(measure).transpose(),
-            || fit_faces(s, ahead, budget, prev, whole, true),
-        );
-        let (d, next) = (d?, next?);
-        if let (Some(d), Some(t)) = (d, self.fits.iter_mut().find(|t| t.qp == qp)) {
-            t.distance = Some(d);
-        }
-        // Kept aside: it joins the fits only if the climb asks for it
-        // before any other fit is made, so that a fit the climb never
-        // takes cannot change another's start or what is known of the
-        // whole mesh's files.
-        self.ahead = Some(Ahead {
-            qp: ahead,
-            made_after: self.fits.len(),
-            whole,
-            fit: next,
-        });
-        self.measure(qp, measure)
+        let fit = fit_faces(s, qp, budget, prev, whole, lean)?;
+        self.record(s, qp, whole, fit)?;
+        Ok(self.fits.last().and_then(|t| t.fit.as_ref()))
     }
 
     /// Keeps the fit made at `qp` with `whole`, and what it showed of the
@@ -469,53 +393,4 @@ pub fn quick_fit<'r>(
     } else {
         first
     }))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::container::Framing;
-    use crate::mesh::test_shapes::uv_sphere;
-    use crate::CleanOptions;
-
-    /// A sphere with bumps on several scales, so that the best
-    /// quantization is neither end of the range and the climb moves.
-    fn bumpy() -> crate::TriMesh {
-        let mut m = uv_sphere(96, 64);
-        for p in &mut m.positions {
-            let r =
-                1.0 + 0.05 * (7.0 * p[0]).sin() * (5.0 * p[1]).cos() + 0.01 * (23.0 * p[2]).sin();
-            *p = p.map(|c| c * r);
-        }
-        crate::clean(&m, &CleanOptions::default()).unwrap().mesh
-    }
-
-    #[test]
-    fn the_lean_climb_gives_the_same_file_at_any_thread_count() {
-        let m = bumpy();
-        let run = |threads: usize, budget: u64| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                let s = Simplifier::new(&m, Framing::default());
-                let reference = Surface::new(s.reference()).unwrap();
-                let (fit, l2) = best_fit(&s, budget, &|| Ok(&reference), Climb::Lean)
-                    .unwrap()
-                    .unwrap();
-                assert!(fit.bytes.len() as u64 <= budget);
-                (fit.qp, fit.faces, fit.bytes, l2.to_bits())
-            })
-        };
-        for budget in [600, 2_500, 9_000] {
-            let one = run(1, budget);
-            for threads in [2, 3] {
-                assert!(
-                    run(threads, budget) == one,
-                    "{budget} bytes, {threads} threads"
-                );
-            }
-        }
-    }
 }
