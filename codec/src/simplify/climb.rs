@@ -73,13 +73,6 @@ pub fn best_fit<'r>(
     };
     let measure: &(dyn Fn(&Fit) -> Result<SurfaceDistance, Error> + Sync) = &measure;
     let mut tried = Climbed::default();
-    if lean {
-        // The first fit's whole-mesh file beside the collapse sequence,
-        // which every fit below the whole mesh replays (on two cores the
-        // file leaves the wall clock; the same work on one).
-        let (whole, ()) = rayon::join(|| s.whole_bytes(START_QP), || s.prepare());
-        whole?;
-    }
     // The first fit; coarser qps until something fits.
     let mut start = START_QP;
     while tried.fit(s, start, budget, lean)?.is_none() {

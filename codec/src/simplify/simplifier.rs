@@ -166,16 +166,6 @@ impl<'a> Simplifier<'a> {
         &self.work
     }
 
-    /// Makes the collapse sequence now if it is not made (the quadric
-    /// engine; nothing for meshoptimizer's), so that a caller can run it
-    /// beside other work. The same sequence as made on first use.
-    pub(super) fn prepare(&self) {
-        if !self.quick && self.faces() > MIN_FACES {
-            self.collapses
-                .get_or_init(|| qem::Collapses::run(&self.work, MIN_FACES));
-        }
-    }
-
     /// The input simplified to at most `target` faces (the input itself
     /// when it has no more), before its refit ([`refit`](Self::refit)):
     /// what the size search probes. Deterministic.
