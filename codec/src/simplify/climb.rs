@@ -196,20 +196,23 @@ impl Climbed {
             (Whole::Encode, last)
         };
         let fit = fit_faces(s, qp, budget, prev, whole, lean)?;
-        self.record(s, qp, whole, fit)?;
+        self.record(s, qp, whole, fit, lean)?;
         Ok(self.fits.last().and_then(|t| t.fit.as_ref()))
     }
 
-    /// Keeps the fit made at `qp` with `whole`, and what it showed of the
-    /// whole mesh's file.
+    /// Keeps the fit made at `qp` with `whole`, and for the lean climb
+    /// (the only reader of `over`) what it showed of the whole mesh's
+    /// file.
     fn record(
         &mut self,
         s: &Simplifier<'_>,
         qp: u8,
         whole: Whole,
         fit: Option<Fit>,
+        lean: bool,
     ) -> Result<(), Error> {
-        if whole == Whole::Encode && fit.as_ref().map_or(true, |f| f.faces < s.faces()) {
+        let over = fit.as_ref().map_or(true, |f| f.faces < s.faces());
+        if lean && whole == Whole::Encode && over {
             // The whole mesh's file was made (the simplifier keeps it)
             // and is over the budget.
             self.over.push((qp, s.whole_bytes(qp)?.len() as u64));
@@ -261,7 +264,7 @@ impl Climbed {
             t.distance = first;
         }
         for (&(q, whole), fit) in todo.iter().zip(made) {
-            self.record(s, q, whole, fit?)?;
+            self.record(s, q, whole, fit?, true)?;
         }
         let pair: Vec<u8> = [Some(qp), below].into_iter().flatten().collect();
         let measured: Vec<Option<SurfaceDistance>> = pair

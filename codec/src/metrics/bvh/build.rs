@@ -31,8 +31,19 @@ const PAR_DEPTH: u32 = 12;
 /// The binary tree over `tris` (nodes in depth-first order, empty for
 /// no triangles) and the triangles' indices in leaf order.
 pub(super) fn build(tris: &[Tri]) -> (Vec<Node>, Vec<u32>) {
-    let mut items: Vec<Item> = tris
-        .iter()
+    let mut items = items_of(tris);
+    if items.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    let (bounds, centroids) = bounds_of(&items);
+    let nodes = subtree(&mut items, 0, bounds, centroids, 0);
+    (nodes, items.iter().map(|it| it.id).collect())
+}
+
+/// The builder's items for `tris`, in their order: each triangle's box,
+/// the centre of the box, and its index.
+fn items_of(tris: &[Tri]) -> Vec<Item> {
+    tris.iter()
         .enumerate()
         .map(|(i, t)| {
             let bounds = Aabb::of(t);
@@ -42,13 +53,7 @@ pub(super) fn build(tris: &[Tri]) -> (Vec<Node>, Vec<u32>) {
                 id: i as u32,
             }
         })
-        .collect();
-    if items.is_empty() {
-        return (Vec::new(), Vec::new());
-    }
-    let (bounds, centroids) = bounds_of(&items);
-    let nodes = subtree(&mut items, 0, bounds, centroids, 0);
-    (nodes, items.iter().map(|it| it.id).collect())
+        .collect()
 }
 
 /// The subtree over `items` (at least one), which start at `first` in
@@ -330,18 +335,7 @@ mod tests {
     fn the_parallel_build_is_the_sequential_tree_at_any_thread_count() {
         let tris = soup(5 * PAR_ITEMS + 123);
         // The one-thread loop over the whole array: the reference.
-        let mut items: Vec<Item> = tris
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let bounds = Aabb::of(t);
-                Item {
-                    centroid: core::array::from_fn(|k| 0.5 * bounds.min[k] + 0.5 * bounds.max[k]),
-                    bounds,
-                    id: i as u32,
-                }
-            })
-            .collect();
+        let mut items = items_of(&tris);
         let (bounds, centroids) = bounds_of(&items);
         let reference: Vec<_> = sequential(&mut items, 0, bounds, centroids)
             .iter()
