@@ -18,7 +18,7 @@
 use super::method::Job;
 use super::stats::Check;
 use crate::metrics::estimate::metro_estimate;
-use crate::metrics::Surface;
+use crate::metrics::{Build, Surface};
 use crate::Error;
 
 /// Metro's samples kept per side for the check: about 0.3% standard
@@ -41,7 +41,7 @@ pub(crate) fn check(job: &Job<'_, '_>, bytes: &[u8]) -> Result<Check, Error> {
         });
     }
     let reference = job.reference()?;
-    let other = Surface::new(&decoded)?;
+    let other = Surface::with_build(&decoded, Build::Morton)?;
     let d = metro_estimate(reference, &other, CHECK_SAMPLES)?;
     Ok(Check {
         decoded_vertices,

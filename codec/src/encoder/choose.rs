@@ -110,11 +110,10 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
                 .filter(|&i| !list[i].method.runs_when_whole_fits())
                 .collect();
             if !asks.is_empty() {
-                let c = job.cleaned;
+                // The simplifier's whole-mesh file: its connectivity, coded here,
+                // serves every later quantization's file of the simplified method.
                 let finest = *crate::simplify::QPS.end();
-                let whole = crate::lossless::encode(&c.table, &c.mesh, finest, job.options.framing)?
-                    .0
-                    .len() as u64;
+                let whole = job.simplifier().whole_file(finest)?.0.len() as u64;
                 if whole <= budget {
                     for i in asks {
                         let failure = CandidateFailure::Unneeded { whole_bytes: whole };

@@ -74,11 +74,10 @@ pub(crate) fn smallest_within(
     };
     // Above the whole mesh at the finest quantization nothing improves
     // (the simplified method returns that mesh); never above the cap.
-    let c = job.cleaned;
+    // The simplifier's whole-mesh file: its connectivity, coded here,
+    // serves every later quantization's file of the simplified method.
     let finest = *crate::simplify::QPS.end();
-    let whole = crate::lossless::encode(&c.table, &c.mesh, finest, job.options.framing)?
-        .0
-        .len() as u64;
+    let whole = job.simplifier().whole_file(finest)?.0.len() as u64;
     let ceiling = max_bytes.map_or(whole, |cap| cap.min(whole)).max(1);
     let mut probes: Vec<Probe> = Vec::new();
     let mut aim = e / MARGIN;

@@ -38,6 +38,7 @@ mod triangle;
 use rayon::prelude::*;
 
 use crate::{Error, FormatError, Malformed, ParameterError, TopologyError, TriMesh};
+pub use bvh::Build;
 use bvh::{Bvh, Scratch};
 #[cfg(feature = "encoder")]
 pub(crate) use bvh::{Bvh as NearestTree, Scratch as NearestScratch};
@@ -165,6 +166,12 @@ impl Surface {
     /// Prepares `mesh`. Fails if it has no triangles, a triangle names a
     /// missing vertex, or a vertex used by a triangle is not finite.
     pub fn new(mesh: &TriMesh) -> Result<Surface, Error> {
+        Surface::with_build(mesh, Build::Sah)
+    }
+
+    /// [`Surface::new`] with its tree built as `how` says: the same
+    /// distances, samples in another order.
+    pub fn with_build(mesh: &TriMesh, how: Build) -> Result<Surface, Error> {
         if mesh.triangles.is_empty() {
             return Err(TopologyError::NoTriangles.into());
         }
@@ -201,7 +208,7 @@ impl Surface {
             .iter()
             .map(|t| t.map(|v| mesh.positions[v as usize]))
             .collect();
-        let bvh = Bvh::new(&tris);
+        let bvh = Bvh::with_build(&tris, how);
         let face_ids = bvh.order().to_vec();
         let faces: Vec<[u32; 3]> = face_ids
             .iter()
