@@ -7,8 +7,8 @@
 //! - A node is a `.rs` file; an inline `mod x { … }` belongs to its file.
 //! - Edge A → B when A names an item through a path that resolves to B:
 //!   `use crate::…`, `use super::…`, `use self::…`, `use child::…`, and
-//!   paths in code (`crate::retile::rate::Knobs`, `super::fill::Piece`,
-//!   `child::f()`, or `alias::f()` after `use crate::retile as alias`).
+//!   paths in code (`crate::swing::retile::rate::Knobs`, `super::fill::Piece`,
+//!   `child::f()`, or `alias::f()` after `use crate::swing::retile as alias`).
 //!   A module path resolves to the longest prefix that is a module
 //!   (`x.rs`, `x/mod.rs` or an inline module, which maps to its file).
 //! - Re-exports are followed: `crate::TriMesh` resolves to the file that

@@ -46,8 +46,6 @@ pub mod metrics;
 mod options;
 pub mod post;
 #[cfg(feature = "encoder")]
-mod retile;
-#[cfg(feature = "encoder")]
 pub mod simplify;
 mod sort;
 mod stream;

@@ -40,7 +40,7 @@ use super::method::{Ask, CodingMethod, Job, Made};
 use super::stats::{Method, MethodStats};
 use crate::metrics::Surface;
 use crate::options::{EncodeOptions, SwingTarget};
-use crate::retile::fill::Piece;
+use crate::swing::retile::fill::Piece;
 use crate::simplify::{best_fit, file_distance, Climb, Simplifier};
 use crate::{Error, TriMesh};
 use rayon::prelude::*;
@@ -120,7 +120,7 @@ fn encode(
     max_bytes: Option<u64>,
 ) -> Result<Option<(Vec<u8>, super::stats::SwingReport)>, Error> {
     let (cleaned, options) = (job.cleaned, job.options);
-    let mut pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
+    let mut pieces = crate::swing::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     if pieces.len() < 2 {
         return Ok(None);
     }

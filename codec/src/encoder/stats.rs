@@ -6,8 +6,8 @@
 use crate::{CleanReport, LimitError, LosslessStats, RetileError, SizeError, SwingStats};
 
 pub use super::swing::hint::HintReport;
-pub use crate::retile::compose::{PieceOutcome, PieceReport};
-pub use crate::retile::rate::{Attempt, RateReport};
+pub use crate::swing::retile::compose::{PieceOutcome, PieceReport};
+pub use crate::swing::retile::rate::{Attempt, RateReport};
 
 /// A coding method of the encoder.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

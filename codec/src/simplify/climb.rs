@@ -133,7 +133,7 @@ pub fn best_fit<'r>(
     measured.sort_by_key(|(f, _)| f.qp);
     let in_band = |f: &Fit| {
         f.faces >= s.faces()
-            || f.bytes.len() as f64 >= (1.0 - crate::retile::rate::TOLERANCE) * budget as f64
+            || f.bytes.len() as f64 >= (1.0 - crate::swing::retile::rate::TOLERANCE) * budget as f64
     };
     let lowest = |fits: Vec<(Fit, SurfaceDistance)>| {
         fits.into_iter()

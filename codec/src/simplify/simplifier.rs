@@ -12,7 +12,7 @@
 use super::{qem, refit};
 use crate::container::Framing;
 use crate::metrics::{DistanceOptions, Surface, SurfaceDistance};
-use crate::retile::valence::{max_valence, MAX_VALENCE};
+use crate::swing::retile::valence::{max_valence, MAX_VALENCE};
 use crate::{CleanOptions, Error, LosslessStats, TopologyError, TriMesh};
 use alloc::borrow::Cow;
 use core::ops::RangeInclusive;
@@ -95,7 +95,7 @@ impl<'a> Simplifier<'a> {
         let work = if max_valence(mesh) > MAX_VALENCE {
             let mut copy = mesh.clone();
             let mut labels = vec![0u32; copy.face_count()];
-            crate::retile::valence::cap(&mut copy, &mut labels);
+            crate::swing::retile::valence::cap(&mut copy, &mut labels);
             Cow::Owned(copy)
         } else {
             Cow::Borrowed(mesh)

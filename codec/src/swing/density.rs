@@ -253,7 +253,7 @@ mod tests {
 
     /// An ellipsoid whose curvature varies enough for levels to step.
     fn ellipsoid() -> TriMesh {
-        let mut m = crate::retile::tests::sphere(4);
+        let mut m = crate::swing::retile::tests::sphere(4);
         for p in &mut m.positions {
             let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
             *p = [p[0] / n, 0.5 * p[1] / n, 0.25 * p[2] / n];

@@ -26,7 +26,9 @@
 //! `front` and `forward` (the `CLRF` pass and its loops),
 //! `residual` (the GEOM stream), `hole` (the HOLE stream and the
 //! dropping rule), `write` (the encoder side), `read` (the decoder side
-//! and `inspect`).
+//! and `inspect`); `retile/`, encoder only, the retiler that makes the
+//! mesh and its angles, with rate control (`retile::rate`). The method
+//! that runs them for the encoder's chooser is `encoder/swing/`.
 
 mod angle;
 pub(crate) mod chain;
@@ -37,6 +39,8 @@ mod hole;
 mod read;
 mod rebuild;
 mod residual;
+#[cfg(feature = "encoder")]
+pub(crate) mod retile;
 #[cfg(feature = "encoder")]
 mod retiled;
 mod stats;

@@ -48,8 +48,8 @@ use super::hint::{self, HintReport};
 use crate::metrics::Surface;
 use crate::options::AUTO_SAMPLES;
 use crate::post::hint::{payload, PostProcessing};
-use crate::retile::rate::{self, Chosen, Knobs, Prior};
-use crate::retile::{fill::Piece, Budget};
+use crate::swing::retile::rate::{self, Chosen, Knobs, Prior};
+use crate::swing::retile::{fill::Piece, Budget};
 use crate::{Error, TriMesh};
 
 /// Angle bits tried above rate control's choice for tips on the surface.

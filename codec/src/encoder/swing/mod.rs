@@ -3,7 +3,7 @@
 //! (`swing::write`), the edge length chosen by rate control
 //! (`retile::rate`) and the file finished for the post-processing its
 //! decoder will run ([`hinted`]). Its decoder is `crate::swing`; the
-//! retiler is `crate::retile`.
+//! retiler is `crate::swing::retile`.
 //!
 //! Invariants: the bytes depend only on the cleaned input, the request
 //! and the options (never on the limits, which only decide whether a
@@ -17,7 +17,7 @@ use super::method::{Ask, CodingMethod, Job, Made};
 use super::request::{bytes_for, positive};
 use super::stats::{Method, MethodStats, SwingReport};
 use crate::options::{EncodeOptions, SwingTarget, DEFAULT_ANGLE_BITS};
-use crate::retile::fill::Piece;
+use crate::swing::retile::fill::Piece;
 use crate::{Cleaned, Error, ParameterError, TriMesh};
 use hinted::Request;
 
@@ -101,7 +101,7 @@ pub(crate) fn encode(
         .into());
     }
     let request = request(ask.target, input_vertices, angle_bits, ask.max_bytes)?;
-    let pieces = crate::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
+    let pieces = crate::swing::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     encode_pieces(&pieces, &cleaned.mesh, options, request)
 }
 
@@ -144,14 +144,14 @@ pub(crate) fn encode_pieces(
     request: Request,
 ) -> Result<(Vec<u8>, SwingReport), Error> {
     let (angle_bits, max_bytes) = (request.angle_bits, request.max_bytes);
-    use crate::retile::rate;
+    use crate::swing::retile::rate;
     // Tips on creases where the input has enough of them: tried against
     // the plain retiling for a size request whose hint is measured (the
     // measure decides), used outright otherwise.
     let creased =
-        options.swing.crease_tips && crate::retile::crease_length(pieces) >= input.bbox_diagonal();
+        options.swing.crease_tips && crate::swing::retile::crease_length(pieces) >= input.bbox_diagonal();
     let measured = options.swing.post_hint && request.target.is_ok();
-    let budget = crate::retile::Budget::new(options.limits);
+    let budget = crate::swing::retile::Budget::new(options.limits);
     let knobs = rate::Knobs {
         angle_bits: angle_bits.unwrap_or(DEFAULT_ANGLE_BITS),
         approximate_tips: options.swing.approximate_tips,

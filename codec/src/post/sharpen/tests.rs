@@ -11,7 +11,7 @@ use crate::edgebreaker::tests_support::{octahedron, subdivided};
 use crate::mesh::test_rng::Rng;
 use crate::mesh::CornerTable;
 #[cfg(all(feature = "io", feature = "encoder"))]
-use crate::retile::tests::retiled;
+use crate::swing::retile::tests::retiled;
 use crate::{Error, TriMesh};
 
 fn d3(p: [f32; 3]) -> DVec3 {

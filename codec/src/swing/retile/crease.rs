@@ -165,7 +165,7 @@ pub(crate) fn crease_length(pieces: &[super::fill::Piece]) -> f64 {
 mod tests {
     use super::*;
     use crate::post::bend::tests::cube;
-    use crate::retile::{RetileOptions, Retiled};
+    use crate::swing::retile::{RetileOptions, Retiled};
     use crate::{CornerTable, TriMesh};
 
     fn retiled_box(creases: bool) -> Retiled {
@@ -184,7 +184,7 @@ mod tests {
             loop_start: false,
             crease_tips: creases,
         };
-        crate::retile::tests::retile(&mesh, &table, &opt).unwrap()
+        crate::swing::retile::tests::retile(&mesh, &table, &opt).unwrap()
     }
 
     /// Vertices within 1% of L of an edge of the box (two coordinates at
@@ -228,9 +228,9 @@ mod tests {
         );
     }
 
-    fn pieces(mesh: &TriMesh) -> Vec<crate::retile::fill::Piece> {
+    fn pieces(mesh: &TriMesh) -> Vec<crate::swing::retile::fill::Piece> {
         let table = CornerTable::new(&mesh.triangles, mesh.vertex_count()).unwrap();
-        crate::retile::fill::pieces(mesh, &table).unwrap()
+        crate::swing::retile::fill::pieces(mesh, &table).unwrap()
     }
 
     #[test]
@@ -238,7 +238,7 @@ mod tests {
         let length = crease_length(&pieces(&cube(8).0));
         assert!((length - 24.0).abs() < 1e-9, "{length}");
         assert_eq!(
-            crease_length(&pieces(&crate::retile::tests::sphere(3))),
+            crease_length(&pieces(&crate::swing::retile::tests::sphere(3))),
             0.0
         );
         // A box without its top face: the rim turns by 90° but borders a

@@ -134,7 +134,7 @@ mod tests {
     /// A sphere whose vertices are pushed along their radius by up to
     /// ±`amp` (a deterministic hash): a scan's roughness.
     fn rough(levels: u32, amp: f64) -> TriMesh {
-        let mut m = crate::retile::tests::sphere(levels);
+        let mut m = crate::swing::retile::tests::sphere(levels);
         for (i, p) in m.positions.iter_mut().enumerate() {
             let h = (i as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 11;
             let u = h as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;

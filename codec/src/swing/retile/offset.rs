@@ -197,7 +197,7 @@ pub(super) fn sample_disk(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::retile::tests::{sphere, surface_of};
+    use crate::swing::retile::tests::{sphere, surface_of};
 
     /// The unit sphere as a dynamic surface, with its faces reversed when
     /// `inside_out`.

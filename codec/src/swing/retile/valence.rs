@@ -476,7 +476,7 @@ pub(super) mod tests {
     use crate::CornerTable;
 
     /// `n` points on the unit circle, at height `wave`·sin 7a.
-    pub(in crate::retile) fn circle(n: u32, wave: f32) -> Vec<[f32; 3]> {
+    pub(in crate::swing::retile) fn circle(n: u32, wave: f32) -> Vec<[f32; 3]> {
         (0..n)
             .map(|i| {
                 let a = std::f32::consts::TAU * i as f32 / n as f32;
@@ -487,7 +487,7 @@ pub(super) mod tests {
 
     /// The n-gon on [`circle`], fanned from its vertex 0 as the mesh
     /// readers triangulate a polygon face.
-    pub(in crate::retile) fn fanned_polygon(n: u32, wave: f32) -> TriMesh {
+    pub(in crate::swing::retile) fn fanned_polygon(n: u32, wave: f32) -> TriMesh {
         let triangles = (1..n - 1).map(|i| [0, i, i + 1]).collect();
         TriMesh::new(circle(n, wave), triangles)
     }
