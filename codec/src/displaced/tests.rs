@@ -5,7 +5,7 @@
 
 use super::fit::{Fallback, Target};
 use super::predict::Rule;
-use super::write::{write, Plan, Written};
+use super::write::{write, Plan, Settings, Written};
 use crate::container::{fix_crc, parse_container, Framing, Mode};
 use crate::metrics::ray::Lines;
 use crate::metrics::{distance_between, DistanceOptions, Surface};
@@ -33,15 +33,17 @@ fn input() -> TriMesh {
 fn plan(levels: usize, rule: Rule) -> Plan {
     Plan {
         levels,
-        rule,
-        step_scale: 1.0 / 16.0,
-        step_decay: 1.0,
-        snap_base: true,
-        reach_scale: 2.0,
-        fallback: Fallback::Nearest,
-        facing: true,
-        qp: Some(12),
-        qp_slack: 1.0,
+        settings: Settings {
+            rule,
+            step_scale: 1.0 / 16.0,
+            step_decay: 1.0,
+            snap_base: true,
+            reach_scale: 2.0,
+            fallback: Fallback::Nearest,
+            facing: true,
+            qp: Some(12),
+            qp_slack: 1.0,
+        },
         framing: Framing::Compact,
     }
 }

@@ -16,11 +16,20 @@ use crate::container::{parse_container, write_container, Framing, Header, Mode, 
 use crate::{CleanOptions, Error, Limits, ParameterError, TriMesh};
 use rayon::prelude::*;
 
-/// How a file is made from its base.
+/// How a file is made from its base: the level count and framing of
+/// this file, and the method's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Plan {
     /// Subdivision levels, 1..=[`MAX_LEVELS`].
     pub levels: usize,
+    pub settings: Settings,
+    pub framing: Framing,
+}
+
+/// The encoder's choices that are not the file's size: the method's
+/// settings (`encoder::displaced::Displaced` holds one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Settings {
     pub rule: Rule,
     /// Step of the finest level over its mean edge length (`c`).
     pub step_scale: f64,
@@ -42,7 +51,6 @@ pub(crate) struct Plan {
     /// The rule's quantization step of the base over the finest level's
     /// step, as a power of two.
     pub qp_slack: f64,
-    pub framing: Framing,
 }
 
 /// A file and what it is made of.
@@ -74,14 +82,17 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         .into());
     }
     let snapped;
-    let base = if plan.snap_base {
+    let base = if plan.settings.snap_base {
         snapped = snap(base, target);
         &snapped
     } else {
         base
     };
     let cleaned = crate::clean(base, &CleanOptions::default())?;
-    let qp = plan.qp.unwrap_or_else(|| base_qp(&cleaned.mesh, plan));
+    let qp = plan
+        .settings
+        .qp
+        .unwrap_or_else(|| base_qp(&cleaned.mesh, plan));
     let (base_file, _, _) =
         crate::lossless::encode(&cleaned.table, &cleaned.mesh, qp, plan.framing)?;
     let limits = Limits::default();
@@ -108,12 +119,12 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
             .with_min_len(1024)
             .map(|e| {
                 let (t, p) = (&mesh.triangles, &mesh.positions);
-                predict::frame(e, &edges, t, p, &crosses, plan.rule)
+                predict::frame(e, &edges, t, p, &crosses, plan.settings.rule)
             })
             .collect();
         let mean = mean_edge(&edges, &mesh);
-        let finer = (plan.levels - 1 - level) as f64 * plan.step_decay;
-        let step = (plan.step_scale * mean / finer.exp2()) as f32;
+        let finer = (plan.levels - 1 - level) as f64 * plan.settings.step_decay;
+        let step = (plan.settings.step_scale * mean / finer.exp2()) as f32;
         let step = if step.is_finite() && step > 0.0 {
             step
         } else {
@@ -122,9 +133,9 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         let (t, missed) = fit::offsets(
             &frames,
             target,
-            plan.reach_scale * mean,
-            plan.fallback,
-            plan.facing,
+            plan.settings.reach_scale * mean,
+            plan.settings.fallback,
+            plan.settings.facing,
         );
         let qs: Vec<i32> = t.iter().map(|&t| fit::quantize(t, step)).collect();
         let contexts = super::scalars::contexts(&edges, &mesh.triangles, first, &below);
@@ -146,7 +157,7 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         below = qs;
     }
     let head = Head {
-        rule: plan.rule,
+        rule: plan.settings.rule,
         steps,
     }
     .write();
@@ -183,7 +194,8 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
 /// `2^(k − 1)`. Within the lossless mode's 6..=16 bits.
 fn base_qp(base: &TriMesh, plan: &Plan) -> u8 {
     let edges = Edges::new(&base.triangles);
-    let finest = plan.step_scale * mean_edge(&edges, base) / ((plan.levels - 1) as f64).exp2();
+    let finest =
+        plan.settings.step_scale * mean_edge(&edges, base) / ((plan.levels - 1) as f64).exp2();
     let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
     for p in &base.positions {
         for k in 0..3 {
@@ -192,7 +204,9 @@ fn base_qp(base: &TriMesh, plan: &Plan) -> u8 {
         }
     }
     let range = (0..3).map(|k| f64::from(hi[k] - lo[k])).fold(0.0, f64::max);
-    let bits = (range / (finest * plan.qp_slack.exp2())).log2().ceil();
+    let bits = (range / (finest * plan.settings.qp_slack.exp2()))
+        .log2()
+        .ceil();
     if bits.is_finite() {
         bits.clamp(6.0, 16.0) as u8
     } else {

@@ -153,8 +153,9 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
     // A file more than the tolerance over the request is no answer to it
     // (rate control keeps the nearest file it made). With an edge length
     // the budget is its size, so it never is.
-    let over =
-        |m: &Made| m.bytes.len() as f64 > budget as f64 * (1.0 + crate::swing::retile::rate::TOLERANCE);
+    let over = |m: &Made| {
+        m.bytes.len() as f64 > budget as f64 * (1.0 + crate::swing::retile::rate::TOLERANCE)
+    };
     let any_fits = states
         .iter()
         .any(|s| matches!(s, State::Made(m) if !over(m)));
@@ -314,8 +315,9 @@ struct Weighed {
 /// [`ON_SIZE_SLACK`]; otherwise the lower error wins, and a tie goes to
 /// `a`.
 fn prefer(a: &Weighed, b: &Weighed, budget: u64) -> bool {
-    let short =
-        |c: &Weighed| (c.bytes as f64) < budget as f64 * (1.0 - crate::swing::retile::rate::TOLERANCE);
+    let short = |c: &Weighed| {
+        (c.bytes as f64) < budget as f64 * (1.0 - crate::swing::retile::rate::TOLERANCE)
+    };
     let (la, lb) = (a.l2.unwrap_or(f64::INFINITY), b.l2.unwrap_or(f64::INFINITY));
     match (a.whole || !short(a), b.whole || !short(b)) {
         (true, false) if la <= ON_SIZE_SLACK * lb => true,

@@ -15,7 +15,7 @@ use super::method::{Ask, CodingMethod, Job, Made};
 use super::stats::{DisplacedStats, Method, MethodStats};
 use crate::displaced::fit::{Fallback, Target};
 use crate::displaced::predict::Rule;
-use crate::displaced::write::{write, Plan, Written};
+use crate::displaced::write::{write, Plan, Settings, Written};
 use crate::metrics::ray::Lines;
 use crate::{Error, SizeError};
 
@@ -37,39 +37,24 @@ const MIN_BASE_FACES: u32 = 8;
 /// The displaced-subdivision method and its settings.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Displaced {
-    pub rule: Rule,
-    /// Step of the finest level over its mean edge.
-    pub step_scale: f64,
-    /// Coarser levels' steps finer by `2^decay` per level
-    /// ([`Plan::step_decay`]).
-    pub step_decay: f64,
-    /// Base vertices snapped to the input.
-    pub snap_base: bool,
-    /// Reach of a normal line over a level's mean edge.
-    pub reach_scale: f64,
-    pub fallback: Fallback,
-    /// Only crossings facing the normal's way ([`Plan::facing`]).
-    pub facing: bool,
-    /// Bits per coordinate of the base (`None`: chosen from the base's
-    /// edges and the levels, [`Plan::qp_slack`]).
-    pub qp: Option<u8>,
-    /// [`Plan::qp_slack`].
-    pub qp_slack: f64,
+    pub settings: Settings,
 }
 
 impl Displaced {
     /// The settings measured best (BENCHMARKS.md, "Displaced
     /// subdivision (issue 46), first measurements").
     pub const DEFAULT: Displaced = Displaced {
-        rule: Rule::Loop,
-        step_scale: 1.0 / 32.0,
-        step_decay: 1.0,
-        snap_base: false,
-        reach_scale: 2.0,
-        fallback: Fallback::Nearest,
-        facing: true,
-        qp: None,
-        qp_slack: 1.0,
+        settings: Settings {
+            rule: Rule::Loop,
+            step_scale: 1.0 / 32.0,
+            step_decay: 1.0,
+            snap_base: false,
+            reach_scale: 2.0,
+            fallback: Fallback::Nearest,
+            facing: true,
+            qp: None,
+            qp_slack: 1.0,
+        },
     };
 }
 
@@ -94,14 +79,9 @@ impl CodingMethod for Displaced {
         let file = |faces: u32, levels: usize, qp: Option<u8>| -> Result<Written, Error> {
             let mut base = s.simplify(faces);
             s.refit(&mut base);
-            write(
-                &base,
-                &target,
-                &Plan {
-                    qp,
-                    ..self.plan(levels, job)
-                },
-            )
+            let mut plan = self.plan(levels, job);
+            plan.settings.qp = qp;
+            write(&base, &target, &plan)
         };
         let mut smallest = u64::MAX;
         // Each level count's file and its error.
@@ -116,7 +96,7 @@ impl CodingMethod for Displaced {
                 levels,
                 guess,
                 s.faces(),
-                self.qp,
+                self.settings.qp,
                 &mut smallest,
                 &file,
             )?;
@@ -186,15 +166,7 @@ impl Displaced {
     fn plan(&self, levels: usize, job: &Job<'_, '_>) -> Plan {
         Plan {
             levels,
-            rule: self.rule,
-            step_scale: self.step_scale,
-            step_decay: self.step_decay,
-            snap_base: self.snap_base,
-            reach_scale: self.reach_scale,
-            fallback: self.fallback,
-            facing: self.facing,
-            qp: self.qp,
-            qp_slack: self.qp_slack,
+            settings: self.settings,
             framing: job.options.framing,
         }
     }

@@ -7,6 +7,7 @@ use super::method::{Ask, CodingMethod, Job, Services};
 use super::stats::MethodStats;
 use crate::displaced::fit::Fallback;
 use crate::displaced::predict::Rule;
+use crate::displaced::write::Settings;
 use crate::options::{EncodeOptions, SwingTarget};
 use crate::TriMesh;
 
@@ -95,144 +96,204 @@ fn files_fit_their_budget_and_come_near_the_simplified_method() {
 fn ablation() {
     let d = Displaced::DEFAULT;
     let c32 = Displaced {
-        step_scale: 1.0 / 32.0,
-        ..d
+        settings: Settings {
+            step_scale: 1.0 / 32.0,
+            ..d.settings
+        },
     };
     let variants: Vec<(&str, Displaced)> = vec![
         ("default", d),
         (
             "butterfly",
             Displaced {
-                rule: Rule::Butterfly,
-                ..d
+                settings: Settings {
+                    rule: Rule::Butterfly,
+                    ..d.settings
+                },
             },
         ),
         (
             "fallback zero",
             Displaced {
-                fallback: Fallback::Zero,
-                ..d
+                settings: Settings {
+                    fallback: Fallback::Zero,
+                    ..d.settings
+                },
             },
         ),
-        ("facing off", Displaced { facing: false, ..d }),
+        (
+            "facing off",
+            Displaced {
+                settings: Settings {
+                    facing: false,
+                    ..d.settings
+                },
+            },
+        ),
         (
             "c 1/8",
             Displaced {
-                step_scale: 1.0 / 8.0,
-                ..d
+                settings: Settings {
+                    step_scale: 1.0 / 8.0,
+                    ..d.settings
+                },
             },
         ),
         ("c 1/32", c32),
         (
             "c 1/48",
             Displaced {
-                step_scale: 1.0 / 48.0,
-                ..d
+                settings: Settings {
+                    step_scale: 1.0 / 48.0,
+                    ..d.settings
+                },
             },
         ),
         (
             "decay 1",
             Displaced {
-                step_decay: 1.0,
-                ..d
+                settings: Settings {
+                    step_decay: 1.0,
+                    ..d.settings
+                },
             },
         ),
         (
             "decay 0.5",
             Displaced {
-                step_decay: 0.5,
-                ..d
+                settings: Settings {
+                    step_decay: 0.5,
+                    ..d.settings
+                },
             },
         ),
         (
             "c 1/32 decay 0.5",
             Displaced {
-                step_decay: 0.5,
-                ..c32
+                settings: Settings {
+                    step_decay: 0.5,
+                    ..c32.settings
+                },
             },
         ),
         (
             "c 1/32 decay 1",
             Displaced {
-                step_decay: 1.0,
-                ..c32
+                settings: Settings {
+                    step_decay: 1.0,
+                    ..c32.settings
+                },
             },
         ),
         (
             "snap base",
             Displaced {
-                snap_base: true,
-                ..d
+                settings: Settings {
+                    snap_base: true,
+                    ..d.settings
+                },
             },
         ),
-        ("qp 10", Displaced { qp: Some(10), ..d }),
-        ("qp 14", Displaced { qp: Some(14), ..d }),
+        (
+            "qp 10",
+            Displaced {
+                settings: Settings {
+                    qp: Some(10),
+                    ..d.settings
+                },
+            },
+        ),
+        (
+            "qp 14",
+            Displaced {
+                settings: Settings {
+                    qp: Some(14),
+                    ..d.settings
+                },
+            },
+        ),
         (
             "qp rule 0",
             Displaced {
-                qp: None,
-                qp_slack: 0.0,
-                ..d
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 0.0,
+                    ..d.settings
+                },
             },
         ),
         (
             "qp rule 1",
             Displaced {
-                qp: None,
-                qp_slack: 1.0,
-                ..d
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 1.0,
+                    ..d.settings
+                },
             },
         ),
         (
             "qp rule 2",
             Displaced {
-                qp: None,
-                qp_slack: 2.0,
-                ..d
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 2.0,
+                    ..d.settings
+                },
             },
         ),
         (
             "c 1/32 qp rule 1",
             Displaced {
-                qp: None,
-                qp_slack: 1.0,
-                ..c32
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 1.0,
+                    ..c32.settings
+                },
             },
         ),
         (
             "c 1/32 qp rule 2",
             Displaced {
-                qp: None,
-                qp_slack: 2.0,
-                ..c32
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 2.0,
+                    ..c32.settings
+                },
             },
         ),
         (
             "c 1/32 qp rule 1 decay 1",
             Displaced {
-                qp: None,
-                qp_slack: 1.0,
-                step_decay: 1.0,
-                ..c32
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 1.0,
+                    step_decay: 1.0,
+                    ..c32.settings
+                },
             },
         ),
         (
             "c 1/32 qp rule 1 decay 0.5",
             Displaced {
-                qp: None,
-                qp_slack: 1.0,
-                step_decay: 0.5,
-                ..c32
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 1.0,
+                    step_decay: 0.5,
+                    ..c32.settings
+                },
             },
         ),
         (
             "c 1/24 qp rule 1 decay 0.5",
             Displaced {
-                qp: None,
-                qp_slack: 1.0,
-                step_decay: 0.5,
-                step_scale: 1.0 / 24.0,
-                ..d
+                settings: Settings {
+                    qp: None,
+                    qp_slack: 1.0,
+                    step_decay: 0.5,
+                    step_scale: 1.0 / 24.0,
+                    ..d.settings
+                },
             },
         ),
     ];

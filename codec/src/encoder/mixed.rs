@@ -40,8 +40,8 @@ use super::method::{Ask, CodingMethod, Job, Made};
 use super::stats::{Method, MethodStats};
 use crate::metrics::Surface;
 use crate::options::{EncodeOptions, SwingTarget};
-use crate::swing::retile::fill::Piece;
 use crate::simplify::{best_fit, file_distance, Climb, Simplifier};
+use crate::swing::retile::fill::Piece;
 use crate::{Error, TriMesh};
 use rayon::prelude::*;
 

@@ -148,8 +148,8 @@ pub(crate) fn encode_pieces(
     // Tips on creases where the input has enough of them: tried against
     // the plain retiling for a size request whose hint is measured (the
     // measure decides), used outright otherwise.
-    let creased =
-        options.swing.crease_tips && crate::swing::retile::crease_length(pieces) >= input.bbox_diagonal();
+    let creased = options.swing.crease_tips
+        && crate::swing::retile::crease_length(pieces) >= input.bbox_diagonal();
     let measured = options.swing.post_hint && request.target.is_ok();
     let budget = crate::swing::retile::Budget::new(options.limits);
     let knobs = rate::Knobs {
