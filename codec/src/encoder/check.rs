@@ -41,7 +41,9 @@ pub(crate) fn check(job: &Job<'_, '_>, bytes: &[u8]) -> Result<Check, Error> {
         });
     }
     let reference = job.reference()?;
-    let other = Surface::with_build(&decoded, Build::Morton)?;
+    // The decoded surface answers this check's queries only.
+    let how = Build::for_queries(decoded.face_count(), CHECK_SAMPLES);
+    let other = Surface::with_build(&decoded, how)?;
     let d = metro_estimate(reference, &other, CHECK_SAMPLES)?;
     Ok(Check {
         decoded_vertices,

@@ -271,6 +271,23 @@ pub enum Build {
     Morton,
 }
 
+impl Build {
+    /// The cheaper build for a tree over `triangles` that answers about
+    /// `queries` nearest-point queries: the Morton build saves about
+    /// 0.5 µs of work per triangle and costs about as much per query (its
+    /// boxes overlap more), so it pays only where the triangles far
+    /// outnumber the queries. Measured: the check and `fast`'s reference
+    /// on bunny (69,451 triangles, about 64,000 queries) ran 30 ms slower
+    /// with it; on bunny-1m (1.1 M triangles) it saved 0.5 s.
+    pub fn for_queries(triangles: usize, queries: u64) -> Build {
+        if triangles as u64 > 4 * queries {
+            Build::Morton
+        } else {
+            Build::Sah
+        }
+    }
+}
+
 impl Bvh {
     /// Builds the tree. Every coordinate must be finite (the caller
     /// checks); an empty list gives a tree that finds nothing.

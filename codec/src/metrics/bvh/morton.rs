@@ -9,7 +9,8 @@
 //! of a scan's whole-mesh file, to answer the encoder's check of 60,000
 //! queries (`encoder::check`); this one costs a sort and two linear
 //! passes. Its tree is looser (boxes overlap more), so a query reads more
-//! nodes: worth it only where queries are few against the triangles.
+//! nodes: worth it only where queries are few against the triangles
+//! (`Build::for_queries`).
 //! Nearest-point answers are exact with either tree (pruning is exact);
 //! only the leaf order, hence where `metrics::Surface` puts its samples,
 //! differs.
