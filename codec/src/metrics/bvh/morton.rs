@@ -150,6 +150,47 @@ mod tests {
     use super::*;
 
     #[test]
+    fn its_tree_finds_the_same_nearest_distances_as_the_sah_tree() {
+        // A wavy sheet with a far outlier cluster, queried on and off it.
+        let mut tris: Vec<Tri> = Vec::new();
+        for i in 0..60 {
+            for j in 0..50 {
+                let z = |a: f32, b: f32| 0.3 * (0.4 * a).sin() * (0.3 * b).cos();
+                let (x, y) = (i as f32, j as f32);
+                let p = |a: f32, b: f32| [a, b, z(a, b)];
+                tris.push([p(x, y), p(x + 1.0, y), p(x, y + 1.0)]);
+                tris.push([p(x + 1.0, y), p(x + 1.0, y + 1.0), p(x, y + 1.0)]);
+            }
+        }
+        for k in 0..40 {
+            let c = 500.0 + k as f32;
+            tris.push([[c, 0.0, 0.0], [c, 1.0, 0.0], [c, 0.0, 1.0]]);
+        }
+        let sah = super::super::Bvh::with_build(&tris, super::super::Build::Sah);
+        let morton = super::super::Bvh::with_build(&tris, super::super::Build::Morton);
+        let (mut a, mut b) = (Default::default(), Default::default());
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..2000 {
+            let mut next = || {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                (x >> 11) as f64 / (1u64 << 53) as f64
+            };
+            let q = [
+                700.0 * next() - 50.0,
+                70.0 * next() - 10.0,
+                20.0 * next() - 10.0,
+            ];
+            let (s, m) = (
+                sah.nearest(q, None, &mut a).unwrap(),
+                morton.nearest(q, None, &mut b).unwrap(),
+            );
+            assert_eq!(s.distance2, m.distance2, "{q:?}");
+        }
+    }
+
+    #[test]
     fn codes_interleave_the_axes() {
         assert_eq!(interleave([1, 0, 0]), 0b001);
         assert_eq!(interleave([0, 1, 0]), 0b010);
