@@ -493,6 +493,7 @@ fn tight_limits_refuse_a_valid_file() {
             limits: exact,
             sharpen: Some(true),
             bend_steps: Some(1),
+            max_level: None,
         };
         let what = format!("{} bent within limits of its own size", s.name);
         let e = try_decode(&s.bytes, &bent, &what).expect_err(&what);

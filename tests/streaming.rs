@@ -140,3 +140,97 @@ fn a_bad_frame_stops_the_stream_early() {
         "{err}"
     );
 }
+
+/// Issue 46, item 4: a displaced-subdivision file (the golden one, two
+/// levels) fed in pieces hands out its base as soon as `HEAD` and `BASE`
+/// are in and each finer level as soon as its chunk is, each bit for bit
+/// what `decode` gives with that `max_level`, whatever the cuts.
+#[test]
+fn a_displaced_file_hands_out_each_level_as_its_bytes_arrive() {
+    let bytes: &[u8] = include_bytes!("../format-spec/golden/displaced-v1.2.swm");
+    let file = swm::container::parse_container(bytes, &Limits::default()).unwrap();
+    let section = |tag: &[u8; 4]| file.find(swm::container::Tag(*tag)).unwrap();
+    let (head, base, disp) = (section(b"HEAD"), section(b"BASE"), section(b"DISP"));
+    // Where each level is complete: the base, then each chunk's end
+    // (a `varu` length, then that many bytes).
+    let mut ends = vec![(head.offset + head.bytes.len()).max(base.offset + base.bytes.len())];
+    let mut at = 0;
+    while at < disp.bytes.len() {
+        let (mut len, mut shift) = (0usize, 0);
+        loop {
+            let b = disp.bytes[at];
+            at += 1;
+            len |= usize::from(b & 0x7f) << shift;
+            shift += 7;
+            if b < 0x80 {
+                break;
+            }
+        }
+        at += len;
+        ends.push(disp.offset + at);
+    }
+    assert_eq!(ends.len(), 3, "the golden file has two levels");
+    let want: Vec<TriMesh> = (0..3)
+        .map(|l| {
+            let options = DecodeOptions {
+                max_level: Some(l),
+                ..Default::default()
+            };
+            swm::decode(bytes, &options).unwrap()
+        })
+        .collect();
+
+    // Byte by byte: each level appears exactly when its last byte does.
+    let mut s = StreamDecoder::new(DecodeOptions::default());
+    let mut seen = None;
+    for (n, b) in bytes.iter().enumerate() {
+        s = s.push(std::slice::from_ref(b)).unwrap();
+        let level = s.level().map(|(l, _)| l);
+        if level != seen {
+            let l = level.unwrap();
+            assert_eq!(n + 1, ends[l], "level {l} after {} bytes", n + 1);
+            assert!(s.level().unwrap().1 == &want[l], "level {l}");
+            seen = level;
+        }
+    }
+    assert_eq!(seen, Some(2));
+    assert!(s.finish().unwrap() == want[2]);
+
+    // Any cuts: the levels come in order, each the same mesh.
+    for cuts in CUTS {
+        let mut s = StreamDecoder::new(DecodeOptions::default());
+        let (mut rest, mut k, mut last) = (bytes, 0, None);
+        while !rest.is_empty() {
+            let n = cuts[k % cuts.len()].clamp(1, rest.len());
+            k += 1;
+            s = s.push(&rest[..n]).unwrap();
+            rest = &rest[n..];
+            if let Some((l, mesh)) = s.level() {
+                assert!(last.is_none_or(|p| p <= l), "cut {cuts:?}");
+                assert!(mesh == &want[l], "cut {cuts:?} level {l}");
+                last = Some(l);
+            }
+        }
+        assert_eq!(last, Some(2), "cut {cuts:?}");
+    }
+
+    // `max_level` stops the stream as it stops `decode`.
+    for max in 0..3u8 {
+        let options = DecodeOptions {
+            max_level: Some(max),
+            ..Default::default()
+        };
+        let s = StreamDecoder::new(options).push(bytes).unwrap();
+        let (l, mesh) = s.level().unwrap();
+        assert_eq!(l, usize::from(max));
+        assert!(mesh == &want[l]);
+        assert!(s.finish().unwrap() == want[l]);
+    }
+
+    // Other modes have no levels.
+    let lossless = &common::samples()[0].bytes;
+    let s = StreamDecoder::new(DecodeOptions::default())
+        .push(lossless)
+        .unwrap();
+    assert!(s.level().is_none());
+}

@@ -106,7 +106,7 @@ fn build() {
 /// The test files: every sample `common::samples` encodes (lossless, with
 /// a hole and with handles; swing, with `HOLE` and with `REST`) and the
 /// golden files, each with what `swm decode` writes for it (PLY, PLY after
-/// `--sharpen --bend 1`, GLB for the normals), and a damaged file with the
+/// `--sharpen --bend 1`, PLY after `--max-level 1`, GLB for the normals), and a damaged file with the
 /// message `swm decode` gives for it. Made once per test binary, in a
 /// scratch folder or the one `SWM_WEB_CASES_OUT` names (`npm test` in
 /// `web/` asks for `web/test/cases/` through `web_cases_are_made`).
@@ -133,6 +133,7 @@ fn cases() -> &'static Path {
             "swing-front-v1.1",
             "lossless-compact-v1.1",
             "lossless-dense-v1.1",
+            "displaced-v1.2",
         ] {
             let path = Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join(format!("../format-spec/golden/{name}.swm"));
@@ -157,8 +158,12 @@ fn cases() -> &'static Path {
                 .header;
             let mode = match header.mode {
                 swm::Mode::Lossless => "lossless",
+                swm::Mode::Displaced => "displaced",
                 _ => "swing",
             };
+            // A displaced file cut at its first level, as `--max-level 1`
+            // decodes it (other modes ignore the option: the plain PLY).
+            decode(&format!("{name}.l1.ply"), &["--max-level", "1"]);
             entries.push(serde_json::json!({
                 "name": name,
                 "mode": mode,
@@ -166,6 +171,7 @@ fn cases() -> &'static Path {
                 "swm": format!("{name}.swm"),
                 "ply": format!("{name}.ply"),
                 "sharpened_ply": format!("{name}.sb.ply"),
+                "level1_ply": format!("{name}.l1.ply"),
                 "glb": format!("{name}.glb"),
             }));
         }
@@ -208,9 +214,9 @@ fn web_cases_are_made() {
         serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap();
     let cases = manifest["cases"].as_array().expect("a list of cases");
     let modes: std::collections::BTreeSet<_> = cases.iter().map(|c| c["mode"].as_str()).collect();
-    assert_eq!(modes.len(), 2, "both modes: {modes:?}");
+    assert_eq!(modes.len(), 3, "every mode: {modes:?}");
     for c in cases {
-        for key in ["swm", "ply", "sharpened_ply", "glb"] {
+        for key in ["swm", "ply", "sharpened_ply", "level1_ply", "glb"] {
             let file = dir.join(c[key].as_str().unwrap());
             assert!(
                 std::fs::metadata(&file).is_ok_and(|m| m.len() > 0),

@@ -76,6 +76,11 @@ fn bounds(file: &Container<'_>, options: &DecodeOptions) -> Result<DecodedLen, E
     v += rv;
     t += rt;
     exact &= exact_counts;
+    // The header counts every level; `max_level` may stop before the
+    // last (then a bound, not the count).
+    if h.mode == crate::container::Mode::Displaced && options.max_level.is_some() {
+        exact = false;
+    }
     let post = crate::post::hint::resolve(file, options.sharpen, options.bend_steps);
     if post.sharpen {
         v = v.saturating_add(t.saturating_mul(4));

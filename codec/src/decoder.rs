@@ -3,7 +3,9 @@
 //! inspection and the counts its sections add to the header's. `decode`,
 //! `inspect`, the buffer bounds (`buffers`) and the streaming decoder
 //! (`stream`, through `decode`) all go through [`for_mode`]; a new mode
-//! is one new entry here and its own module.
+//! is one new entry here and its own module. (The stream decoder also
+//! shows a displaced file's levels as they arrive, through
+//! `displaced::Refiner`.)
 //!
 //! After the mode's decode, the optional post-processing (EdgeSharpener,
 //! then Bender with the edges it tagged) is common to every mode.
@@ -20,12 +22,15 @@ pub(crate) struct Inspected {
     pub stats: LosslessStats,
     /// The SwingWrapper figures, for mode 1.
     pub swing: Option<SwingStats>,
+    /// Bytes of each subdivision level's chunk, for mode 2.
+    pub levels: Vec<usize>,
 }
 
 /// One mode's decoder.
 pub(crate) struct ModeDecoder {
-    /// The mesh of a checked container.
-    pub decode: fn(&Container<'_>, &Limits) -> Result<TriMesh, Error>,
+    /// The mesh of a checked container (before the common
+    /// post-processing; `options.max_level` is mode 2's).
+    pub decode: fn(&Container<'_>, &DecodeOptions) -> Result<TriMesh, Error>,
     /// Its figures without geometry; `usize` is the file's length.
     pub inspect: fn(&Container<'_>, &Limits, usize) -> Result<Inspected, Error>,
     /// Vertices and triangles its sections add to the header's counts,
@@ -35,7 +40,7 @@ pub(crate) struct ModeDecoder {
 
 /// Mode 0: the input's own connectivity and quantized positions.
 static LOSSLESS: ModeDecoder = ModeDecoder {
-    decode: crate::lossless::decode,
+    decode: |file, options| crate::lossless::decode(file, &options.limits),
     inspect: |file, limits, len| {
         let (q, conn, dummies, table) = crate::lossless::read_connectivity(file, limits)?;
         // As strict as `decode` about the counts (issue 18): the
@@ -47,6 +52,7 @@ static LOSSLESS: ModeDecoder = ModeDecoder {
             qp: q.bits,
             stats,
             swing: None,
+            levels: Vec::new(),
         })
     },
     extra_counts: |_, _| Ok((0, 0, true)),
@@ -54,7 +60,7 @@ static LOSSLESS: ModeDecoder = ModeDecoder {
 
 /// Mode 1: SwingWrapper.
 static SWING: ModeDecoder = ModeDecoder {
-    decode: crate::swing::decode,
+    decode: |file, options| crate::swing::decode(file, &options.limits),
     inspect: |file, limits, len| {
         let (conn, swing) = crate::swing::inspect(file, limits, len)?;
         let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
@@ -63,6 +69,7 @@ static SWING: ModeDecoder = ModeDecoder {
             qp: 0,
             stats,
             swing: Some(swing),
+            levels: Vec::new(),
         })
     },
     extra_counts: |file, limits| {
@@ -73,9 +80,12 @@ static SWING: ModeDecoder = ModeDecoder {
 
 /// Mode 2: displaced subdivision (format 1.2).
 static DISPLACED: ModeDecoder = ModeDecoder {
-    decode: crate::displaced::decode,
+    decode: |file, options| {
+        let levels = options.max_level.map_or(usize::MAX, usize::from);
+        crate::displaced::decode_levels(file, &options.limits, levels)
+    },
     inspect: |file, limits, len| {
-        let (_, qp) = crate::displaced::levels_and_qp(file, limits)?;
+        let (levels, qp) = crate::displaced::levels_and_qp(file, limits)?;
         let h = &file.header;
         let stats = LosslessStats {
             vertices: h.vertex_count.into(),
@@ -89,6 +99,7 @@ static DISPLACED: ModeDecoder = ModeDecoder {
             qp,
             stats,
             swing: None,
+            levels,
         })
     },
     extra_counts: |_, _| Ok((0, 0, true)),
@@ -114,7 +125,7 @@ pub(crate) fn decode_container(
     file: &Container<'_>,
     options: &DecodeOptions,
 ) -> Result<TriMesh, Error> {
-    let mesh = (for_mode(file.header.mode).decode)(file, &options.limits)?;
+    let mesh = (for_mode(file.header.mode).decode)(file, options)?;
     let post = crate::post::hint::resolve(file, options.sharpen, options.bend_steps);
     sharpen_and_bend(mesh, post, &options.limits)
 }
@@ -171,6 +182,11 @@ pub struct FileInfo {
     /// The encoder's post-processing hint (what a default decode runs),
     /// when the file has one this version understands.
     pub post: Option<crate::post::hint::PostProcessing>,
+    /// A displaced-subdivision (mode 2) file's levels, coarse to fine:
+    /// the bytes of each level's `DISP` chunk (the file cut after `l` of
+    /// them, [`cut_levels`](crate::cut_levels), decodes to level `l`).
+    /// Empty for other modes.
+    pub levels: Vec<usize>,
 }
 
 /// [`crate::inspect`].
@@ -187,5 +203,6 @@ pub(crate) fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> 
         stats: seen.stats,
         swing: seen.swing,
         post: crate::post::hint::read(&file),
+        levels: seen.levels,
     })
 }

@@ -287,6 +287,14 @@ pub struct DecodeOptions {
     /// sharpening, no edge is kept sharp. Default `None`: as the file's
     /// hint says (0 without one).
     pub bend_steps: Option<u32>,
+    /// Decode at most this many subdivision levels of a displaced
+    /// (mode 2) file: `Some(0)` gives its base mesh, `Some(l)` the mesh
+    /// of level `l` (`T0 · 4^l` triangles), bit for bit what the file cut
+    /// after `l` levels ([`cut_levels`](crate::cut_levels)) decodes to.
+    /// A value above the file's level count decodes every level. Default
+    /// `None`: every level. Ignored by modes 0 and 1, which have no
+    /// levels.
+    pub max_level: Option<u8>,
 }
 
 impl DecodeOptions {

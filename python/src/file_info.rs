@@ -51,6 +51,10 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
             d.set_item("bits_per_vertex", 8.0 * s.file_bytes as f64 / v)?;
             d.set_item("clers", clers(py, s.clers)?)?;
             d.set_item("sections", sections(py, &s.sections, t)?)?;
+            if info.mode == swm::Mode::Displaced {
+                d.set_item("mode", "displaced")?;
+                d.set_item("level_bytes", &info.levels)?;
+            }
         }
         Some(s) => {
             let t = s.triangles.max(1) as f64;

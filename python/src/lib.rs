@@ -354,9 +354,11 @@ fn encode<'py>(
 type Arrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
 
 /// Decodes `.swm` bytes: `(vertices, faces)` or, with `normals`,
-/// `(vertices, faces, normals)`.
+/// `(vertices, faces, normals)`. `max_level`: the most subdivision levels
+/// of a displaced (mode 2) file to decode, 0 its base mesh (default:
+/// every level; other modes ignore it).
 #[pyfunction]
-#[pyo3(signature = (data, *, sharpen=None, bend=None, normals=false, limits=None))]
+#[pyo3(signature = (data, *, sharpen=None, bend=None, normals=false, limits=None, max_level=None))]
 fn decode<'py>(
     py: Python<'py>,
     data: &[u8],
@@ -364,12 +366,14 @@ fn decode<'py>(
     bend: Option<u32>,
     normals: bool,
     limits: Option<PyRef<'py, Limits>>,
+    max_level: Option<u8>,
 ) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
     let options = swm::DecodeOptions {
         limits: Limits::to_swm(limits.as_deref()),
         // None: as the file's post-processing hint says.
         sharpen,
         bend_steps: bend,
+        max_level,
     };
     let (mesh, n) = py
         .detach(|| {

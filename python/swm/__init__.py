@@ -227,6 +227,7 @@ def decode(
     bend: Optional[int] = None,
     normals: bool = False,
     limits: Optional[Limits] = None,
+    max_level: Optional[int] = None,
 ) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, Normals]]:
     """Decodes ``.swm`` bytes into ``(vertices, faces)``.
 
@@ -237,9 +238,14 @@ def decode(
     encoder's measured choice; a file without one decodes plain. ``normals=True`` adds a
     third array of unit vertex normals. Every byte is treated as hostile:
     a bad file raises :class:`FormatError` (or another :class:`SwmError`)
-    and nothing beyond ``limits`` is allocated.
+    and nothing beyond ``limits`` is allocated. ``max_level=N`` decodes
+    only the first N subdivision levels of a displaced-subdivision file
+    (0: its base mesh), as ``swm decode --max-level N``; ``None`` decodes
+    every level, and other modes ignore it.
     """
-    return _swm.decode(_bytes(data), sharpen=sharpen, bend=bend, normals=normals, limits=limits)
+    return _swm.decode(
+        _bytes(data), sharpen=sharpen, bend=bend, normals=normals, limits=limits, max_level=max_level
+    )
 
 
 def info(data: BytesLike, *, limits: Optional[Limits] = None) -> "dict[str, Any]":

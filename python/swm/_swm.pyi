@@ -68,6 +68,7 @@ def decode(
     bend: Optional[int] = None,
     normals: bool = False,
     limits: Optional[Limits] = None,
+    max_level: Optional[int] = None,
 ) -> Union[Tuple[_V, _F], Tuple[_V, _F, _V]]: ...
 def info(data: bytes, *, limits: Optional[Limits] = None) -> dict[str, Any]: ...
 def distance(

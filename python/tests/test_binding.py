@@ -83,6 +83,28 @@ def test_decode_equals_the_cli_decode_bit_for_bit(swm_bin, generated_corpus, tmp
         assert py_ply.read_bytes() == cli_ply.read_bytes()
 
 
+GOLDEN = Path(__file__).resolve().parents[2] / "format-spec" / "golden"
+
+
+@pytest.mark.parametrize("max_level", [None, 0, 1, 2, 5])
+def test_displaced_decodes_as_the_cli_level_by_level(swm_bin, tmp_path, max_level):
+    packed = GOLDEN / "displaced-v1.2.swm"
+    cli_ply = tmp_path / "displaced-cli.ply"
+    extra = [] if max_level is None else ["--max-level", str(max_level)]
+    run_cli(swm_bin, "decode", packed, "-o", cli_ply, *extra)
+    v, f = swm.decode(packed.read_bytes(), max_level=max_level)
+    cv, cf = swm.read(cli_ply)
+    assert bits_equal(v, cv) and bits_equal(f, cf), max_level
+    # 586 base triangles, four times as many per level, two levels.
+    levels = 2 if max_level is None else min(max_level, 2)
+    assert len(f) == 586 * 4**levels
+    if max_level is None:
+        info = swm.info(packed.read_bytes())
+        cli = json.loads(run_cli(swm_bin, "info", packed, "--json").stdout)
+        assert info["mode"] == cli["mode"] == "displaced"
+        assert info["level_bytes"] == cli["level_bytes"] and len(info["level_bytes"]) == 2
+
+
 def test_decode_normals(torus):
     data = swm.encode(*torus, mode="swing", bpv=4)
     v, f, n = swm.decode(data, normals=True)

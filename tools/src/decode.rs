@@ -1,5 +1,5 @@
 //! `swm decode IN.swm -o OUT.(obj|ply|off|stl|glb) [--format F]
-//! [--sharpen | --no-sharpen] [--bend N] [--max-vertices N] [--max-faces N] [--max-alloc BYTES]
+//! [--sharpen | --no-sharpen] [--bend N] [--max-level N] [--max-vertices N] [--max-faces N] [--max-alloc BYTES]
 //! [--max-input BYTES] [--json]`. IN and OUT may be `-` (standard input
 //! and output, see `pipe`).
 
@@ -35,6 +35,11 @@ pub struct Args {
     /// without one].
     #[arg(long, value_name = "N")]
     bend: Option<u32>,
+    /// Decode at most N subdivision levels of a displaced-subdivision
+    /// file (0: its base mesh); `swm info` lists them. Other modes
+    /// ignore it [default: every level].
+    #[arg(long, value_name = "N")]
+    max_level: Option<u8>,
     /// Refuse files whose mesh (after Bender) has more vertices than this.
     #[arg(long, value_name = "N")]
     max_vertices: Option<u64>,
@@ -81,6 +86,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let options = swm::DecodeOptions {
         sharpen,
         bend_steps: args.bend,
+        max_level: args.max_level,
         limits,
     };
     let start = Instant::now();

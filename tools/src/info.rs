@@ -86,6 +86,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A displaced file's levels, coarse to fine: each one's chunk bytes and
+/// triangle count (the file's count over 4 per finer level), so that a
+/// reader sees where `--max-level` or a cut would stop.
+fn print_levels(levels: &[usize], triangles: u64) {
+    say!("  levels                {}", levels.len());
+    for (l, bytes) in levels.iter().enumerate() {
+        let finer = 2 * (levels.len() - 1 - l) as u32;
+        let t = triangles.checked_shr(finer).unwrap_or(0);
+        say!(
+            "    level {}             {bytes} bytes, {t} triangles",
+            l + 1
+        );
+    }
+}
+
 /// `swm info FILE.swm`: the file's header, sections and CLERS histogram.
 fn run_swm(args: &Args) -> Result<(), CliError> {
     let err = |e: swm::Error| CliError::new(&args.file, e);
@@ -98,6 +113,7 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     let mut v = crate::report::lossless_json(&info.stats, info.qp);
     if info.mode == swm::Mode::Displaced {
         v["mode"] = "displaced".into();
+        v["level_bytes"] = info.levels.clone().into();
     }
     v["version"] = version(&info).into();
     v["framing"] = framing(&info).into();
@@ -114,6 +130,7 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
             "  mode                  displaced subdivision, base at {} bits per coordinate",
             info.qp
         );
+        print_levels(&info.levels, s.triangles);
     } else {
         say!(
             "  mode                  lossless, {} bits per coordinate",

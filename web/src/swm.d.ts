@@ -17,13 +17,15 @@ export interface DecodeOptions {
   bendSteps?: number;
   /** Also compute unit angle-weighted vertex normals. Default false. */
   normals?: boolean;
+  /** The most subdivision levels of a displaced-subdivision file to decode (0: its base mesh). Default: every level. Other modes ignore it. */
+  maxLevel?: number;
   /** Default DEFAULT_LIMITS. */
   limits?: Limits;
 }
 
 export interface DecodeInfo {
   /** The file's codec. */
-  mode: 'lossless' | 'swing' | string;
+  mode: 'lossless' | 'swing' | 'displaced' | string;
   /** Format version of the file, "major.minor". */
   version: string;
   /** Size of the file in bytes. */

@@ -21,7 +21,7 @@ const OUT_MINOR = 40;
 
 /** Error codes by the module's status. */
 const CODES = ['ok', 'argument', 'format', 'limit', 'unsupported', 'internal', 'internal'];
-const MODES = ['lossless', 'swing'];
+const MODES = ['lossless', 'swing', 'displaced'];
 
 /**
  * The limits of `swm::Limits::default()`, but for allocations: 2 GiB
@@ -111,7 +111,8 @@ function asBytes(bytes) {
 /**
  * Decodes a `.swm` file. Synchronous; call `await init()` first. Options:
  * `sharpen` (EdgeSharpener) and `bendSteps` (Bender steps), each by default
- * as the file's post-processing hint says (off and 0 without one), `normals` (unit vertex normals, default false) and
+ * as the file's post-processing hint says (off and 0 without one), `normals` (unit vertex normals, default false),
+ * `maxLevel` (the most subdivision levels of a displaced file to decode, 0 its base mesh; default every level) and
  * `limits` ({maxVertices, maxFaces, maxAllocBytes}, DEFAULT_LIMITS).
  * Throws an SWMError with the decoder's message on a bad file.
  */
@@ -122,6 +123,9 @@ export function decode(bytes, options = {}) {
   // -1: the file's hint decides.
   const bend = count('bendSteps', options.bendSteps, -1);
   if (bend > 0x7fffffff) throw new SWMError(`option bendSteps is too large: ${bend}`, 'argument');
+  // -1: every level.
+  const maxLevel = count('maxLevel', options.maxLevel, -1);
+  if (maxLevel > 255) throw new SWMError(`option maxLevel is too large: ${maxLevel}`, 'argument');
   const args = [
     options.sharpen === undefined ? -1 : options.sharpen ? 1 : 0,
     bend,
@@ -129,6 +133,7 @@ export function decode(bytes, options = {}) {
     count('limits.maxVertices', limits.maxVertices, DEFAULT_LIMITS.maxVertices),
     count('limits.maxFaces', limits.maxFaces, DEFAULT_LIMITS.maxFaces),
     count('limits.maxAllocBytes', limits.maxAllocBytes, DEFAULT_LIMITS.maxAllocBytes),
+    maxLevel,
   ];
   const start = performance.now();
   const x = wasm;

@@ -81,6 +81,7 @@ export function loadCases(dir) {
       bytes: new Uint8Array(read(c.swm)),
       plain: readPly(read(c.ply)),
       sharpened: readPly(read(c.sharpened_ply)),
+      level1: readPly(read(c.level1_ply)),
       normals: readGlbNormals(read(c.glb)),
     })),
     corrupt: { ...m.corrupt, bytes: new Uint8Array(read(m.corrupt.swm)) },

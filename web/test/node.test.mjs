@@ -41,7 +41,20 @@ test('every mode decodes bit for bit as the CLI decodes', async () => {
     assert.equal(decode(c.bytes).normals, undefined, `${c.name}: normals not asked for`);
     modes.add(c.mode);
   }
-  assert.deepEqual([...modes].sort(), ['lossless', 'swing']);
+  assert.deepEqual([...modes].sort(), ['displaced', 'lossless', 'swing']);
+});
+
+test('maxLevel gives what `swm decode --max-level 1` gives', async () => {
+  await init();
+  for (const c of cases) {
+    const r = decode(c.bytes, { maxLevel: 1 });
+    assert.equal(bitDiff(r.positions, c.level1.positions, `${c.name} positions`), '');
+    assert.equal(bitDiff(r.indices, c.level1.indices, `${c.name} indices`), '');
+  }
+  const displaced = cases.find((c) => c.mode === 'displaced');
+  // The golden file's two levels: a quarter of the triangles at level 1.
+  assert.equal(displaced.level1.indices.length * 4, displaced.plain.indices.length);
+  assert.throws(() => decode(displaced.bytes, { maxLevel: -1 }), { name: 'SWMError', code: 'argument' });
 });
 
 test('Sharpen&Bend gives what `swm decode --sharpen --bend 1` gives', async () => {

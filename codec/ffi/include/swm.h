@@ -90,6 +90,13 @@ typedef struct {
    * Largest number of bytes the decoder may allocate. Default 16 GiB.
    */
   uint64_t max_alloc_bytes;
+  /**
+   * Decode at most this many subdivision levels of a displaced
+   * (mode 2) file: 0 its base mesh, `l` the mesh of level `l`, what
+   * the file cut after `l` levels decodes to. Negative (or above 255):
+   * every level. Ignored by the other modes. Default -1.
+   */
+  int32_t max_level;
 } swm_decode_options;
 
 /**

@@ -84,6 +84,11 @@ pub struct swm_decode_options {
     pub max_faces: u64,
     /// Largest number of bytes the decoder may allocate. Default 16 GiB.
     pub max_alloc_bytes: u64,
+    /// Decode at most this many subdivision levels of a displaced
+    /// (mode 2) file: 0 its base mesh, `l` the mesh of level `l`, what
+    /// the file cut after `l` levels decodes to. Negative (or above 255):
+    /// every level. Ignored by the other modes. Default -1.
+    pub max_level: i32,
 }
 
 /// What [`swm_decoded_len`] and [`swm_decode_into`] report.
@@ -113,6 +118,7 @@ pub extern "C" fn swm_decode_options_default() -> swm_decode_options {
         max_vertices: limits.max_vertices,
         max_faces: limits.max_faces,
         max_alloc_bytes: limits.max_alloc_bytes,
+        max_level: -1,
     }
 }
 
@@ -344,6 +350,7 @@ fn decode_options(o: &swm_decode_options) -> DecodeOptions {
         },
         sharpen: (o.sharpen >= 0).then_some(o.sharpen > 0),
         bend_steps: u32::try_from(o.bend_steps).ok(),
+        max_level: u8::try_from(o.max_level).ok(),
     }
 }
 

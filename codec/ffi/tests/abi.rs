@@ -62,6 +62,40 @@ fn decode_hands_over_arrays_that_free_once() {
     }
 }
 
+/// The displaced-subdivision golden file (format 1.2, mode 2, two
+/// levels): decoded whole and with `max_level`, each the Rust decoder's
+/// mesh bit for bit.
+#[test]
+fn displaced_files_decode_whole_and_level_by_level() {
+    let bytes = include_bytes!("../../../format-spec/golden/displaced-v1.2.swm");
+    for max_level in [-1, 0, 1, 2, 3] {
+        let want = swm::decode(
+            bytes,
+            &swm::DecodeOptions {
+                max_level: u8::try_from(max_level).ok(),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let mut m = zeroed();
+        let mut o = swm_decode_options_default();
+        o.max_level = max_level;
+        // SAFETY: valid bytes, options and output.
+        let rc = unsafe { swm_decode_with(bytes.as_ptr(), bytes.len(), &o, &mut m) };
+        assert_eq!(rc, SWM_OK, "{}", last_error());
+        // 586 base triangles, times 4 per level, two levels in the file.
+        let levels = if max_level < 0 { 2 } else { max_level.min(2) };
+        assert_eq!(m.triangle_count, 586 << (2 * levels));
+        // SAFETY: the library filled these with exactly these lengths.
+        let p = unsafe { std::slice::from_raw_parts(m.positions, 3 * m.vertex_count) };
+        let t = unsafe { std::slice::from_raw_parts(m.indices, 3 * m.triangle_count) };
+        assert_eq!(p, want.positions.as_flattened());
+        assert_eq!(t, want.triangles.as_flattened());
+        // SAFETY: filled by the library.
+        unsafe { swm_mesh_free(&mut m) };
+    }
+}
+
 #[test]
 fn null_pointers_are_argument_errors() {
     let bytes = sample();

@@ -389,30 +389,40 @@ pub(crate) fn table_end(bytes: &[u8]) -> usize {
 /// lengths and the CRC; `None` while the table is not all in `bytes`.
 /// Unverified: the CRC vouches for it only once the whole file is in.
 /// Reads either framing (a compact table entry by entry, so this is
-/// linear in the table).
+/// linear in the table); allocates nothing.
 pub(crate) fn declared_len(bytes: &[u8]) -> Option<u64> {
+    let mut payload = 0u64;
+    let end = declared_sections(bytes, |_, len| payload += u64::from(len))?;
+    Some(end as u64 + payload + CRC_LEN as u64)
+}
+
+/// Calls `each` with every section's tag and length in file order (the
+/// payloads follow the table back to back) and returns where the table
+/// ends; `None` while the table is not all in `bytes` (`each` may have
+/// seen some entries). Unverified, as [`declared_len`]: the stream
+/// decoder reads sections by it before the CRC is in.
+pub(crate) fn declared_sections(bytes: &[u8], mut each: impl FnMut(Tag, u32)) -> Option<usize> {
     let flags = LE::read_u16(bytes.get(at::FLAGS..at::MODE)?);
     if flags & FLAG_COMPACT == 0 {
         bytes.get(..at::TABLE)?;
         let table = bytes.get(at::TABLE..table_end(bytes))?;
-        let payload: u64 = table
-            .chunks_exact(TABLE_ENTRY_LEN)
-            .map(|e| u64::from(LE::read_u32(&e[4..])))
-            .sum();
-        return Some((at::TABLE + table.len()) as u64 + payload + CRC_LEN as u64);
+        for e in table.chunks_exact(TABLE_ENTRY_LEN) {
+            each(Tag([e[0], e[1], e[2], e[3]]), LE::read_u32(&e[4..]));
+        }
+        return Some(at::TABLE + table.len());
     }
     let Ok(Scan::Done(h)) = compact::read_head(bytes, &Limits::UNLIMITED) else {
         return None;
     };
-    let (mut pos, mut payload) = (h.table, 0u64);
+    let mut pos = h.table;
     for _ in 0..h.count {
         let Ok(Scan::Done(e)) = compact::read_entry(bytes, pos, &h.header) else {
             return None;
         };
-        payload += u64::from(e.len);
+        each(e.tag, e.len);
         pos = e.end;
     }
-    Some(pos as u64 + payload + CRC_LEN as u64)
+    Some(pos)
 }
 
 /// The magic, or the error every reader of `.swm` bytes gives for it.

@@ -40,7 +40,7 @@ mod tests;
 #[cfg(feature = "encoder")]
 pub(crate) mod write;
 
-use crate::container::{check_count_fits, parse_container, Container, Mode, Tag};
+use crate::container::{check_count_fits, parse_container, Container, Header, Mode, Tag};
 use crate::prelude::*;
 use crate::varint::Reader;
 use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
@@ -51,7 +51,7 @@ use subdivide::Edges;
 /// triangle already exceeds any useful refinement.
 pub(crate) const MAX_LEVELS: usize = 8;
 
-fn bad(why: &'static str) -> Error {
+pub(crate) fn bad(why: &'static str) -> Error {
     Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
 }
 
@@ -116,13 +116,30 @@ struct Parsed<'a> {
     chunks: Vec<&'a [u8]>,
 }
 
-fn parse<'a>(file: &Container<'a>, limits: &Limits) -> Result<Parsed<'a>, Error> {
-    let head = Head::read(file.require(Tag::HEAD)?.bytes)?;
-    let b = file.require(Tag::BASE)?;
-    let base = parse_container(b.bytes, limits).map_err(in_section(b.offset))?;
+/// `HEAD` and `BASE` (its payload at file offset `base_at`), checked
+/// against the outer header's counts as far as they go without `DISP`.
+fn head_and_base<'a>(
+    head: &[u8],
+    base: &'a [u8],
+    base_at: usize,
+    header: &Header,
+    limits: &Limits,
+) -> Result<(Head, Container<'a>), Error> {
+    let head = Head::read(head)?;
+    let base = parse_container(base, limits).map_err(in_section(base_at))?;
     if base.header.mode != Mode::Lossless {
         return Err(bad("BASE does not hold a lossless (mode 0) file"));
     }
+    let bh = &base.header;
+    if header.component_count != bh.component_count || header.vertex_count < bh.vertex_count {
+        return Err(bad("counts disagree with the base's"));
+    }
+    Ok((head, base))
+}
+
+fn parse<'a>(file: &Container<'a>, limits: &Limits) -> Result<Parsed<'a>, Error> {
+    let (h, b) = (file.require(Tag::HEAD)?, file.require(Tag::BASE)?);
+    let (head, base) = head_and_base(h.bytes, b.bytes, b.offset, &file.header, limits)?;
     let d = file.require(Tag::DISP)?;
     let mut r = Reader::new(d.bytes);
     let mut chunks = Vec::new();
@@ -148,9 +165,6 @@ fn parse<'a>(file: &Container<'a>, limits: &Limits) -> Result<Parsed<'a>, Error>
     if expected != Some(u64::from(h.triangle_count)) {
         return Err(bad("triangle count is not the base's times 4^levels"));
     }
-    if h.component_count != bh.component_count || h.vertex_count < bh.vertex_count {
-        return Err(bad("counts disagree with the base's"));
-    }
     Ok(Parsed { head, base, chunks })
 }
 
@@ -173,22 +187,90 @@ pub(crate) fn refine(
     Ok(subdivide::split(triangles, edges, n as u32))
 }
 
-/// Decodes a mode-2 file whose container was parsed.
-pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
-    decode_levels(file, limits, usize::MAX)
-}
-
-/// Decodes at most `max_levels` of the file's levels.
+/// Decodes at most `max_levels` of the file's levels (a parsed
+/// container; `usize::MAX` for all): what the file cut after that many
+/// decodes to, since each level reads only its own chunk.
 pub(crate) fn decode_levels(
     file: &Container<'_>,
     limits: &Limits,
     max_levels: usize,
 ) -> Result<TriMesh, Error> {
     let p = parse(file, limits)?;
-    let full = p.chunks.len();
-    let mut mesh = crate::lossless::decode(&p.base, limits)?;
-    let (mut qs, mut below, mut first) = (Vec::new(), Vec::new(), mesh.positions.len());
-    for (level, chunk) in p.chunks.iter().enumerate().take(max_levels) {
+    let base = crate::lossless::decode(&p.base, limits)?;
+    let mut r = Refiner::new(p.head, base, &file.header);
+    for chunk in p.chunks.iter().take(max_levels) {
+        r.refine(chunk)?;
+    }
+    if max_levels >= p.chunks.len() && r.mesh.positions.len() as u64 != r.caps.0 {
+        return Err(bad("fewer vertices than the header's"));
+    }
+    Ok(r.mesh)
+}
+
+/// A decode one level at a time, coarse to fine: `decode_levels`, and
+/// the stream decoder as each level's chunk arrives. Holds the mesh so
+/// far and the scalars of its last level (the next level's contexts).
+#[derive(Debug)]
+pub(crate) struct Refiner {
+    head: Head,
+    /// The outer header's vertex and triangle counts: no level exceeds
+    /// them (a stream's levels are decoded before `DISP` is all in).
+    caps: (u64, u64),
+    mesh: TriMesh,
+    /// The last level's scalars, and the first vertex it made.
+    below: Vec<i32>,
+    first: usize,
+    level: usize,
+}
+
+impl Refiner {
+    fn new(head: Head, base: TriMesh, header: &Header) -> Refiner {
+        Refiner {
+            head,
+            caps: (header.vertex_count.into(), header.triangle_count.into()),
+            first: base.positions.len(),
+            mesh: base,
+            below: Vec::new(),
+            level: 0,
+        }
+    }
+
+    /// From the payloads of `HEAD` and `BASE` (at file offset
+    /// `base_at`) of a file with this header: the level-0 mesh.
+    pub(crate) fn start(
+        head: &[u8],
+        base: &[u8],
+        base_at: usize,
+        header: &Header,
+        limits: &Limits,
+    ) -> Result<Refiner, Error> {
+        let (head, base) = head_and_base(head, base, base_at, header, limits)?;
+        Ok(Refiner::new(
+            head,
+            crate::lossless::decode(&base, limits)?,
+            header,
+        ))
+    }
+
+    /// Levels decoded so far (0: the base).
+    pub(crate) fn level(&self) -> usize {
+        self.level
+    }
+
+    /// The mesh of the last level decoded.
+    pub(crate) fn mesh(&self) -> &TriMesh {
+        &self.mesh
+    }
+
+    /// The next level from its chunk (`DISP`'s next, without its length).
+    pub(crate) fn refine(&mut self, chunk: &[u8]) -> Result<(), Error> {
+        let Some(&step) = self.head.steps.get(self.level) else {
+            return Err(bad("DISP has more levels than HEAD"));
+        };
+        if 4 * self.mesh.triangles.len() as u64 > self.caps.1 {
+            return Err(bad("more triangles than the header's"));
+        }
+        let mesh = &mut self.mesh;
         let edges = Edges::new(&mesh.triangles);
         check_count_fits(
             "scalar",
@@ -197,15 +279,14 @@ pub(crate) fn decode_levels(
             scalars::MIN_BITS.0,
             scalars::MIN_BITS.1,
         )?;
-        let total = mesh.positions.len() as u64 + edges.len() as u64;
-        if total > u64::from(file.header.vertex_count) {
+        if mesh.positions.len() as u64 + edges.len() as u64 > self.caps.0 {
             return Err(bad("more vertices than the header's"));
         }
-        let frames = predict::frames(&edges, &mesh.triangles, &mesh.positions, p.head.rule);
-        let step = p.head.steps[level];
-        let contexts = scalars::contexts(&edges, &mesh.triangles, first, &below);
+        let frames = predict::frames(&edges, &mesh.triangles, &mesh.positions, self.head.rule);
+        let contexts = scalars::contexts(&edges, &mesh.triangles, self.first, &self.below);
+        let mut qs = core::mem::take(&mut self.below);
         scalars::decode_level(chunk, &contexts, &mut qs)?;
-        first = mesh.positions.len();
+        self.first = mesh.positions.len();
         mesh.triangles = refine(
             &mut mesh.positions,
             &mesh.triangles,
@@ -214,23 +295,25 @@ pub(crate) fn decode_levels(
             step,
             &qs,
         )?;
-        core::mem::swap(&mut qs, &mut below);
+        self.below = qs;
+        self.level += 1;
+        Ok(())
     }
-    if max_levels >= full && mesh.positions.len() as u64 != u64::from(file.header.vertex_count) {
-        return Err(bad("fewer vertices than the header's"));
-    }
-    Ok(mesh)
 }
 
-/// Levels a file holds and its base's quantization bits (for `inspect`).
-pub(crate) fn levels_and_qp(file: &Container<'_>, limits: &Limits) -> Result<(usize, u8), Error> {
+/// The bytes of each level's chunk and the base's quantization bits
+/// (for `inspect`).
+pub(crate) fn levels_and_qp(
+    file: &Container<'_>,
+    limits: &Limits,
+) -> Result<(Vec<usize>, u8), Error> {
     let p = parse(file, limits)?;
     let qp = p
         .base
         .section(Tag::HEAD)
         .and_then(|h| h.first().copied())
         .unwrap_or(0);
-    Ok((p.chunks.len(), qp))
+    Ok((p.chunks.iter().map(|c| c.len()).collect(), qp))
 }
 
 /// The same file with only its first `levels` levels: its `DISP` cut

@@ -127,7 +127,9 @@ pub unsafe extern "C" fn swm_free(p: *mut u8, len: usize) {
 /// post-processing hint, 0 off, positive on; `bend_steps`: negative
 /// follows the hint, otherwise the steps (`swm::DecodeOptions`, whose
 /// `None` is the negative value here); `normals` is a boolean (non-zero:
-/// on). The limits are
+/// on); `max_level`: the most subdivision levels of a displaced (mode 2)
+/// file to decode, 0 its base mesh, negative (or above 255) every level
+/// (`DecodeOptions::max_level`'s `None`). The limits are
 /// `swm::Limits` as numbers, the host's native type (a JavaScript number
 /// holds every integer up to 2^53; larger values saturate). Never NULL:
 /// memory exhausted inside the decoder aborts, which traps on wasm32 and
@@ -146,6 +148,7 @@ pub unsafe extern "C" fn swm_decode(
     max_vertices: f64,
     max_faces: f64,
     max_alloc_bytes: f64,
+    max_level: i32,
 ) -> *mut Output {
     let bytes = if len == 0 || data.is_null() {
         &[][..]
@@ -159,6 +162,7 @@ pub unsafe extern "C" fn swm_decode(
                 limits,
                 sharpen: (sharpen >= 0).then_some(sharpen > 0),
                 bend_steps: u32::try_from(bend_steps).ok(),
+                max_level: u8::try_from(max_level).ok(),
             };
             decode(bytes, &options, normals != 0)
         }

@@ -11,8 +11,21 @@ fn golden(name: &str) -> Vec<u8> {
 
 /// Copies `bytes` into a block from `swm_alloc`, as the glue does, and
 /// decodes them.
-/// `sharpen`, `bend`: negative follows the file's hint, as in the glue.
+/// `sharpen`, `bend`: negative follows the file's hint, as in the glue;
+/// every level of a displaced file.
 fn call(bytes: &[u8], sharpen: i32, bend: i32, normals: bool, limits: [f64; 3]) -> *mut Output {
+    call_levels(bytes, sharpen, bend, normals, limits, -1)
+}
+
+/// [`call`] with `max_level` (negative: every level).
+fn call_levels(
+    bytes: &[u8],
+    sharpen: i32,
+    bend: i32,
+    normals: bool,
+    limits: [f64; 3],
+    max_level: i32,
+) -> *mut Output {
     let p = swm_alloc(bytes.len());
     assert!(!p.is_null());
     // SAFETY: the block holds `bytes.len()` bytes.
@@ -27,6 +40,7 @@ fn call(bytes: &[u8], sharpen: i32, bend: i32, normals: bool, limits: [f64; 3]) 
             limits[0],
             limits[1],
             limits[2],
+            max_level,
         );
         swm_free(p, bytes.len());
         out
@@ -92,6 +106,35 @@ fn golden_files_decode_as_the_library_does() {
             // SAFETY: `out` came from `swm_decode`.
             unsafe { swm_output_free(out) };
         }
+    }
+}
+
+/// The displaced-subdivision golden file (format 1.2, mode 2, two
+/// levels), whole and cut by `max_level`: the library's mesh each time.
+#[test]
+fn displaced_files_decode_level_by_level() {
+    let bytes = golden("displaced-v1.2.swm");
+    for max_level in [-1, 0, 1, 2, 7] {
+        let expected = swm::decode(
+            &bytes,
+            &DecodeOptions {
+                max_level: u8::try_from(max_level).ok(),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let out = call_levels(&bytes, -1, -1, false, DEFAULT, max_level);
+        // SAFETY: `swm_decode` returns a valid Output.
+        let o = unsafe { &*out };
+        assert_eq!(o.status, STATUS_OK, "{}", message(o));
+        assert_eq!((o.mode, o.major, o.minor), (2, 1, 2));
+        let levels = if max_level < 0 { 2 } else { max_level.min(2) };
+        assert_eq!(o.triangle_count, 586 << (2 * levels));
+        let (p, i, _) = arrays(o);
+        assert_eq!(p, expected.positions.as_flattened());
+        assert_eq!(i, expected.triangles.as_flattened());
+        // SAFETY: `out` came from `swm_decode`.
+        unsafe { swm_output_free(out) };
     }
 }
 

@@ -24,6 +24,10 @@
 //! entry is in. It keeps its place, so the work stays linear in the
 //! table however the bytes are cut.
 //!
+//! A displaced-subdivision (mode 2) file is also decoded level by level
+//! as it arrives (`levels`): [`StreamDecoder::level`] gives the base mesh
+//! once its sections are in, then each finer level once its chunk is.
+//!
 //! Invariant: the outcome depends only on the bytes, never on how they
 //! were cut into pieces. Each check runs when the buffered prefix reaches
 //! its fixed length (a piece that crosses several of them is split at
@@ -33,6 +37,8 @@
 //! whole: the early checks read the header before the CRC can vouch for
 //! it, which is the point of them (a header claiming a billion triangles
 //! stops the download at byte 27).
+
+mod levels;
 
 use crate::prelude::*;
 
@@ -53,6 +59,27 @@ use crate::{decode, DecodeOptions, Error, Malformed, TriMesh};
 /// stream.finish()
 /// # }
 /// ```
+///
+/// A displaced-subdivision file shows its coarser levels before it is all
+/// in:
+///
+/// ```
+/// # fn show(_: usize, _: &swm::TriMesh) {}
+/// # fn demo(pieces: &[&[u8]]) -> Result<swm::TriMesh, swm::Error> {
+/// let mut stream = swm::StreamDecoder::new(swm::DecodeOptions::default());
+/// let mut shown = None;
+/// for piece in pieces {
+///     stream = stream.push(piece)?;
+///     if let Some((level, mesh)) = stream.level() {
+///         if shown != Some(level) {
+///             show(level, mesh); // the base, then each finer level
+///             shown = Some(level);
+///         }
+///     }
+/// }
+/// stream.finish()
+/// # }
+/// ```
 #[derive(Debug)]
 pub struct StreamDecoder {
     options: DecodeOptions,
@@ -61,6 +88,10 @@ pub struct StreamDecoder {
     total: Option<usize>,
     /// A compact file's frame, once its flags are in.
     compact: Option<CompactFrame>,
+    /// The header, once it is all in.
+    header: Option<Header>,
+    /// A displaced-subdivision file's levels, once its table is in.
+    levels: Option<levels::Levels>,
 }
 
 /// Where reading a compact frame stands.
@@ -87,6 +118,8 @@ impl StreamDecoder {
             buf: Vec::new(),
             total: None,
             compact: None,
+            header: None,
+            levels: None,
         }
     }
 
@@ -100,14 +133,27 @@ impl StreamDecoder {
         self.total
     }
 
+    /// The finest level decoded so far of a displaced-subdivision (mode 2)
+    /// file, and its mesh: `(0, base)` once the `HEAD` and `BASE` sections
+    /// are in, then `(l, mesh)` as soon as the chunk of level `l` is, up
+    /// to `options.max_level`. Each is bit for bit what [`decode`] gives
+    /// with `max_level: Some(l)` and no post-processing (Sharpen&Bend
+    /// apply to [`finish`](Self::finish)'s mesh only). Unverified until
+    /// `finish`: the file's CRC comes last. `None` before the base is in,
+    /// and for other modes.
+    pub fn level(&self) -> Option<(usize, &TriMesh)> {
+        self.levels.as_ref().and_then(levels::Levels::current)
+    }
+
     /// Takes the next piece of the file.
     ///
     /// # Errors
     /// As soon as the bytes so far show the file cannot decode: a wrong
     /// magic, an unsupported version, flags or mode, counts above the
     /// limits or inconsistent ([`decode`]'s errors for these), a file
-    /// longer than `max_alloc_bytes` ([`Error::LimitExceeded`]), or a
-    /// byte past the file's end ([`Malformed::TrailingData`]).
+    /// longer than `max_alloc_bytes` ([`Error::LimitExceeded`]), a byte
+    /// past the file's end ([`Malformed::TrailingData`]), or, in a
+    /// displaced-subdivision file, a base or level that does not decode.
     pub fn push(mut self, mut piece: &[u8]) -> Result<Self, Error> {
         while !piece.is_empty() {
             let Some(next) = self.next_check() else {
@@ -119,6 +165,9 @@ impl StreamDecoder {
             piece = &piece[take..];
             if self.buf.len() == next {
                 self.check(next)?;
+            }
+            if let Some(levels) = &mut self.levels {
+                levels.advance(&self.buf, &self.options)?;
             }
         }
         Ok(self)
@@ -180,7 +229,7 @@ impl StreamDecoder {
             self.compact_step()?
         } else {
             if len == MIN_LEN {
-                Header::read(&self.buf, &self.options.limits)?;
+                self.header = Some(Header::read(&self.buf, &self.options.limits)?);
             }
             declared_len(&self.buf)
         };
@@ -196,6 +245,10 @@ impl StreamDecoder {
             // total ≥ table end + 4 ≥ the 27 bytes in hand.
             self.buf.reserve_exact(total - self.buf.len());
             self.total = Some(total);
+            let header = self
+                .header
+                .or(self.compact.as_ref().and_then(|c| c.table.map(|t| t.0)));
+            self.levels = header.and_then(|h| levels::Levels::new(h, &self.buf, &self.options));
         }
         Ok(())
     }
