@@ -11,7 +11,7 @@ pub use crate::lossless::LosslessStats;
 pub use crate::swing::SwingStats;
 
 #[cfg(feature = "encoder")]
-pub use crate::encoder::check::CHECK_SAMPLES;
+pub use crate::encoder::stats::CHECK_SAMPLES;
 #[cfg(feature = "encoder")]
 pub use crate::encoder::stats::{
     Attempt, Candidate, CandidateFailure, Check, DisplacedStats, EncodeStats, Encoded, HintReport,

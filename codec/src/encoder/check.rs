@@ -21,10 +21,7 @@ use crate::metrics::estimate::metro_estimate;
 use crate::metrics::{Build, Surface};
 use crate::Error;
 
-/// Metro's samples kept per side for the check: about 0.3% standard
-/// error on the L2 of a simplified scan (measured in BENCHMARKS.md,
-/// "The reported error").
-pub const CHECK_SAMPLES: u64 = 60_000;
+use super::stats::CHECK_SAMPLES;
 
 /// Decodes `bytes` and measures the result against the job's reference.
 pub(crate) fn check(job: &Job<'_, '_>, bytes: &[u8]) -> Result<Check, Error> {

@@ -305,6 +305,11 @@ pub struct Encoded {
     pub stats: EncodeStats,
 }
 
+/// Metro's samples kept per side for the check (`encoder::check`):
+/// about 0.3% standard error on the L2 of a simplified scan (measured in
+/// BENCHMARKS.md, "The reported error").
+pub const CHECK_SAMPLES: u64 = 60_000;
+
 /// The file as decoded, measured against the input.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
