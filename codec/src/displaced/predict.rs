@@ -85,8 +85,7 @@ pub(crate) fn frame(
     let first = corners[0];
     let [a, b, c] = corner_vertices(first, tris);
     let (pa, pb) = (at(pos, a), at(pos, b));
-    let other = edges.across(e, first, tris);
-    let point = match other {
+    let point = match edges.mate(first) {
         None => core::array::from_fn(|k| 0.5 * (pa[k] + pb[k])),
         Some(second) => {
             let d = corner_vertices(second, tris)[2];
@@ -125,10 +124,7 @@ pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: R
 /// the edge, the vertex opposite; `None` when one is missing.
 fn wings(edges: &Edges, tris: &[[u32; 3]], first: u32, second: u32) -> Option<[u32; 4]> {
     let next = |c: u32| c - c % 3 + (c % 3 + 1) % 3;
-    let wing = |c: u32| {
-        let across = edges.across(edges.of_corner(c as usize), c, tris)?;
-        Some(corner_vertices(across, tris)[2])
-    };
+    let wing = |c: u32| Some(corner_vertices(edges.mate(c)?, tris)[2]);
     let (f1, f2) = (next(first), next(second));
     Some([wing(f1)?, wing(next(f1))?, wing(f2)?, wing(next(f2))?])
 }

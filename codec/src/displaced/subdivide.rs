@@ -33,6 +33,9 @@ use crate::prelude::*;
 /// rather than by insertion.
 const SMALL_BUCKET: usize = 32;
 
+/// No corner: the `mate` of a corner whose edge is not interior.
+pub(crate) const NONE: u32 = u32::MAX;
+
 /// The edges of a triangle list.
 pub(crate) struct Edges {
     /// Corners (`3f + k`), grouped by edge, each group in corner order.
@@ -41,6 +44,11 @@ pub(crate) struct Edges {
     start: Vec<u32>,
     /// The edge of each corner.
     of_corner: Vec<u32>,
+    /// For each corner, the other corner of its edge when the edge is
+    /// interior (two corners of opposite directions), else [`NONE`]: the
+    /// corner table's `opposite`, made once so that [`Edges::mate`]
+    /// and the stencils read one word.
+    mate: Vec<u32>,
 }
 
 impl Edges {
@@ -50,8 +58,11 @@ impl Edges {
     /// corners are counted into one bucket per `lo` (in corner order),
     /// and each bucket, a vertex's few edges, is ordered by `(hi,
     /// corner)` (insertion for the usual handful, a general sort past
-    /// [`SMALL_BUCKET`], so a hostile fan stays `n log n`). Memory: about
-    /// 24 bytes per corner and 4 per vertex.
+    /// [`SMALL_BUCKET`], so a hostile fan stays `n log n`). Each entry
+    /// is one `u64` key `hi << 32 | corner`, so the bucket sort compares
+    /// words, and the buckets' ends are the counts' running sums after
+    /// the scatter (no second array). Memory: about 28 bytes per corner
+    /// and 4 per vertex.
     pub fn new(triangles: &[[u32; 3]]) -> Edges {
         let corners = 3 * triangles.len();
         let vertices = triangles
@@ -59,60 +70,87 @@ impl Edges {
             .flatten()
             .max()
             .map_or(0, |&v| v as usize + 1);
-        let ends = |c: usize| {
-            let t = triangles[c / 3];
-            let (a, b) = (t[c % 3], t[(c + 1) % 3]);
-            (a.min(b), a.max(b))
-        };
-        // Bucket starts by lo, then (hi, corner) scattered in corner order.
+        // at[v + 1] counts the corners whose lo is v; after the running
+        // sum, at[v] is bucket v's start, and after the scatter (which
+        // advances it) bucket v's end.
         let mut at = vec![0u32; vertices + 1];
-        for c in 0..corners {
-            at[ends(c).0 as usize + 1] += 1;
+        for t in triangles {
+            at[t[0].min(t[1]) as usize + 1] += 1;
+            at[t[1].min(t[2]) as usize + 1] += 1;
+            at[t[2].min(t[0]) as usize + 1] += 1;
         }
-        for v in 0..vertices {
-            at[v + 1] += at[v];
+        let mut sum = 0;
+        for a in at.iter_mut() {
+            sum += *a;
+            *a = sum;
         }
-        let mut keyed = vec![(0u32, 0u32); corners];
-        let mut next = at.clone();
-        for c in 0..corners {
-            let (lo, hi) = ends(c);
-            let slot = &mut next[lo as usize];
-            keyed[*slot as usize] = (hi, c as u32);
-            *slot += 1;
+        let mut keyed = vec![0u64; corners];
+        for (f, t) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[if k == 2 { 0 } else { k + 1 }]);
+                let slot = &mut at[a.min(b) as usize];
+                keyed[*slot as usize] = u64::from(a.max(b)) << 32 | (3 * f + k) as u64;
+                *slot += 1;
+            }
         }
-        for v in 0..vertices {
-            let bucket = &mut keyed[at[v] as usize..at[v + 1] as usize];
+        // Bucket v is keyed[at[v - 1]..at[v]] now (bucket 0 from 0).
+        let mut first = 0;
+        for &end in &at[..vertices] {
+            let bucket = &mut keyed[first..end as usize];
+            first = end as usize;
             if bucket.len() > SMALL_BUCKET {
                 crate::sort::sort_unstable(bucket);
             } else {
                 for i in 1..bucket.len() {
+                    let key = bucket[i];
                     let mut j = i;
-                    while j > 0 && bucket[j - 1] > bucket[j] {
-                        bucket.swap(j - 1, j);
+                    while j > 0 && bucket[j - 1] > key {
+                        bucket[j] = bucket[j - 1];
                         j -= 1;
                     }
+                    bucket[j] = key;
                 }
             }
         }
-        let mut start = Vec::new();
+        // Groups of equal hi within a bucket are the edges, in order.
+        let mut start = Vec::with_capacity(corners / 2 + 2);
         let mut of_corner = vec![0u32; corners];
-        let mut list = Vec::with_capacity(corners);
-        for v in 0..vertices {
-            let (first, end) = (at[v] as usize, at[v + 1] as usize);
-            for i in first..end {
-                let (hi, c) = keyed[i];
-                if i == first || keyed[i - 1].0 != hi {
-                    start.push(list.len() as u32);
+        let mut mate = vec![NONE; corners];
+        let mut list = vec![0u32; corners];
+        let mut first = 0;
+        for &end in &at[..vertices] {
+            let end = end as usize;
+            let mut i = first;
+            while i < end {
+                let hi = keyed[i] >> 32;
+                let mut j = i + 1;
+                while j < end && keyed[j] >> 32 == hi {
+                    j += 1;
                 }
-                of_corner[c as usize] = start.len() as u32 - 1;
-                list.push(c);
+                let e = start.len() as u32;
+                start.push(i as u32);
+                for (slot, &key) in list[i..j].iter_mut().zip(&keyed[i..j]) {
+                    let c = key as u32;
+                    *slot = c;
+                    of_corner[c as usize] = e;
+                }
+                if j == i + 2 {
+                    let (x, y) = (keyed[i] as u32, keyed[i + 1] as u32);
+                    if interior(x, y, triangles) {
+                        mate[x as usize] = y;
+                        mate[y as usize] = x;
+                    }
+                }
+                i = j;
             }
+            first = end;
         }
         start.push(corners as u32);
         Edges {
             corners: list,
             start,
             of_corner,
+            mate,
         }
     }
 
@@ -126,18 +164,28 @@ impl Edges {
         &self.corners[self.start[e] as usize..self.start[e + 1] as usize]
     }
 
+    /// The first corner of edge `e` (every edge has one).
+    pub fn first_corner(&self, e: usize) -> u32 {
+        self.corners[self.start[e] as usize]
+    }
+
     /// The edge of corner `c`.
     pub fn of_corner(&self, c: usize) -> usize {
         self.of_corner[c] as usize
     }
 
-    /// The corner across edge `e` from corner `c` when `e` is interior
+    /// The edge of each corner, by corner.
+    pub fn of_corners(&self) -> &[u32] {
+        &self.of_corner
+    }
+
+    /// The other corner of corner `c`'s edge when that edge is interior
     /// and manifold (two corners of opposite directions); `None`
     /// otherwise.
-    pub fn across(&self, e: usize, c: u32, triangles: &[[u32; 3]]) -> Option<u32> {
-        match *self.corners(e) {
-            [x, y] if interior(x, y, triangles) => Some(if x == c { y } else { x }),
-            _ => None,
+    pub fn mate(&self, c: u32) -> Option<u32> {
+        match self.mate[c as usize] {
+            NONE => None,
+            m => Some(m),
         }
     }
 }
@@ -162,9 +210,12 @@ pub(crate) fn corner_vertices(c: u32, triangles: &[[u32; 3]]) -> [u32; 3] {
 /// (see the module's figure); `vertex_count` is the coarse level's.
 pub(crate) fn split(triangles: &[[u32; 3]], edges: &Edges, vertex_count: u32) -> Vec<[u32; 3]> {
     let mut out = Vec::with_capacity(4 * triangles.len());
-    for (f, &[a, b, c]) in triangles.iter().enumerate() {
-        let m = |k: usize| vertex_count + edges.of_corner(3 * f + k) as u32;
-        let (m0, m1, m2) = (m(0), m(1), m(2));
+    for (&[a, b, c], m) in triangles.iter().zip(edges.of_corners().chunks_exact(3)) {
+        let (m0, m1, m2) = (
+            vertex_count + m[0],
+            vertex_count + m[1],
+            vertex_count + m[2],
+        );
         out.extend_from_slice(&[[a, m0, m2], [m0, b, m1], [m2, m1, c], [m0, m1, m2]]);
     }
     out
@@ -182,8 +233,8 @@ mod tests {
         assert_eq!(e.len(), 5);
         // Keys in order: 01, 02, 03, 12, 23.
         assert_eq!(e.corners(1), &[2, 3]);
-        assert_eq!(e.across(1, 2, &tris), Some(3));
-        assert_eq!(e.across(0, 0, &tris), None, "boundary");
+        assert_eq!(e.mate(2), Some(3));
+        assert_eq!(e.mate(0), None, "boundary");
         let t = split(&tris, &e, 4);
         assert_eq!(t.len(), 8);
         assert_eq!(t[3], [4, 7, 5], "middle of the first face");
@@ -226,6 +277,6 @@ mod tests {
         let tris = [[0, 1, 2], [0, 1, 3]];
         let e = Edges::new(&tris);
         assert_eq!(e.corners(0), &[0, 3]);
-        assert_eq!(e.across(0, 0, &tris), None);
+        assert_eq!(e.mate(0), None);
     }
 }
