@@ -201,19 +201,13 @@ pub(crate) fn decode_levels(
         if total > u64::from(file.header.vertex_count) {
             return Err(bad("more vertices than the header's"));
         }
-        let frames = predict::frames(&edges, &mesh.triangles, &mesh.positions, p.head.rule);
-        let step = p.head.steps[level];
         let contexts = scalars::contexts(&edges, &mesh.triangles, first, &below);
         scalars::decode_level(chunk, &contexts, &mut qs)?;
         first = mesh.positions.len();
-        mesh.triangles = refine(
-            &mut mesh.positions,
-            &mesh.triangles,
-            &edges,
-            &frames,
-            step,
-            &qs,
-        )?;
+        let (rule, step) = (p.head.rule, p.head.steps[level]);
+        predict::place_level(&edges, &mesh.triangles, &mut mesh.positions, rule, step, &qs)
+            .ok_or(bad("a displaced vertex is not finite"))?;
+        mesh.triangles = subdivide::split(&mesh.triangles, &edges, first as u32);
         core::mem::swap(&mut qs, &mut below);
     }
     if max_levels >= full && mesh.positions.len() as u64 != u64::from(file.header.vertex_count) {

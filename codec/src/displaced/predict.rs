@@ -73,6 +73,7 @@ fn at(p: &[[f32; 3]], v: u32) -> [f64; 3] {
 
 /// The frame of edge `e`'s new vertex.
 /// `crosses` holds each triangle's [`cross`].
+#[inline]
 pub(crate) fn frame(
     e: usize,
     edges: &Edges,
@@ -112,12 +113,39 @@ pub(crate) fn frame(
     }
 }
 
-/// The frames of every edge of a level, in edge order.
+/// The frames of every edge of a level, in edge order (what
+/// [`place_level`] places without storing them).
+#[cfg(test)]
 pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rule) -> Vec<Frame> {
     let crosses: Vec<[f64; 3]> = tris.iter().map(|t| cross(t, pos)).collect();
     (0..edges.len())
         .map(|e| frame(e, edges, tris, pos, &crosses, rule))
         .collect()
+}
+
+/// One level's new vertices, appended to `pos` (the level's `n`
+/// positions) in edge order: each edge's [`frame`] moved by its scalar
+/// `qs[e]` of `step` ([`place`]), made and placed in one pass so no
+/// frame is stored (48 bytes an edge otherwise written and read back).
+/// The same bits as [`frames`] then [`place`]. `None` when a coordinate
+/// is not finite; `pos` then holds `n` positions and some of the level's.
+pub(crate) fn place_level(
+    edges: &Edges,
+    tris: &[[u32; 3]],
+    pos: &mut Vec<[f32; 3]>,
+    rule: Rule,
+    step: f32,
+    qs: &[i32],
+) -> Option<()> {
+    debug_assert_eq!(qs.len(), edges.len());
+    let crosses: Vec<[f64; 3]> = tris.iter().map(|t| cross(t, pos)).collect();
+    let n = pos.len();
+    pos.resize(n + qs.len(), [0.0; 3]);
+    let (old, new) = pos.split_at_mut(n);
+    for (e, (slot, &q)) in new.iter_mut().zip(qs).enumerate() {
+        *slot = place(&frame(e, edges, tris, old, &crosses, rule), q, step)?;
+    }
+    Some(())
 }
 
 /// The butterfly's wings: across the two other edges of each triangle of
@@ -162,6 +190,7 @@ fn normal(corners: &[u32], crosses: &[[f64; 3]]) -> [f64; 3] {
 /// The new vertex at `q` steps of `step` along its frame's normal,
 /// rounded to `f32` (`None` when a coordinate is not finite: a hostile
 /// step or scalar).
+#[inline]
 pub(crate) fn place(f: &Frame, q: i32, step: f32) -> Option<[f32; 3]> {
     let s = f64::from(q) * f64::from(step);
     let p: [f32; 3] = core::array::from_fn(|k| (f.point[k] + f.normal[k] * s) as f32);

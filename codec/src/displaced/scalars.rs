@@ -68,7 +68,7 @@ pub(crate) fn contexts(
 ) -> Vec<u8> {
     (0..edges.len())
         .map(|e| {
-            let [a, b, _] = super::subdivide::corner_vertices(edges.corners(e)[0], triangles);
+            let [a, b, _] = super::subdivide::corner_vertices(edges.first_corner(e), triangles);
             let (mut parents, mut len) = (0u8, 0u32);
             for v in [a, b] {
                 if let Some(&q) = (v as usize).checked_sub(first).and_then(|i| below.get(i)) {

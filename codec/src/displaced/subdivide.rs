@@ -29,10 +29,6 @@
 
 use crate::prelude::*;
 
-/// Past this many corners, a vertex's bucket is sorted by a general sort
-/// rather than by insertion.
-const SMALL_BUCKET: usize = 32;
-
 /// No corner: the `mate` of a corner whose edge is not interior.
 pub(crate) const NONE: u32 = u32::MAX;
 
@@ -54,15 +50,15 @@ pub(crate) struct Edges {
 impl Edges {
     /// The edges of `triangles` (each corner a vertex below 2^32 − 1).
     ///
-    /// The order of the sort by `(lo, hi, corner)`, made in linear time:
-    /// corners are counted into one bucket per `lo` (in corner order),
-    /// and each bucket, a vertex's few edges, is ordered by `(hi,
-    /// corner)` (insertion for the usual handful, a general sort past
-    /// [`SMALL_BUCKET`], so a hostile fan stays `n log n`). Each entry
-    /// is one `u64` key `hi << 32 | corner`, so the bucket sort compares
-    /// words, and the buckets' ends are the counts' running sums after
-    /// the scatter (no second array). Memory: about 28 bytes per corner
-    /// and 4 per vertex.
+    /// The order of the sort by `(lo, hi, corner)`, made in linear time
+    /// with no comparison: a least-significant-first radix sort of two
+    /// counting passes, the corners (in corner order) scattered by `hi`,
+    /// then, read in that order, by `lo`; both are stable, so each `lo`
+    /// bucket ends ordered by `(hi, corner)` whatever its size (a hostile
+    /// fan costs no more than a strip). Each entry is one `u64`, `lo` or
+    /// `hi` in the high word and the corner in the low one, and each
+    /// bucket's end is its count's running sum after the scatter (no
+    /// second array). Memory: about 32 bytes per corner and 8 per vertex.
     pub fn new(triangles: &[[u32; 3]]) -> Edges {
         let corners = 3 * triangles.len();
         let vertices = triangles
@@ -70,48 +66,49 @@ impl Edges {
             .flatten()
             .max()
             .map_or(0, |&v| v as usize + 1);
-        // at[v + 1] counts the corners whose lo is v; after the running
-        // sum, at[v] is bucket v's start, and after the scatter (which
-        // advances it) bucket v's end.
-        let mut at = vec![0u32; vertices + 1];
+        // by_lo[v + 1] and by_hi[v + 1] count the corners whose lo (hi)
+        // is v; after the running sums, by_*[v] is bucket v's start, and
+        // after its scatter (which advances it) bucket v's end.
+        let mut by_lo = vec![0u32; vertices + 1];
+        let mut by_hi = vec![0u32; vertices + 1];
         for t in triangles {
-            at[t[0].min(t[1]) as usize + 1] += 1;
-            at[t[1].min(t[2]) as usize + 1] += 1;
-            at[t[2].min(t[0]) as usize + 1] += 1;
+            for k in 0..3 {
+                let (a, b) = (t[k], t[if k == 2 { 0 } else { k + 1 }]);
+                by_lo[a.min(b) as usize + 1] += 1;
+                by_hi[a.max(b) as usize + 1] += 1;
+            }
         }
-        let mut sum = 0;
-        for a in at.iter_mut() {
-            sum += *a;
-            *a = sum;
+        for at in [&mut by_lo, &mut by_hi] {
+            let mut sum = 0;
+            for a in at.iter_mut() {
+                sum += *a;
+                *a = sum;
+            }
         }
-        let mut keyed = vec![0u64; corners];
+        // Pass 1, by hi: lo << 32 | corner, in corner order per bucket.
+        let mut hi_sorted = vec![0u64; corners];
         for (f, t) in triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (t[k], t[if k == 2 { 0 } else { k + 1 }]);
-                let slot = &mut at[a.min(b) as usize];
-                keyed[*slot as usize] = u64::from(a.max(b)) << 32 | (3 * f + k) as u64;
+                let slot = &mut by_hi[a.max(b) as usize];
+                hi_sorted[*slot as usize] = u64::from(a.min(b)) << 32 | (3 * f + k) as u64;
                 *slot += 1;
             }
         }
-        // Bucket v is keyed[at[v - 1]..at[v]] now (bucket 0 from 0).
+        // Pass 2, by lo, reading pass 1's buckets in hi order:
+        // hi << 32 | corner, ordered by (lo, hi, corner).
+        let mut keyed = vec![0u64; corners];
         let mut first = 0;
-        for &end in &at[..vertices] {
-            let bucket = &mut keyed[first..end as usize];
-            first = end as usize;
-            if bucket.len() > SMALL_BUCKET {
-                crate::sort::sort_unstable(bucket);
-            } else {
-                for i in 1..bucket.len() {
-                    let key = bucket[i];
-                    let mut j = i;
-                    while j > 0 && bucket[j - 1] > key {
-                        bucket[j] = bucket[j - 1];
-                        j -= 1;
-                    }
-                    bucket[j] = key;
-                }
+        for (hi, &end) in by_hi[..vertices].iter().enumerate() {
+            for &entry in &hi_sorted[first..end as usize] {
+                let slot = &mut by_lo[(entry >> 32) as usize];
+                keyed[*slot as usize] = (hi as u64) << 32 | (entry & 0xffff_ffff);
+                *slot += 1;
             }
+            first = end as usize;
         }
+        drop(hi_sorted);
+        let at = by_lo;
         // Groups of equal hi within a bucket are the edges, in order.
         let mut start = Vec::with_capacity(corners / 2 + 2);
         let mut of_corner = vec![0u32; corners];
@@ -170,6 +167,7 @@ impl Edges {
     }
 
     /// The edge of corner `c`.
+    #[cfg(test)]
     pub fn of_corner(&self, c: usize) -> usize {
         self.of_corner[c] as usize
     }
@@ -243,8 +241,7 @@ mod tests {
 
     #[test]
     fn the_order_is_the_sort_by_key_and_corner() {
-        // A fan of 40 triangles around vertex 0 (one bucket past
-        // SMALL_BUCKET) plus a strip, in a scrambled vertex numbering.
+        // A fan of 40 triangles around vertex 0 (one large bucket) plus a strip, in a scrambled vertex numbering.
         let mut tris: Vec<[u32; 3]> = (0..40)
             .map(|k| [0, 1 + (k * 7) % 41, 1 + (k * 7 + 7) % 41])
             .collect();
