@@ -29,6 +29,10 @@
 
 use crate::prelude::*;
 
+/// The bit of a radix entry's corner word that marks a corner running
+/// from its edge's `hi` to its `lo`.
+const BACKWARD: u32 = 1 << 31;
+
 /// No corner: the `mate` of a corner whose edge is not interior.
 pub(crate) const NONE: u32 = u32::MAX;
 
@@ -85,13 +89,20 @@ impl Edges {
                 *a = sum;
             }
         }
+        // A corner that runs from hi to lo carries BACKWARD in its
+        // entry's low word (when corner numbers leave bit 31 free, as they
+        // do below 715 M triangles), so that the interior test of an
+        // edge's two corners reads no triangle.
+        let backward = if corners <= 1 << 31 { BACKWARD } else { 0 };
         // Pass 1, by hi: lo << 32 | corner, in corner order per bucket.
         let mut hi_sorted = vec![0u64; corners];
         for (f, t) in triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (t[k], t[if k == 2 { 0 } else { k + 1 }]);
                 let slot = &mut by_hi[a.max(b) as usize];
-                hi_sorted[*slot as usize] = u64::from(a.min(b)) << 32 | (3 * f + k) as u64;
+                let flag = if a > b { backward } else { 0 };
+                hi_sorted[*slot as usize] =
+                    u64::from(a.min(b)) << 32 | u64::from(flag) | (3 * f + k) as u64;
                 *slot += 1;
             }
         }
@@ -115,7 +126,7 @@ impl Edges {
         let mut mate = vec![NONE; corners];
         let mut list = vec![0u32; corners];
         let mut first = 0;
-        for &end in &at[..vertices] {
+        for (lo, &end) in at[..vertices].iter().enumerate() {
             let end = end as usize;
             let mut i = first;
             while i < end {
@@ -127,13 +138,21 @@ impl Edges {
                 let e = start.len() as u32;
                 start.push(i as u32);
                 for (slot, &key) in list[i..j].iter_mut().zip(&keyed[i..j]) {
-                    let c = key as u32;
+                    let c = key as u32 & !backward;
                     *slot = c;
                     of_corner[c as usize] = e;
                 }
                 if j == i + 2 {
                     let (x, y) = (keyed[i] as u32, keyed[i + 1] as u32);
-                    if interior(x, y, triangles) {
+                    let opposite = if backward != 0 {
+                        // Opposite directions, or a corner from a vertex
+                        // to itself (which `interior` also accepts).
+                        (x ^ y) & BACKWARD != 0 || lo as u64 == hi
+                    } else {
+                        interior(x, y, triangles)
+                    };
+                    let (x, y) = (x & !backward, y & !backward);
+                    if opposite {
                         mate[x as usize] = y;
                         mate[y as usize] = x;
                     }
