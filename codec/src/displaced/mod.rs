@@ -204,8 +204,8 @@ pub(crate) fn decode_levels(
         let contexts = scalars::contexts(&edges, &mesh.triangles, first, &below);
         scalars::decode_level(chunk, &contexts, &mut qs)?;
         first = mesh.positions.len();
-        let (rule, step) = (p.head.rule, p.head.steps[level]);
-        predict::place_level(&edges, &mesh.triangles, &mut mesh.positions, rule, step, &qs)
+        let (tris, rule, step) = (&mesh.triangles, p.head.rule, p.head.steps[level]);
+        predict::place_level(&edges, tris, &mut mesh.positions, rule, step, &qs)
             .ok_or(bad("a displaced vertex is not finite"))?;
         mesh.triangles = subdivide::split(&mesh.triangles, &edges, first as u32);
         core::mem::swap(&mut qs, &mut below);

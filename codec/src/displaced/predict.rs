@@ -26,6 +26,14 @@
 //! IEEE 754 binary64 operation, in the order written, never fused):
 //! coordinates are read from `f32` to `f64`, and a new position is
 //! rounded to `f32` once, at the end.
+//!
+//! The decoder frames and places a level's new vertices in one pass
+//! ([`place_level`]): each frame is used as soon as it is made, so none is
+//! stored (48 bytes an edge), and the new positions are written into the
+//! level's grown position array. Interior edges and wings come from the
+//! edges' precomputed mates ([`Edges::mate`]), one read each. Only the
+//! order of memory accesses differs from [`frame`] then [`place`]; every
+//! floating-point operation is the same, in the same order.
 
 use super::subdivide::{corner_vertices, Edges};
 use crate::prelude::*;
@@ -127,7 +135,7 @@ pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: R
 /// positions) in edge order: each edge's [`frame`] moved by its scalar
 /// `qs[e]` of `step` ([`place`]), made and placed in one pass so no
 /// frame is stored (48 bytes an edge otherwise written and read back).
-/// The same bits as [`frames`] then [`place`]. `None` when a coordinate
+/// The same bits as [`frame`] then [`place`]. `None` when a coordinate
 /// is not finite; `pos` then holds `n` positions and some of the level's.
 pub(crate) fn place_level(
     edges: &Edges,

@@ -21,6 +21,11 @@
 //!
 //! Every level's chunk is its own range-coder stream with fresh models,
 //! so a file cut after a level's chunk still decodes.
+//!
+//! Speed: a level's contexts are made in one pass over its edges (each
+//! edge's first corner read directly), into a flat byte array, before its
+//! scalars are decoded into a flat `i32` array that placement then reads
+//! in edge order.
 
 use crate::entropy::{AdaptiveModel, Decoder};
 use crate::prelude::*;

@@ -26,6 +26,16 @@
 //!   directions is interior and manifold, anything else is neither;
 //! - nothing depends on the input beyond its triangle list: no hashing,
 //!   no float.
+//!
+//! Why it is fast (the decoder builds one [`Edges`] per level, the largest
+//! single part of a level's decode): the sort by `(lo, hi, corner)` is a
+//! two-pass radix sort (stable counting passes by `hi`, then by `lo`), so
+//! no comparison and no branch on the data, whatever a vertex's valence;
+//! each entry is one `u64` that also carries its corner's direction, so
+//! the interior test of an edge's two corners reads no triangle; and the
+//! same pass records each corner's interior mate (the corner table's
+//! `opposite`), which the stencils read as one word. [`split`] walks the
+//! triangles and the corners' edges side by side in flat arrays.
 
 use crate::prelude::*;
 
