@@ -282,19 +282,14 @@ impl Refiner {
         if mesh.positions.len() as u64 + edges.len() as u64 > self.caps.0 {
             return Err(bad("more vertices than the header's"));
         }
-        let frames = predict::frames(&edges, &mesh.triangles, &mesh.positions, self.head.rule);
         let contexts = scalars::contexts(&edges, &mesh.triangles, self.first, &self.below);
         let mut qs = core::mem::take(&mut self.below);
         scalars::decode_level(chunk, &contexts, &mut qs)?;
         self.first = mesh.positions.len();
-        mesh.triangles = refine(
-            &mut mesh.positions,
-            &mesh.triangles,
-            &edges,
-            &frames,
-            step,
-            &qs,
-        )?;
+        let (tris, rule) = (&mesh.triangles, self.head.rule);
+        predict::place_level(&edges, tris, &mut mesh.positions, rule, step, &qs)
+            .ok_or(bad("a displaced vertex is not finite"))?;
+        mesh.triangles = subdivide::split(&mesh.triangles, &edges, self.first as u32);
         self.below = qs;
         self.level += 1;
         Ok(())

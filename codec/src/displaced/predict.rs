@@ -26,6 +26,14 @@
 //! IEEE 754 binary64 operation, in the order written, never fused):
 //! coordinates are read from `f32` to `f64`, and a new position is
 //! rounded to `f32` once, at the end.
+//!
+//! The decoder frames and places a level's new vertices in one pass
+//! ([`place_level`]): each frame is used as soon as it is made, so none is
+//! stored (48 bytes an edge), and the new positions are written into the
+//! level's grown position array. Interior edges and wings come from the
+//! edges' precomputed mates ([`Edges::mate`]), one read each. Only the
+//! order of memory accesses differs from [`frame`] then [`place`]; every
+//! floating-point operation is the same, in the same order.
 
 use super::subdivide::{corner_vertices, Edges};
 use crate::prelude::*;
@@ -73,6 +81,7 @@ fn at(p: &[[f32; 3]], v: u32) -> [f64; 3] {
 
 /// The frame of edge `e`'s new vertex.
 /// `crosses` holds each triangle's [`cross`].
+#[inline]
 pub(crate) fn frame(
     e: usize,
     edges: &Edges,
@@ -85,8 +94,7 @@ pub(crate) fn frame(
     let first = corners[0];
     let [a, b, c] = corner_vertices(first, tris);
     let (pa, pb) = (at(pos, a), at(pos, b));
-    let other = edges.across(e, first, tris);
-    let point = match other {
+    let point = match edges.mate(first) {
         None => core::array::from_fn(|k| 0.5 * (pa[k] + pb[k])),
         Some(second) => {
             let d = corner_vertices(second, tris)[2];
@@ -113,7 +121,9 @@ pub(crate) fn frame(
     }
 }
 
-/// The frames of every edge of a level, in edge order.
+/// The frames of every edge of a level, in edge order (what
+/// [`place_level`] places without storing them).
+#[cfg(test)]
 pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rule) -> Vec<Frame> {
     let crosses: Vec<[f64; 3]> = tris.iter().map(|t| cross(t, pos)).collect();
     (0..edges.len())
@@ -121,14 +131,36 @@ pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: R
         .collect()
 }
 
+/// One level's new vertices, appended to `pos` (the level's `n`
+/// positions) in edge order: each edge's [`frame`] moved by its scalar
+/// `qs[e]` of `step` ([`place`]), made and placed in one pass so no
+/// frame is stored (48 bytes an edge otherwise written and read back).
+/// The same bits as [`frame`] then [`place`]. `None` when a coordinate
+/// is not finite; `pos` then holds `n` positions and some of the level's.
+pub(crate) fn place_level(
+    edges: &Edges,
+    tris: &[[u32; 3]],
+    pos: &mut Vec<[f32; 3]>,
+    rule: Rule,
+    step: f32,
+    qs: &[i32],
+) -> Option<()> {
+    debug_assert_eq!(qs.len(), edges.len());
+    let crosses: Vec<[f64; 3]> = tris.iter().map(|t| cross(t, pos)).collect();
+    let n = pos.len();
+    pos.resize(n + qs.len(), [0.0; 3]);
+    let (old, new) = pos.split_at_mut(n);
+    for (e, (slot, &q)) in new.iter_mut().zip(qs).enumerate() {
+        *slot = place(&frame(e, edges, tris, old, &crosses, rule), q, step)?;
+    }
+    Some(())
+}
+
 /// The butterfly's wings: across the two other edges of each triangle of
 /// the edge, the vertex opposite; `None` when one is missing.
 fn wings(edges: &Edges, tris: &[[u32; 3]], first: u32, second: u32) -> Option<[u32; 4]> {
     let next = |c: u32| c - c % 3 + (c % 3 + 1) % 3;
-    let wing = |c: u32| {
-        let across = edges.across(edges.of_corner(c as usize), c, tris)?;
-        Some(corner_vertices(across, tris)[2])
-    };
+    let wing = |c: u32| Some(corner_vertices(edges.mate(c)?, tris)[2]);
     let (f1, f2) = (next(first), next(second));
     Some([wing(f1)?, wing(next(f1))?, wing(f2)?, wing(next(f2))?])
 }
@@ -166,6 +198,7 @@ fn normal(corners: &[u32], crosses: &[[f64; 3]]) -> [f64; 3] {
 /// The new vertex at `q` steps of `step` along its frame's normal,
 /// rounded to `f32` (`None` when a coordinate is not finite: a hostile
 /// step or scalar).
+#[inline]
 pub(crate) fn place(f: &Frame, q: i32, step: f32) -> Option<[f32; 3]> {
     let s = f64::from(q) * f64::from(step);
     let p: [f32; 3] = core::array::from_fn(|k| (f.point[k] + f.normal[k] * s) as f32);

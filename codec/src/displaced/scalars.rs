@@ -21,6 +21,11 @@
 //!
 //! Every level's chunk is its own range-coder stream with fresh models,
 //! so a file cut after a level's chunk still decodes.
+//!
+//! Speed: a level's contexts are made in one pass over its edges (each
+//! edge's first corner read directly), into a flat byte array, before its
+//! scalars are decoded into a flat `i32` array that placement then reads
+//! in edge order.
 
 use crate::entropy::{AdaptiveModel, Decoder};
 use crate::prelude::*;
@@ -68,7 +73,7 @@ pub(crate) fn contexts(
 ) -> Vec<u8> {
     (0..edges.len())
         .map(|e| {
-            let [a, b, _] = super::subdivide::corner_vertices(edges.corners(e)[0], triangles);
+            let [a, b, _] = super::subdivide::corner_vertices(edges.first_corner(e), triangles);
             let (mut parents, mut len) = (0u8, 0u32);
             for v in [a, b] {
                 if let Some(&q) = (v as usize).checked_sub(first).and_then(|i| below.get(i)) {

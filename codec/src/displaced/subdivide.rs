@@ -26,12 +26,25 @@
 //!   directions is interior and manifold, anything else is neither;
 //! - nothing depends on the input beyond its triangle list: no hashing,
 //!   no float.
+//!
+//! Why it is fast (the decoder builds one [`Edges`] per level, the largest
+//! single part of a level's decode): the sort by `(lo, hi, corner)` is a
+//! two-pass radix sort (stable counting passes by `hi`, then by `lo`), so
+//! no comparison and no branch on the data, whatever a vertex's valence;
+//! each entry is one `u64` that also carries its corner's direction, so
+//! the interior test of an edge's two corners reads no triangle; and the
+//! same pass records each corner's interior mate (the corner table's
+//! `opposite`), which the stencils read as one word. [`split`] walks the
+//! triangles and the corners' edges side by side in flat arrays.
 
 use crate::prelude::*;
 
-/// Past this many corners, a vertex's bucket is sorted by a general sort
-/// rather than by insertion.
-const SMALL_BUCKET: usize = 32;
+/// The bit of a radix entry's corner word that marks a corner running
+/// from its edge's `hi` to its `lo`.
+const BACKWARD: u32 = 1 << 31;
+
+/// No corner: the `mate` of a corner whose edge is not interior.
+pub(crate) const NONE: u32 = u32::MAX;
 
 /// The edges of a triangle list.
 pub(crate) struct Edges {
@@ -41,17 +54,25 @@ pub(crate) struct Edges {
     start: Vec<u32>,
     /// The edge of each corner.
     of_corner: Vec<u32>,
+    /// For each corner, the other corner of its edge when the edge is
+    /// interior (two corners of opposite directions), else [`NONE`]: the
+    /// corner table's `opposite`, made once so that [`Edges::mate`]
+    /// and the stencils read one word.
+    mate: Vec<u32>,
 }
 
 impl Edges {
     /// The edges of `triangles` (each corner a vertex below 2^32 − 1).
     ///
-    /// The order of the sort by `(lo, hi, corner)`, made in linear time:
-    /// corners are counted into one bucket per `lo` (in corner order),
-    /// and each bucket, a vertex's few edges, is ordered by `(hi,
-    /// corner)` (insertion for the usual handful, a general sort past
-    /// [`SMALL_BUCKET`], so a hostile fan stays `n log n`). Memory: about
-    /// 24 bytes per corner and 4 per vertex.
+    /// The order of the sort by `(lo, hi, corner)`, made in linear time
+    /// with no comparison: a least-significant-first radix sort of two
+    /// counting passes, the corners (in corner order) scattered by `hi`,
+    /// then, read in that order, by `lo`; both are stable, so each `lo`
+    /// bucket ends ordered by `(hi, corner)` whatever its size (a hostile
+    /// fan costs no more than a strip). Each entry is one `u64`, `lo` or
+    /// `hi` in the high word and the corner in the low one, and each
+    /// bucket's end is its count's running sum after the scatter (no
+    /// second array). Memory: about 32 bytes per corner and 8 per vertex.
     pub fn new(triangles: &[[u32; 3]]) -> Edges {
         let corners = 3 * triangles.len();
         let vertices = triangles
@@ -59,60 +80,103 @@ impl Edges {
             .flatten()
             .max()
             .map_or(0, |&v| v as usize + 1);
-        let ends = |c: usize| {
-            let t = triangles[c / 3];
-            let (a, b) = (t[c % 3], t[(c + 1) % 3]);
-            (a.min(b), a.max(b))
-        };
-        // Bucket starts by lo, then (hi, corner) scattered in corner order.
-        let mut at = vec![0u32; vertices + 1];
-        for c in 0..corners {
-            at[ends(c).0 as usize + 1] += 1;
+        // by_lo[v + 1] and by_hi[v + 1] count the corners whose lo (hi)
+        // is v; after the running sums, by_*[v] is bucket v's start, and
+        // after its scatter (which advances it) bucket v's end.
+        let mut by_lo = vec![0u32; vertices + 1];
+        let mut by_hi = vec![0u32; vertices + 1];
+        for t in triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[if k == 2 { 0 } else { k + 1 }]);
+                by_lo[a.min(b) as usize + 1] += 1;
+                by_hi[a.max(b) as usize + 1] += 1;
+            }
         }
-        for v in 0..vertices {
-            at[v + 1] += at[v];
+        for at in [&mut by_lo, &mut by_hi] {
+            let mut sum = 0;
+            for a in at.iter_mut() {
+                sum += *a;
+                *a = sum;
+            }
         }
-        let mut keyed = vec![(0u32, 0u32); corners];
-        let mut next = at.clone();
-        for c in 0..corners {
-            let (lo, hi) = ends(c);
-            let slot = &mut next[lo as usize];
-            keyed[*slot as usize] = (hi, c as u32);
-            *slot += 1;
+        // A corner that runs from hi to lo carries BACKWARD in its
+        // entry's low word (when corner numbers leave bit 31 free, as they
+        // do below 715 M triangles), so that the interior test of an
+        // edge's two corners reads no triangle.
+        let backward = if corners <= 1 << 31 { BACKWARD } else { 0 };
+        // Pass 1, by hi: lo << 32 | corner, in corner order per bucket.
+        let mut hi_sorted = vec![0u64; corners];
+        for (f, t) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[if k == 2 { 0 } else { k + 1 }]);
+                let slot = &mut by_hi[a.max(b) as usize];
+                let flag = if a > b { backward } else { 0 };
+                hi_sorted[*slot as usize] =
+                    u64::from(a.min(b)) << 32 | u64::from(flag) | (3 * f + k) as u64;
+                *slot += 1;
+            }
         }
-        for v in 0..vertices {
-            let bucket = &mut keyed[at[v] as usize..at[v + 1] as usize];
-            if bucket.len() > SMALL_BUCKET {
-                crate::sort::sort_unstable(bucket);
-            } else {
-                for i in 1..bucket.len() {
-                    let mut j = i;
-                    while j > 0 && bucket[j - 1] > bucket[j] {
-                        bucket.swap(j - 1, j);
-                        j -= 1;
+        // Pass 2, by lo, reading pass 1's buckets in hi order:
+        // hi << 32 | corner, ordered by (lo, hi, corner).
+        let mut keyed = vec![0u64; corners];
+        let mut first = 0;
+        for (hi, &end) in by_hi[..vertices].iter().enumerate() {
+            for &entry in &hi_sorted[first..end as usize] {
+                let slot = &mut by_lo[(entry >> 32) as usize];
+                keyed[*slot as usize] = (hi as u64) << 32 | (entry & 0xffff_ffff);
+                *slot += 1;
+            }
+            first = end as usize;
+        }
+        drop(hi_sorted);
+        let at = by_lo;
+        // Groups of equal hi within a bucket are the edges, in order.
+        let mut start = Vec::with_capacity(corners / 2 + 2);
+        let mut of_corner = vec![0u32; corners];
+        let mut mate = vec![NONE; corners];
+        let mut list = vec![0u32; corners];
+        let mut first = 0;
+        for (lo, &end) in at[..vertices].iter().enumerate() {
+            let end = end as usize;
+            let mut i = first;
+            while i < end {
+                let hi = keyed[i] >> 32;
+                let mut j = i + 1;
+                while j < end && keyed[j] >> 32 == hi {
+                    j += 1;
+                }
+                let e = start.len() as u32;
+                start.push(i as u32);
+                for (slot, &key) in list[i..j].iter_mut().zip(&keyed[i..j]) {
+                    let c = key as u32 & !backward;
+                    *slot = c;
+                    of_corner[c as usize] = e;
+                }
+                if j == i + 2 {
+                    let (x, y) = (keyed[i] as u32, keyed[i + 1] as u32);
+                    let opposite = if backward != 0 {
+                        // Opposite directions, or a corner from a vertex
+                        // to itself (which `interior` also accepts).
+                        (x ^ y) & BACKWARD != 0 || lo as u64 == hi
+                    } else {
+                        interior(x, y, triangles)
+                    };
+                    let (x, y) = (x & !backward, y & !backward);
+                    if opposite {
+                        mate[x as usize] = y;
+                        mate[y as usize] = x;
                     }
                 }
+                i = j;
             }
-        }
-        let mut start = Vec::new();
-        let mut of_corner = vec![0u32; corners];
-        let mut list = Vec::with_capacity(corners);
-        for v in 0..vertices {
-            let (first, end) = (at[v] as usize, at[v + 1] as usize);
-            for i in first..end {
-                let (hi, c) = keyed[i];
-                if i == first || keyed[i - 1].0 != hi {
-                    start.push(list.len() as u32);
-                }
-                of_corner[c as usize] = start.len() as u32 - 1;
-                list.push(c);
-            }
+            first = end;
         }
         start.push(corners as u32);
         Edges {
             corners: list,
             start,
             of_corner,
+            mate,
         }
     }
 
@@ -126,18 +190,29 @@ impl Edges {
         &self.corners[self.start[e] as usize..self.start[e + 1] as usize]
     }
 
+    /// The first corner of edge `e` (every edge has one).
+    pub fn first_corner(&self, e: usize) -> u32 {
+        self.corners[self.start[e] as usize]
+    }
+
     /// The edge of corner `c`.
+    #[cfg(test)]
     pub fn of_corner(&self, c: usize) -> usize {
         self.of_corner[c] as usize
     }
 
-    /// The corner across edge `e` from corner `c` when `e` is interior
+    /// The edge of each corner, by corner.
+    pub fn of_corners(&self) -> &[u32] {
+        &self.of_corner
+    }
+
+    /// The other corner of corner `c`'s edge when that edge is interior
     /// and manifold (two corners of opposite directions); `None`
     /// otherwise.
-    pub fn across(&self, e: usize, c: u32, triangles: &[[u32; 3]]) -> Option<u32> {
-        match *self.corners(e) {
-            [x, y] if interior(x, y, triangles) => Some(if x == c { y } else { x }),
-            _ => None,
+    pub fn mate(&self, c: u32) -> Option<u32> {
+        match self.mate[c as usize] {
+            NONE => None,
+            m => Some(m),
         }
     }
 }
@@ -162,9 +237,12 @@ pub(crate) fn corner_vertices(c: u32, triangles: &[[u32; 3]]) -> [u32; 3] {
 /// (see the module's figure); `vertex_count` is the coarse level's.
 pub(crate) fn split(triangles: &[[u32; 3]], edges: &Edges, vertex_count: u32) -> Vec<[u32; 3]> {
     let mut out = Vec::with_capacity(4 * triangles.len());
-    for (f, &[a, b, c]) in triangles.iter().enumerate() {
-        let m = |k: usize| vertex_count + edges.of_corner(3 * f + k) as u32;
-        let (m0, m1, m2) = (m(0), m(1), m(2));
+    for (&[a, b, c], m) in triangles.iter().zip(edges.of_corners().chunks_exact(3)) {
+        let (m0, m1, m2) = (
+            vertex_count + m[0],
+            vertex_count + m[1],
+            vertex_count + m[2],
+        );
         out.extend_from_slice(&[[a, m0, m2], [m0, b, m1], [m2, m1, c], [m0, m1, m2]]);
     }
     out
@@ -182,8 +260,8 @@ mod tests {
         assert_eq!(e.len(), 5);
         // Keys in order: 01, 02, 03, 12, 23.
         assert_eq!(e.corners(1), &[2, 3]);
-        assert_eq!(e.across(1, 2, &tris), Some(3));
-        assert_eq!(e.across(0, 0, &tris), None, "boundary");
+        assert_eq!(e.mate(2), Some(3));
+        assert_eq!(e.mate(0), None, "boundary");
         let t = split(&tris, &e, 4);
         assert_eq!(t.len(), 8);
         assert_eq!(t[3], [4, 7, 5], "middle of the first face");
@@ -192,8 +270,7 @@ mod tests {
 
     #[test]
     fn the_order_is_the_sort_by_key_and_corner() {
-        // A fan of 40 triangles around vertex 0 (one bucket past
-        // SMALL_BUCKET) plus a strip, in a scrambled vertex numbering.
+        // A fan of 40 triangles around vertex 0 (one large bucket) plus a strip, in a scrambled vertex numbering.
         let mut tris: Vec<[u32; 3]> = (0..40)
             .map(|k| [0, 1 + (k * 7) % 41, 1 + (k * 7 + 7) % 41])
             .collect();
@@ -226,6 +303,6 @@ mod tests {
         let tris = [[0, 1, 2], [0, 1, 3]];
         let e = Edges::new(&tris);
         assert_eq!(e.corners(0), &[0, 3]);
-        assert_eq!(e.across(0, 0, &tris), None);
+        assert_eq!(e.mate(0), None);
     }
 }
