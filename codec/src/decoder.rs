@@ -12,6 +12,7 @@
 
 use crate::container::{parse_container, Container, Mode};
 use crate::options::DecodeOptions;
+use crate::prelude::*;
 use crate::{Error, Limits, LosslessStats, SwingStats, TriMesh};
 
 /// What the inspection of one mode reads without decoding geometry.

@@ -170,7 +170,9 @@ fn parse<'a>(file: &Container<'a>, limits: &Limits) -> Result<Parsed<'a>, Error>
 
 /// One level up: the positions of the new vertices (appended) and the
 /// triangles of the split. `frames` and `qs` hold one frame and one
-/// scalar per edge.
+/// scalar per edge. The encoder's closed loop (`write`); the decoder
+/// places a level in one pass (`predict::place_level`), to the same bits.
+#[cfg(feature = "encoder")]
 pub(crate) fn refine(
     positions: &mut Vec<[f32; 3]>,
     triangles: &[[u32; 3]],
