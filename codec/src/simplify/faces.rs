@@ -89,6 +89,20 @@ pub fn fit_faces(
     let full = s.faces();
     let budget_f = budget as f64;
     let model_guess = model_faces(qp, 0.98 * budget_f) * s.first_probe_factor();
+    // The first probe is the previous qp's face count (the lean search
+    // moves it as the prediction says; its replay is a linear pass; the
+    // answer's mesh is refitted, the probes are not); without one, the
+    // loop's first guess. (None on a mesh too small to simplify, which
+    // returns below before probing.)
+    let from_prev = prev
+        .filter(|p| p.faces < full && full > MIN_FACES)
+        .map(|p| {
+            if lean {
+                predicted_faces(p, qp, budget_f, full)
+            } else {
+                p.faces
+            }
+        });
     // The lean search's first probe, made beside the whole mesh's file.
     let mut ahead: Option<(u32, TriMesh)> = None;
     let full_size = match whole {
@@ -102,10 +116,8 @@ pub fn fit_faces(
             // probes either way; on two cores the whole file's time (0.4 s
             // on a million triangles) leaves the wall clock.
             let full_bytes = if lean && budget.saturating_mul(8) < full as u64 && full > MIN_FACES {
-                let faces = match prev.filter(|p| p.faces < full) {
-                    Some(p) => predicted_faces(p, qp, budget_f, full),
-                    None => (model_guess.round() as u32).clamp(MIN_FACES, full - 1),
-                };
+                let faces = from_prev
+                    .unwrap_or_else(|| (model_guess.round() as u32).clamp(MIN_FACES, full - 1));
                 // The long task first: the file is the one left to steal.
                 let (mesh, bytes) = rayon::join(|| s.simplify(faces), || s.whole_bytes(qp));
                 ahead = Some((faces, mesh));
@@ -147,18 +159,7 @@ pub fn fit_faces(
     } else {
         aim(hi, slope_down, 0.98 * budget_f)
     };
-    // The first probe is the previous qp's face count (its replay is a
-    // linear pass; the answer's mesh is refitted, the probes are not).
-    let mut made = ahead.or_else(|| {
-        prev.filter(|p| p.faces < full).map(|p| {
-            let faces = if lean {
-                predicted_faces(p, qp, budget_f, full)
-            } else {
-                p.faces
-            };
-            (faces, s.simplify(faces))
-        })
-    });
+    let mut made = ahead.or_else(|| from_prev.map(|faces| (faces, s.simplify(faces))));
     for _ in 0..MAX_PROBES {
         let (faces, mesh) = match made.take() {
             Some(made) => made,
