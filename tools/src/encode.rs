@@ -189,7 +189,21 @@ impl Args {
     pub fn check_mode(&self) -> Result<(), String> {
         let bounded = self.max_error.is_some() || self.max_error_units.is_some();
         let sized = self.size.is_some() || self.bpv.is_some() || bounded;
-        let (mode, options) = match self.mode {
+        // The retiler's own options, which the other methods ignore.
+        let retiler_only = [
+            (self.edge_length.is_some(), "--edge-length"),
+            (self.angle_bits.is_some(), "--angle-bits"),
+            (self.on_surface, "--on-surface"),
+            (self.adaptive, "--adaptive"),
+            (self.plain_clers, "--plain-clers"),
+            (self.inside_start, "--inside-start"),
+            (self.no_hint, "--no-hint"),
+            (self.no_creases, "--no-creases"),
+            (self.max_work.is_some(), "--max-work"),
+            (self.max_memory.is_some(), "--max-memory"),
+            (self.time_limit.is_some(), "--time-limit"),
+        ];
+        let (mode, options): (&str, Vec<(bool, &str)>) = match self.mode {
             ModeArg::Swing => (
                 "swing",
                 vec![
@@ -213,18 +227,10 @@ impl Args {
                     (self.effort != EffortArg::Default, "--effort"),
                     (self.max_error.is_some(), "--max-error"),
                     (self.max_error_units.is_some(), "--max-error-units"),
-                    (self.edge_length.is_some(), "--edge-length"),
-                    (self.angle_bits.is_some(), "--angle-bits"),
-                    (self.on_surface, "--on-surface"),
-                    (self.adaptive, "--adaptive"),
-                    (self.plain_clers, "--plain-clers"),
-                    (self.inside_start, "--inside-start"),
-                    (self.no_hint, "--no-hint"),
-                    (self.no_creases, "--no-creases"),
-                    (self.max_work.is_some(), "--max-work"),
-                    (self.max_memory.is_some(), "--max-memory"),
-                    (self.time_limit.is_some(), "--time-limit"),
-                ],
+                ]
+                .into_iter()
+                .chain(retiler_only)
+                .collect(),
             ),
             ModeArg::Lossless => (
                 "lossless",
@@ -238,18 +244,10 @@ impl Args {
                         self.max_size.is_some() && !sized,
                         "--max-size without --size or --bpv",
                     ),
-                    (self.edge_length.is_some(), "--edge-length"),
-                    (self.angle_bits.is_some(), "--angle-bits"),
-                    (self.on_surface, "--on-surface"),
-                    (self.adaptive, "--adaptive"),
-                    (self.plain_clers, "--plain-clers"),
-                    (self.inside_start, "--inside-start"),
-                    (self.no_hint, "--no-hint"),
-                    (self.no_creases, "--no-creases"),
-                    (self.max_work.is_some(), "--max-work"),
-                    (self.max_memory.is_some(), "--max-memory"),
-                    (self.time_limit.is_some(), "--time-limit"),
-                ],
+                ]
+                .into_iter()
+                .chain(retiler_only)
+                .collect(),
             ),
         };
         let wrong: Vec<&str> = options

@@ -125,7 +125,9 @@ pub use header::{
     FORMAT_MINOR, KNOWN_FLAGS, MAGIC,
 };
 pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
-pub(crate) use read::{check_magic, declared_len, declared_sections, table_end, TableCheck};
+pub(crate) use read::{
+    check_magic, declared_len, declared_sections, in_section, table_end, TableCheck,
+};
 pub use read::{parse_container, Container, Section, Sections};
 pub use tag::Tag;
 pub(crate) use tag::KNOWN_CRITICAL;

@@ -457,3 +457,21 @@ fn valid_prefix_len(bytes: &[u8]) -> Option<usize> {
     let crc_at = end - CRC_LEN;
     (LE::read_u32(&bytes[crc_at..end]) == crc32(&bytes[..crc_at])).then_some(end)
 }
+
+/// Locates an error found inside a section whose payload starts at file
+/// offset `offset` (a file nested in `BASE` or `REST` counts from its
+/// own start): an offset within the payload moves by `offset`, an
+/// unlocated error is put at the payload's start.
+pub(crate) fn in_section(offset: usize) -> impl Fn(Error) -> Error {
+    move |e| match e {
+        Error::Format(mut f) => {
+            let inner = match f.at {
+                Some(crate::Location::Byte(b)) => b,
+                _ => 0,
+            };
+            f.at = Some(crate::Location::Byte(inner.saturating_add(offset as u64)));
+            Error::Format(f)
+        }
+        other => other,
+    }
+}

@@ -40,10 +40,12 @@ mod tests;
 #[cfg(feature = "encoder")]
 pub(crate) mod write;
 
-use crate::container::{check_count_fits, parse_container, Container, Header, Mode, Tag};
+use crate::container::{
+    check_count_fits, in_section, parse_container, Container, Header, Mode, Tag,
+};
 use crate::prelude::*;
 use crate::varint::Reader;
-use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
+use crate::{Error, FormatError, Limits, Malformed, TriMesh};
 use predict::Rule;
 use subdivide::Edges;
 
@@ -90,21 +92,6 @@ impl Head {
         }
         r.end()?;
         Ok(Head { rule, steps })
-    }
-}
-
-/// Moves a nested file's error locations to the outer file's offsets.
-fn in_section(offset: usize) -> impl Fn(Error) -> Error {
-    move |e| match e {
-        Error::Format(mut f) => {
-            let inner = match f.at {
-                Some(Location::Byte(b)) => b,
-                _ => 0,
-            };
-            f.at = Some(Location::Byte(inner.saturating_add(offset as u64)));
-            Error::Format(f)
-        }
-        other => other,
     }
 }
 

@@ -11,16 +11,7 @@ use crate::displaced::write::Settings;
 use crate::options::{EncodeOptions, SwingTarget};
 use crate::TriMesh;
 
-fn corpus(name: &str) -> Option<TriMesh> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/corpus")
-        .join(name);
-    if !path.is_file() {
-        crate::test_skip::skip("../shared/corpus not found");
-        return None;
-    }
-    Some(crate::io::read_mesh(&path).unwrap())
-}
+use crate::io::shared_corpus_mesh as corpus;
 
 /// Size and encoder-measured L2 (1e-4 of the diagonal) of `method` on
 /// `mesh` at `bpv`, with the base faces and levels it chose.

@@ -394,16 +394,7 @@ fn traverse_bfs(table: &CornerTable, vertices: usize, multi: bool) -> Traversal 
     t
 }
 
-fn corpus(name: &str) -> Option<crate::TriMesh> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/corpus")
-        .join(name);
-    if !path.exists() {
-        crate::test_skip::skip("../shared/corpus not found");
-        return None;
-    }
-    Some(crate::io::read_mesh(&path).unwrap())
-}
+use crate::io::shared_corpus_mesh as corpus;
 
 /// Bits per vertex of each traversal on a corpus mesh, after checking
 /// the round trip.

@@ -310,5 +310,19 @@ fn writable(format: MeshFormat) -> Result<(), Error> {
     Err(Error::Parameter(ParameterError::ReadOnly { format }))
 }
 
+/// A mesh of `../shared/corpus` for the unit tests; `None`, after a
+/// reported skip, when the corpus is not beside the repository.
+#[cfg(test)]
+pub(crate) fn shared_corpus_mesh(name: &str) -> Option<TriMesh> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/corpus")
+        .join(name);
+    if !path.is_file() {
+        crate::test_skip::skip("../shared/corpus not found");
+        return None;
+    }
+    Some(read_mesh(&path).unwrap())
+}
+
 #[cfg(test)]
 mod tests;

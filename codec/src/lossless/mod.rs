@@ -814,16 +814,7 @@ mod tests {
     use super::*;
     use crate::CleanOptions;
 
-    fn corpus(name: &str) -> Option<TriMesh> {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../shared/corpus")
-            .join(name);
-        if !path.is_file() {
-            crate::test_skip::skip("../shared/corpus not found");
-            return None;
-        }
-        Some(crate::io::read_mesh(&path).unwrap())
-    }
+    use crate::io::shared_corpus_mesh as corpus;
 
     /// Triangles as rotations starting at their smallest vertex, sorted:
     /// equal lists mean the same triangles with the same orientations.

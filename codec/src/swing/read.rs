@@ -12,10 +12,12 @@ use crate::prelude::*;
 use super::chain::{self, Loops};
 
 use super::{angle, density, hole, residual, stretch, SwingStats, MAX_ANGLE_BITS, MIN_ANGLE_BITS};
-use crate::container::{check_count_fits, parse_container, Container, Mode, Section, Tag};
+use crate::container::{
+    check_count_fits, in_section, parse_container, Container, Mode, Section, Tag,
+};
 use crate::edgebreaker::{self, Connectivity, Symbol};
 use crate::varint::Reader;
-use crate::{CornerTable, Error, FormatError, Limits, Location, Malformed, TriMesh};
+use crate::{CornerTable, Error, FormatError, Limits, Malformed, TriMesh};
 
 /// Bytes of `HEAD` before the first triangles: `K` and `q_pred`.
 const HEAD_FIXED_LEN: usize = 3;
@@ -246,24 +248,6 @@ fn points<'a>(list: &'a Loops, reader: chain::Reader<'a>, head: &Head) -> chain:
         head.bits,
         head.predicted,
     )
-}
-
-/// Locates an error found inside a section whose payload starts at file
-/// offset `offset`: an offset within the payload (the file nested in
-/// `REST` counts from its own start) moves by `offset`, an unlocated
-/// error is put at the payload's start.
-fn in_section(offset: usize) -> impl Fn(Error) -> Error {
-    move |e| match e {
-        Error::Format(mut f) => {
-            let inner = match f.at {
-                Some(Location::Byte(b)) => b,
-                _ => 0,
-            };
-            f.at = Some(Location::Byte(inner.saturating_add(offset as u64)));
-            Error::Format(f)
-        }
-        other => other,
-    }
 }
 
 /// Parses `REST`: a complete lossless (mode 0) file, checked down to its
