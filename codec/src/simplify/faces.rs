@@ -86,6 +86,26 @@ pub fn fit_faces(
     whole: Whole,
     lean: bool,
 ) -> Result<Option<Fit>, Error> {
+    // The answer refitted to the input: once per qp, not per probe (the
+    // lean search too: ranking fits as simplified chose worse qps, 4%
+    // more L2 over spot, cheburashka, homer and teapot).
+    match search_faces(s, qp, budget, prev, whole, lean)? {
+        Some(fit) => Ok(Some(refitted(s, fit, budget)?)),
+        None => Ok(None),
+    }
+}
+
+/// [`fit_faces`] before its refit: the same face count, slope and qp (a
+/// refit moves vertices, never the count), so a later search may start
+/// from it while the refit runs beside it (`climb::quick_fit`).
+pub(super) fn search_faces(
+    s: &Simplifier<'_>,
+    qp: u8,
+    budget: u64,
+    prev: Option<&Fit>,
+    whole: Whole,
+    lean: bool,
+) -> Result<Option<Fit>, Error> {
     let full = s.faces();
     let budget_f = budget as f64;
     let model_guess = model_faces(qp, 0.98 * budget_f) * s.first_probe_factor();
@@ -248,10 +268,7 @@ pub fn fit_faces(
             slope,
         }
     };
-    // The answer refitted to the input: once per qp, not per probe (the
-    // lean search too: ranking fits as simplified chose worse qps, 4%
-    // more L2 over spot, cheburashka, homer and teapot).
-    Ok(Some(refitted(s, fit, budget)?))
+    Ok(Some(fit))
 }
 
 /// Bits per face of a simplified mesh's file at `qp`, as a first guess
@@ -292,7 +309,7 @@ fn predicted_faces(p: &Fit, qp: u8, budget: f64, full: u32) -> u32 {
 /// `fit` refitted to the input ([`Simplifier::refit`]) when its file
 /// still fits `budget` (moving the vertices changes the residuals a
 /// little), as it is otherwise; the whole mesh is never moved.
-fn refitted(s: &Simplifier<'_>, fit: Fit, budget: u64) -> Result<Fit, Error> {
+pub(super) fn refitted(s: &Simplifier<'_>, fit: Fit, budget: u64) -> Result<Fit, Error> {
     if fit.faces >= s.faces() {
         return Ok(fit);
     }
