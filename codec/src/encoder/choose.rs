@@ -48,6 +48,8 @@ pub(crate) struct Chosen {
     pub bytes: Vec<u8>,
     pub stats: MethodStats,
     pub candidates: Vec<Candidate>,
+    /// The winner's seeds for its origins (`Made::seeds`).
+    pub seeds: Option<Vec<u32>>,
 }
 
 /// A candidate's state on its way through the chooser.
@@ -230,6 +232,7 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
         bytes: made.bytes,
         stats: made.stats,
         candidates,
+        seeds: made.seeds,
     })
 }
 

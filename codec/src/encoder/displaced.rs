@@ -158,6 +158,7 @@ impl CodingMethod for Displaced {
             // The whole input as the base: short of the request, there
             // is nothing more to code.
             whole: w.base_faces >= s.faces() as usize,
+            seeds: None,
         }))
     }
 }

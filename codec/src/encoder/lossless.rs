@@ -48,6 +48,7 @@ impl CodingMethod for Lossless {
             stats: MethodStats::Lossless(stats),
             l2_relative: None,
             whole: true,
+            seeds: None,
         }))
     }
 }

@@ -187,6 +187,12 @@ pub(crate) struct Made {
     /// It holds the whole cleaned mesh: short of the request, there is
     /// nothing more to code.
     pub whole: bool,
+    /// For each vertex of the file decoded plainly, the vertex of the
+    /// job's reference mesh ([`Simplifier::reference`]) it stands for
+    /// (`u32::MAX`: not known), where the method knows it and the caller
+    /// asked for origins (`EncodeOptions::origins`): where
+    /// `provenance` starts. `None`: the nearest point serves.
+    pub seeds: Option<Vec<u32>>,
 }
 
 /// A coding method. Deterministic: the same job and ask give the same

@@ -107,6 +107,7 @@ impl CodingMethod for Mixed {
                 stats: MethodStats::Mixed(report),
                 l2_relative: None,
                 whole: false,
+                seeds: None,
             }),
         )
     }

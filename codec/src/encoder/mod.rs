@@ -52,11 +52,12 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
         options,
         services: &services,
     };
-    let forced = |m: &dyn CodingMethod, ask: Ask| -> Result<Encoded, Error> {
+    // The file, and the seeds of its origins when its method gave them.
+    let forced = |m: &dyn CodingMethod, ask: Ask| -> Result<(Encoded, Seeds), Error> {
         let made = m
             .encode(&job, ask)?
             .expect("a method run alone always has something to add");
-        Ok(Encoded {
+        let encoded = Encoded {
             bytes: made.bytes,
             stats: EncodeStats {
                 clean: cleaned.report.clone(),
@@ -65,9 +66,10 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 check: None,
                 origins: Vec::new(),
             },
-        })
+        };
+        Ok((encoded, made.seeds))
     };
-    let mut encoded = match options.mode {
+    let (mut encoded, seeds) = match options.mode {
         EncodeMode::Lossless { .. } => {
             let m = lossless.expect("checked above");
             // Its file needs no size: any ask will do.
@@ -75,7 +77,7 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 target: SwingTarget::Bytes(1),
                 max_bytes: None,
             };
-            return forced(&m, ask);
+            return forced(&m, ask).map(|(encoded, _)| encoded);
         }
         EncodeMode::Swing {
             target,
@@ -123,14 +125,17 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
     // `swm distance` would measure it (`check`).
     encoded.stats.check = Some(check::check(&job, &encoded.bytes)?);
     if options.origins {
-        encoded.stats.origins = provenance::of_file(&job, &encoded.bytes)?;
+        encoded.stats.origins = provenance::of_file(&job, &encoded.bytes, seeds.as_deref())?;
     }
     Ok(encoded)
 }
 
-/// The chooser's file as the encoder's result.
-fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<Encoded, Error> {
-    Ok(Encoded {
+/// The seeds of a file's origins (`method::Made::seeds`).
+type Seeds = Option<Vec<u32>>;
+
+/// The chooser's file as the encoder's result, and its seeds.
+fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<(Encoded, Seeds), Error> {
+    let encoded = Encoded {
         bytes: chosen.bytes,
         stats: EncodeStats {
             clean: cleaned.report.clone(),
@@ -139,5 +144,6 @@ fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<Encoded, E
             check: None,
             origins: Vec::new(),
         },
-    })
+    };
+    Ok((encoded, chosen.seeds))
 }

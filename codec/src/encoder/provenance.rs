@@ -5,30 +5,36 @@
 //! coordinates, normals and colours can be resampled from the input
 //! without asking the method that made the file.
 //!
-//! How: the nearest point of the job's reference surface (the cleaned
-//! input, which the chooser and the check already hold in a tree) to the
-//! decoded vertex, carried back to the caller's face by its corners'
-//! positions. Cleaning never moves a vertex (it merges coincident ones,
-//! drops degenerate and repeated faces, reorients and splits), so a
-//! cleaned face has the same three positions as the face of the input it
-//! came from: a sorted table of position triples finds it. A reference
-//! face with no such twin (a wide fan the simplifier rebuilt,
-//! `Simplifier::reference`) is replaced by the input face nearest the
-//! point among those sharing a corner position with it.
-//!
-//! The same rule serves every method: the simplified method's vertices
-//! are input vertices moved by their collapses and the refit, the
-//! retiler's lie on the surface up to the tip offset and the angle's
-//! quantization, so the nearest point is where each stands. What it can
-//! miss: a sheet thinner than the file's error, whose far side may be the
-//! nearer (a per-method origin, through the collapses or the face a tip
-//! was placed in, would not; none is needed by the shared corpus yet).
+//! How, in two steps:
+//! 1. A point of the job's reference surface (the cleaned input, which
+//!    the chooser and the check already hold in a tree). Where the method
+//!    that made the file says which reference vertex a decoded vertex
+//!    stands for (its *seed*: the simplified method's survivor of the
+//!    collapses that made it, `Simplifier::sources`), the point is found
+//!    by descent over the surface from the faces around the seed: the
+//!    nearest point of the face around any corner of the best face so
+//!    far, while it gets nearer. The answer is the nearest point of the
+//!    sheet the vertex was made from, even where another sheet is nearer
+//!    (a part thinner than the file's error: a leaf, a shell, a coarse
+//!    grid's cell across both sides). Without a seed (files of the
+//!    retiler, of displaced subdivision, of several pieces, of the whole
+//!    mesh, whose vertices are the input's own up to the grid), the
+//!    nearest point of the whole surface.
+//! 2. The caller's face of that point, through the positions of its
+//!    corners. Cleaning never moves a vertex (it merges coincident ones,
+//!    drops degenerate and repeated faces, reorients and splits), so a
+//!    cleaned face has the same three positions as the face of the input
+//!    it came from: a sorted table of position triples finds it. A
+//!    reference face with no such twin (a wide fan the simplifier
+//!    rebuilt, `Simplifier::reference`) is replaced by the input face
+//!    nearest the point among those sharing a corner position with it.
 //!
 //! Invariants: one origin per decoded vertex, in the decoder's vertex
 //! order; `face` indexes the caller's triangles; the barycentric
 //! coordinates are non-negative, sum to one, and follow the caller's
-//! corner order of that face. Deterministic (queries in vertex order, one
-//! thread).
+//! corner order of that face. The descent strictly shortens the distance
+//! at each step and takes at most [`MAX_STEPS`]. Deterministic (queries in
+//! vertex order, one thread; ties go to the lower face number).
 
 use super::stats::Origin;
 use crate::mesh::clean::position_key as key;
@@ -36,10 +42,19 @@ use crate::metrics::{NearestScratch, Surface};
 use crate::TriMesh;
 use alloc::vec::Vec;
 
-/// The origin of every vertex of the file `bytes` decoded plainly.
+/// Steps of the descent from a seed at most: each visits the faces
+/// around three vertices. A simplified vertex stands a few rings from its
+/// survivor's place even at the coarsest rates; the bound only keeps a
+/// hostile case linear.
+pub(crate) const MAX_STEPS: usize = 256;
+
+/// The origin of every vertex of the file `bytes` decoded plainly;
+/// `seeds`, when the method gave them, the reference vertex each decoded
+/// vertex stands for (`u32::MAX`: none).
 pub(crate) fn of_file(
     job: &super::method::Job<'_, '_>,
     bytes: &[u8],
+    seeds: Option<&[u32]>,
 ) -> Result<Vec<Origin>, crate::Error> {
     let decoded = crate::decoder::decode(bytes, &crate::options::DecodeOptions::plain())?;
     Ok(origins(
@@ -47,32 +62,45 @@ pub(crate) fn of_file(
         job.simplifier().reference(),
         job.reference()?,
         &decoded,
+        seeds.filter(|s| s.len() == decoded.vertex_count()),
     ))
 }
 
 /// The origin of every vertex of `decoded` on `input`, through the
-/// surface `reference` made from `reference_mesh` (the cleaned input).
+/// surface `reference` made from `reference_mesh` (the cleaned input),
+/// from `seeds` where given (see the module's docs).
 pub(crate) fn origins(
     input: &TriMesh,
     reference_mesh: &TriMesh,
     reference: &Surface,
     decoded: &TriMesh,
+    seeds: Option<&[u32]>,
 ) -> Vec<Origin> {
     let twins = Twins::new(input);
+    let fans = seeds.map(|_| Fans::new(reference_mesh));
     let mut around: Option<Around> = None;
     let mut scratch = NearestScratch::default();
     let mut hint = None;
     let mut out = Vec::with_capacity(decoded.positions.len());
-    for p in &decoded.positions {
+    for (i, p) in decoded.positions.iter().enumerate() {
         let q = p.map(|c| c as f64);
-        let Some((f, point, slot)) = reference.nearest_point(q, hint, &mut scratch) else {
+        let seed = seeds.map_or(u32::MAX, |s| s[i]);
+        let found = match &fans {
+            Some(fans) if seed != u32::MAX => descend(reference_mesh, fans, q, seed),
+            _ => None,
+        };
+        let found = found.or_else(|| {
+            let (f, point, slot) = reference.nearest_point(q, hint, &mut scratch)?;
+            hint = Some(slot);
+            Some((f, point))
+        });
+        let Some((f, point)) = found else {
             out.push(Origin {
                 face: 0,
                 barycentric: [1.0, 0.0, 0.0],
             });
             continue;
         };
-        hint = Some(slot);
         let corners =
             reference_mesh.triangles[f as usize].map(|v| reference_mesh.positions[v as usize]);
         let face = match twins.find(&corners) {
@@ -88,6 +116,75 @@ pub(crate) fn origins(
         });
     }
     out
+}
+
+/// The faces around each vertex of a mesh.
+struct Fans {
+    /// Where each vertex's faces start in `faces` (one more entry than
+    /// vertices).
+    start: Vec<u32>,
+    faces: Vec<u32>,
+}
+
+impl Fans {
+    fn new(mesh: &TriMesh) -> Fans {
+        let n = mesh.vertex_count();
+        let mut start = vec![0u32; n + 1];
+        for &v in mesh.triangles.iter().flatten() {
+            if let Some(s) = start.get_mut(v as usize + 1) {
+                *s += 1;
+            }
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut next = start.clone();
+        let mut faces = vec![0u32; start[n] as usize];
+        for (f, t) in mesh.triangles.iter().enumerate() {
+            for &v in t {
+                if let Some(slot) = next.get_mut(v as usize) {
+                    faces[*slot as usize] = f as u32;
+                    *slot += 1;
+                }
+            }
+        }
+        Fans { start, faces }
+    }
+
+    fn of(&self, v: u32) -> &[u32] {
+        match (self.start.get(v as usize), self.start.get(v as usize + 1)) {
+            (Some(&a), Some(&b)) => &self.faces[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+}
+
+/// The nearest point to `p` found by descent over `mesh`'s faces from
+/// those around `seed` (see the module's docs): its face and the point;
+/// `None` when the seed has no face.
+fn descend(mesh: &TriMesh, fans: &Fans, p: [f64; 3], seed: u32) -> Option<(u32, [f64; 3])> {
+    let mut best: Option<(f64, u32, [f64; 3])> = None;
+    let consider = |faces: &[u32], best: &mut Option<(f64, u32, [f64; 3])>| {
+        for &f in faces {
+            let t = mesh.triangles[f as usize].map(|v| mesh.positions[v as usize]);
+            let q = crate::metrics::closest_on_triangle(p, &t);
+            let d = crate::metrics::distance2(p, q);
+            if best.is_none_or(|(bd, bf, _)| d < bd || (d == bd && f < bf)) {
+                *best = Some((d, f, q));
+            }
+        }
+    };
+    consider(fans.of(seed), &mut best);
+    for _ in 0..MAX_STEPS {
+        let (d, f, _) = best?;
+        for v in mesh.triangles[f as usize] {
+            consider(fans.of(v), &mut best);
+        }
+        if best.is_some_and(|(nd, ..)| nd >= d) {
+            break;
+        }
+    }
+    best.map(|(_, f, q)| (f, q))
 }
 
 /// Input faces by their sorted corner positions.
@@ -216,6 +313,101 @@ mod tests {
 mod file_tests {
     use crate::mesh::test_shapes::uv_sphere;
     use crate::{EncodeMode, EncodeOptions, SwingTarget, TriMesh};
+
+    /// A hollow ball: a unit sphere and, facing inwards, one of radius
+    /// `1 - thickness`, as two components.
+    fn shell(thickness: f32) -> (TriMesh, usize) {
+        let outer = uv_sphere(64, 32);
+        let n = outer.vertex_count() as u32;
+        let mut positions = outer.positions.clone();
+        positions.extend(outer.positions.iter().map(|p| p.map(|c| c * (1.0 - thickness))));
+        let mut triangles = outer.triangles.clone();
+        triangles.extend(outer.triangles.iter().map(|t| [t[0] + n, t[2] + n, t[1] + n]));
+        (TriMesh::new(positions, triangles), outer.face_count())
+    }
+
+    /// The simplified method's origins come from the sheet each vertex
+    /// was made from (through its collapses), not the nearest one: in a
+    /// shell thinner than the grid of a small file, many outer vertices
+    /// are nearer the inner sheet, and the nearest-point rule, measured
+    /// here too, takes them there.
+    #[test]
+    fn origins_stay_on_their_sheet_through_the_collapses() {
+        let (input, outer_faces) = shell(0.004);
+        // The collapse sequence (`max`) and meshoptimizer (`fast`).
+        for effort in [crate::Effort::Max, crate::Effort::Fast] {
+            let options = EncodeOptions {
+                mode: EncodeMode::Simplified {
+                    target: SwingTarget::Bytes(300),
+                    max_bytes: None,
+                },
+                origins: true,
+                effort,
+                ..Default::default()
+            };
+            on_their_sheet(&input, outer_faces, &options);
+        }
+    }
+
+    fn on_their_sheet(input: &TriMesh, outer_faces: usize, options: &EncodeOptions) {
+        let encoded = crate::encode(input, options).unwrap();
+        let plain = crate::decode(&encoded.bytes, &crate::DecodeOptions::plain()).unwrap();
+        let origins = &encoded.stats.origins;
+        assert_eq!(origins.len(), plain.vertex_count());
+        // Which sheet each decoded vertex was made from: its component's
+        // (the collapses never join the two), the outer one the larger.
+        let mut part: Vec<u32> = (0..plain.vertex_count() as u32).collect();
+        fn root(part: &mut [u32], mut v: u32) -> u32 {
+            while part[v as usize] != v {
+                v = part[v as usize];
+            }
+            v
+        }
+        for t in &plain.triangles {
+            for k in 0..3 {
+                let (a, b) = (root(&mut part, t[k]), root(&mut part, t[(k + 1) % 3]));
+                part[a.max(b) as usize] = a.min(b);
+            }
+        }
+        let part: Vec<u32> = (0..plain.vertex_count() as u32)
+            .map(|v| root(&mut part, v))
+            .collect();
+        let mut radius: Vec<(u32, f64, usize)> = Vec::new();
+        for (v, p) in plain.positions.iter().enumerate() {
+            let r = p.iter().map(|&c| (c as f64).powi(2)).sum::<f64>().sqrt();
+            match radius.iter_mut().find(|e| e.0 == part[v]) {
+                Some(e) => {
+                    e.1 += r;
+                    e.2 += 1;
+                }
+                None => radius.push((part[v], r, 1)),
+            }
+        }
+        assert_eq!(radius.len(), 2, "two sheets decoded");
+        let mean = |e: &(u32, f64, usize)| e.1 / e.2 as f64;
+        let outer_part = if mean(&radius[0]) > mean(&radius[1]) {
+            radius[0].0
+        } else {
+            radius[1].0
+        };
+        let on_outer = |face: u32| (face as usize) < outer_faces;
+        let wrong = |origins: &[super::Origin]| {
+            origins
+                .iter()
+                .enumerate()
+                .filter(|(v, o)| (part[*v] == outer_part) != on_outer(o.face))
+                .count()
+        };
+        let effort = options.effort;
+        assert_eq!(wrong(origins), 0, "{effort:?}: origins on the other sheet");
+        // The nearest point alone crosses over.
+        let cleaned = crate::clean(input, &Default::default()).unwrap();
+        let surface = crate::metrics::Surface::new(&cleaned.mesh).unwrap();
+        let nearest = super::origins(input, &cleaned.mesh, &surface, &plain, None);
+        let crossed = wrong(&nearest);
+        eprintln!("{effort:?}: {crossed} of {} vertices nearer the other sheet", plain.vertex_count());
+        assert!(crossed > 0, "{effort:?}: the shell is not thin enough to tell");
+    }
 
     /// The point each origin names lies where its decoded vertex is,
     /// within the file's error, on a face of the mesh as given: here with

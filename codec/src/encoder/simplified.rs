@@ -100,13 +100,18 @@ pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Resul
     // The winner's figures, from the same deterministic encode (the
     // whole mesh's were kept when its file was made: on a million
     // triangles a cleaning and an encode, half a second, not repeated).
-    let (bytes, lossless) = if fit.faces >= s.faces() {
-        s.whole_file(fit.qp)?
+    let (bytes, lossless, seeds) = if fit.faces >= s.faces() {
+        let (bytes, lossless) = s.whole_file(fit.qp)?;
+        (bytes, lossless, None)
     } else {
         let cleaned = crate::clean(&fit.mesh, &CleanOptions::default())?;
-        let (bytes, lossless, _) =
+        let (bytes, lossless, source) =
             crate::lossless::encode(&cleaned.table, &cleaned.mesh, fit.qp, s.framing())?;
-        (bytes, lossless)
+        let seeds = job
+            .options
+            .origins
+            .then(|| seeds(s, &fit, &cleaned.mesh, &source));
+        (bytes, lossless, seeds)
     };
     debug_assert_eq!(bytes, fit.bytes, "lossless encoding is deterministic");
     let simplified = SimplifiedStats {
@@ -123,5 +128,43 @@ pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Resul
             simplified,
         },
         l2_relative,
+        seeds,
     })
+}
+
+/// For each vertex of the fit's file as decoded (`source`: the cleaned
+/// mesh's vertex each decoded vertex is), the reference vertex that the
+/// simplification kept for it (`Simplifier::sources`): cleaning moves no
+/// vertex, so a cleaned vertex is the fit's vertex at its position.
+fn seeds(
+    s: &crate::simplify::Simplifier<'_>,
+    fit: &crate::simplify::Fit,
+    cleaned: &crate::TriMesh,
+    source: &[u32],
+) -> Vec<u32> {
+    use crate::mesh::clean::position_key as key;
+    let sources = s.sources(fit.faces);
+    let mut by_key: Vec<([u32; 3], u32)> = fit
+        .mesh
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(v, p)| (key(p), v as u32))
+        .collect();
+    by_key.sort_unstable();
+    source
+        .iter()
+        .map(|&c| {
+            let Some(p) = cleaned.positions.get(c as usize) else {
+                return u32::MAX;
+            };
+            let k = key(p);
+            let i = by_key.partition_point(|e| e.0 < k);
+            by_key
+                .get(i)
+                .filter(|e| e.0 == k)
+                .and_then(|e| sources.get(e.1 as usize).copied())
+                .unwrap_or(u32::MAX)
+        })
+        .collect()
 }

@@ -38,6 +38,7 @@ impl CodingMethod for Quantized {
                     stats: MethodStats::Lossless(stats),
                     l2_relative: None,
                     whole: true,
+                    seeds: None,
                 }));
             }
         }

@@ -220,6 +220,50 @@ impl<'a> Simplifier<'a> {
         compact(&r.positions, &r.triangles)
     }
 
+    /// For each vertex of [`simplify`](Self::simplify)`(target)`'s mesh,
+    /// the vertex of [`reference`](Self::reference) it stands for: the
+    /// survivor of its collapses (the collapse sequence keeps one end of
+    /// each collapsed edge and moves it), or for the quick engine, which
+    /// keeps a subset of the vertices where they were, the vertex at its
+    /// position (`u32::MAX` where none is: never for a mesh `simplify`
+    /// made). What the method's provenance starts from
+    /// (`encoder::provenance`); a refit moves vertices but keeps their
+    /// numbers, so it holds for the refitted mesh too.
+    pub fn sources(&self, target: u32) -> Vec<u32> {
+        if target < self.faces() && !self.quick {
+            let c = self
+                .collapses
+                .get_or_init(|| qem::Collapses::run(&self.work, MIN_FACES));
+            let r = c.replay(&self.work, target);
+            // The order `compact` numbers them in: first use.
+            let mut seen = vec![false; r.positions.len()];
+            let mut out = Vec::new();
+            for &v in r.triangles.iter().flatten() {
+                if !core::mem::replace(&mut seen[v as usize], true) {
+                    out.push(v);
+                }
+            }
+            return out;
+        }
+        let mesh = self.simplify(target);
+        let mut by_key: Vec<([u32; 3], u32)> = self
+            .work
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(v, p)| (crate::mesh::clean::position_key(p), v as u32))
+            .collect();
+        by_key.sort_unstable();
+        mesh.positions
+            .iter()
+            .map(|p| {
+                let k = crate::mesh::clean::position_key(p);
+                let i = by_key.partition_point(|e| e.0 < k);
+                by_key.get(i).filter(|e| e.0 == k).map_or(u32::MAX, |e| e.1)
+            })
+            .collect()
+    }
+
     /// How far above the predicted face count a size search's first
     /// probe aims. The collapse sequence replays any count at the same
     /// cost: 1. The quick engine simplifies each count from the smallest

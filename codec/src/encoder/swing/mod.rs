@@ -77,6 +77,7 @@ impl CodingMethod for Swing {
             stats: MethodStats::Swing(report),
             l2_relative: None,
             whole: false,
+            seeds: None,
         }))
     }
 }
