@@ -7,19 +7,24 @@
 //!
 //! How, in two steps:
 //! 1. A point of the job's reference surface (the cleaned input, which
-//!    the chooser and the check already hold in a tree). Where the method
-//!    that made the file says which reference vertex a decoded vertex
-//!    stands for (its *seed*: the simplified method's survivor of the
-//!    collapses that made it, `Simplifier::sources`), the point is found
-//!    by descent over the surface from the faces around the seed: the
-//!    nearest point of the face around any corner of the best face so
-//!    far, while it gets nearer. The answer is the nearest point of the
-//!    sheet the vertex was made from, even where another sheet is nearer
-//!    (a part thinner than the file's error: a leaf, a shell, a coarse
-//!    grid's cell across both sides). Without a seed (files of the
-//!    retiler, of displaced subdivision, of several pieces, of the whole
-//!    mesh, whose vertices are the input's own up to the grid), the
-//!    nearest point of the whole surface.
+//!    the chooser and the check already hold in a tree): the nearest one,
+//!    unless a descent over the surface finds one on the sheet the vertex
+//!    was made from. The descent starts at the method's *seed* where it
+//!    gave one (the simplified method: the survivor of the collapses that
+//!    made the vertex, `Simplifier::sources`), else at the face where the
+//!    vertex's parent was found: its lowest-numbered neighbour in the
+//!    decoded mesh, made before it (a retiled tip's gate, a subdivided
+//!    vertex's edge end, the lossless traversal's earlier vertex). It
+//!    takes the nearest point of the faces around a corner of the best
+//!    face so far while that gets nearer. Its answer stands if it is no
+//!    farther than the nearest point by more than a quarter of the
+//!    vertex's shortest edge: across a part thinner than the file's
+//!    error (a leaf, a shell, a coarse grid's cell spanning both sides)
+//!    the nearest point is on the wrong sheet, and the descent keeps the
+//!    right one; a descent stuck behind a fold is off by an edge or more,
+//!    and the nearest point is taken. A component's first vertex (no
+//!    parent, no seed) takes the nearest point: a retiled component's
+//!    first vertex is a point of the input.
 //! 2. The caller's face of that point, through the positions of its
 //!    corners. Cleaning never moves a vertex (it merges coincident ones,
 //!    drops degenerate and repeated faces, reorients and splits), so a
@@ -77,30 +82,44 @@ pub(crate) fn origins(
     seeds: Option<&[u32]>,
 ) -> Vec<Origin> {
     let twins = Twins::new(input);
-    let fans = seeds.map(|_| Fans::new(reference_mesh));
+    let fans = Fans::new(reference_mesh);
+    let near = Neighbours::new(decoded);
     let mut around: Option<Around> = None;
     let mut scratch = NearestScratch::default();
     let mut hint = None;
+    // The reference face each decoded vertex's point is on, as found.
+    let mut on: Vec<u32> = Vec::with_capacity(decoded.positions.len());
     let mut out = Vec::with_capacity(decoded.positions.len());
     for (i, p) in decoded.positions.iter().enumerate() {
         let q = p.map(|c| c as f64);
-        let seed = seeds.map_or(u32::MAX, |s| s[i]);
-        let found = match &fans {
-            Some(fans) if seed != u32::MAX => descend(reference_mesh, fans, q, seed),
-            _ => None,
-        };
-        let found = found.or_else(|| {
-            let (f, point, slot) = reference.nearest_point(q, hint, &mut scratch)?;
-            hint = Some(slot);
-            Some((f, point))
-        });
-        let Some((f, point)) = found else {
+        let nearest = reference.nearest_point(q, hint, &mut scratch);
+        let Some((f, point, slot)) = nearest else {
+            on.push(u32::MAX);
             out.push(Origin {
                 face: 0,
                 barycentric: [1.0, 0.0, 0.0],
             });
             continue;
         };
+        hint = Some(slot);
+        // Where the descent starts: the method's seed, else a corner of
+        // the face the vertex's parent (its lowest-numbered neighbour,
+        // made before it) was found on.
+        let start = match seeds.map_or(u32::MAX, |s| s[i]) {
+            u32::MAX => near.parent[i]
+                .and_then(|u| on.get(u as usize))
+                .filter(|&&g| g != u32::MAX)
+                .map(|&g| reference_mesh.triangles[g as usize][0]),
+            seed => Some(seed),
+        };
+        let global = crate::metrics::distance2(q, point).sqrt();
+        let (f, point) = match start.and_then(|v| descend(reference_mesh, &fans, q, v)) {
+            Some((g, x)) if crate::metrics::distance2(q, x).sqrt() <= global + near.reach[i] => {
+                (g, x)
+            }
+            _ => (f, point),
+        };
+        on.push(f);
         let corners =
             reference_mesh.triangles[f as usize].map(|v| reference_mesh.positions[v as usize]);
         let face = match twins.find(&corners) {
@@ -116,6 +135,53 @@ pub(crate) fn origins(
         });
     }
     out
+}
+
+/// What the descent needs of the decoded mesh's connectivity.
+struct Neighbours {
+    /// Each vertex's lowest-numbered neighbour below it, if any: made
+    /// before it (a retiled tip's gate, a subdivided vertex's edge end, a
+    /// traversal's earlier vertex).
+    parent: Vec<Option<u32>>,
+    /// How much farther than the nearest point a descent's answer may be
+    /// and still be taken: a quarter of the vertex's shortest edge. A
+    /// sheet on the other side of a thin part is nearer by at most the
+    /// part's thickness; a descent stuck behind a fold is off by about
+    /// the distance it had to go, an edge or more, and gives way.
+    reach: Vec<f64>,
+}
+
+impl Neighbours {
+    fn new(mesh: &TriMesh) -> Neighbours {
+        let n = mesh.vertex_count();
+        let mut parent: Vec<Option<u32>> = vec![None; n];
+        let mut shortest = vec![f64::INFINITY; n];
+        for t in &mesh.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                let (lo, hi) = (a.min(b), a.max(b));
+                let (Some(pa), Some(pb)) = (
+                    mesh.positions.get(a as usize),
+                    mesh.positions.get(b as usize),
+                ) else {
+                    continue;
+                };
+                let d = crate::metrics::distance2(pa.map(f64::from), pb.map(f64::from)).sqrt();
+                for v in [a, b] {
+                    shortest[v as usize] = shortest[v as usize].min(d);
+                }
+                if lo != hi {
+                    let slot = &mut parent[hi as usize];
+                    *slot = Some(slot.map_or(lo, |p| p.min(lo)));
+                }
+            }
+        }
+        let reach = shortest
+            .into_iter()
+            .map(|d| if d.is_finite() { 0.25 * d } else { 0.0 })
+            .collect();
+        Neighbours { parent, reach }
+    }
 }
 
 /// The faces around each vertex of a mesh.
@@ -320,9 +386,19 @@ mod file_tests {
         let outer = uv_sphere(64, 32);
         let n = outer.vertex_count() as u32;
         let mut positions = outer.positions.clone();
-        positions.extend(outer.positions.iter().map(|p| p.map(|c| c * (1.0 - thickness))));
+        positions.extend(
+            outer
+                .positions
+                .iter()
+                .map(|p| p.map(|c| c * (1.0 - thickness))),
+        );
         let mut triangles = outer.triangles.clone();
-        triangles.extend(outer.triangles.iter().map(|t| [t[0] + n, t[2] + n, t[1] + n]));
+        triangles.extend(
+            outer
+                .triangles
+                .iter()
+                .map(|t| [t[0] + n, t[2] + n, t[1] + n]),
+        );
         (TriMesh::new(positions, triangles), outer.face_count())
     }
 
@@ -405,8 +481,10 @@ mod file_tests {
         let surface = crate::metrics::Surface::new(&cleaned.mesh).unwrap();
         let nearest = super::origins(input, &cleaned.mesh, &surface, &plain, None);
         let crossed = wrong(&nearest);
-        eprintln!("{effort:?}: {crossed} of {} vertices nearer the other sheet", plain.vertex_count());
-        assert!(crossed > 0, "{effort:?}: the shell is not thin enough to tell");
+        assert!(
+            crossed > 0,
+            "{effort:?}: the shell is not thin enough to tell"
+        );
     }
 
     /// The point each origin names lies where its decoded vertex is,
