@@ -1,12 +1,19 @@
 // The viewer page: decodes a .swm file in a Web Worker (the page stays
-// responsive), shows it lit and orbitable, with its figures. State for
-// scripts and tests: body[data-state] is loading | ready | decoding |
-// shown | error, body[data-shown] counts the meshes shown.
-// `?file=URL` opens a file at load, `&sharpen=1` with Sharpen&Bend.
+// responsive), shows it lit and orbitable, with its figures. With "slow
+// connection" on, the file's bytes arrive at a set rate instead and are
+// decoded as they come (StreamDecoder): a displaced-subdivision file shows
+// its base mesh first and each finer level once its bytes are in. State
+// for scripts and tests: body[data-state] is loading | ready | decoding |
+// streaming | shown | error, body[data-shown] counts the meshes shown,
+// body[data-levels] lists the levels a stream showed ("0,1,2") and
+// body[data-level-bytes] the bytes in when each was shown.
+// `?file=URL` opens a file at load, `&sharpen=1` with Sharpen&Bend,
+// `&rate=N` streams it at N bytes a second.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { toBufferGeometry } from '../src/three.js';
 import { SWMWorker } from '../src/worker.js';
+import { decodeStream, init } from '../src/swm.js';
 
 const $ = (id) => document.getElementById(id);
 const canvas = $('view');
@@ -43,13 +50,18 @@ function resize() {
 window.addEventListener('resize', resize);
 resize();
 
-function show(geometry) {
+/** Shows `geometry`; `frame`: move the camera to it (not for a finer level of the mesh shown). */
+function show(geometry, frame = true) {
   if (mesh) {
     scene.remove(mesh);
     mesh.geometry.dispose();
   }
   mesh = new THREE.Mesh(geometry, material);
   scene.add(mesh);
+  if (!frame) {
+    render();
+    return;
+  }
   // Frame the bounding sphere.
   const { center, radius } = geometry.boundingSphere;
   const r = radius > 0 && Number.isFinite(radius) ? radius : 1;
@@ -73,16 +85,53 @@ function figures(info) {
   $('ms').textContent = `${info.decodeMs.toFixed(1)} ms`;
 }
 
+/** `bytes` as a stream of pieces that arrive at `rate` bytes a second. */
+async function* throttled(bytes, rate) {
+  const tick = 100; // ms
+  const piece = Math.max(1, Math.round((rate * tick) / 1000));
+  for (let at = 0; at < bytes.length; at += piece) {
+    await new Promise((r) => setTimeout(r, tick));
+    yield bytes.subarray(at, at + piece);
+  }
+}
+
+/** Decodes `bytes` as they arrive at `rate` bytes a second, showing each level. */
+async function stream(name, bytes, rate) {
+  body.dataset.state = 'streaming';
+  body.dataset.levels = '';
+  body.dataset.levelBytes = '';
+  const sharpen = $('sharpen').checked;
+  const options = { normals: true, sharpen, bendSteps: sharpen ? 1 : 0 };
+  await init();
+  const levels = [];
+  const at = [];
+  const result = await decodeStream(throttled(bytes, rate), options, (level) => {
+    if (current.bytes !== bytes) return;
+    show(toBufferGeometry(level), levels.length === 0);
+    figures(level.info);
+    levels.push(level.info.level);
+    at.push(level.info.bytes);
+    $('level').textContent = `${level.info.level} (${level.info.bytes.toLocaleString('en-US')} of ${bytes.length.toLocaleString('en-US')} bytes in)`;
+    body.dataset.levels = levels.join(',');
+    body.dataset.levelBytes = at.join(',');
+  });
+  return result;
+}
+
 async function open(name, bytes) {
   current = { name, bytes };
   $('name').textContent = name;
   $('error').textContent = '';
+  $('level').textContent = '–';
   body.dataset.state = 'decoding';
   const sharpen = $('sharpen').checked;
+  const rate = $('slow').checked ? Number($('rate').value) : 0;
   try {
-    const result = await decoder.decode(bytes, { normals: true, sharpen, bendSteps: sharpen ? 1 : 0 });
+    const result = rate > 0
+      ? await stream(name, bytes, rate)
+      : await decoder.decode(bytes, { normals: true, sharpen, bendSteps: sharpen ? 1 : 0 });
     if (current.bytes !== bytes) return; // a newer file took over
-    show(toBufferGeometry(result));
+    show(toBufferGeometry(result), !body.dataset.levels || rate === 0);
     figures(result.info);
     body.dataset.shown = String(++shown);
     body.dataset.state = 'shown';
@@ -116,6 +165,10 @@ window.addEventListener('drop', (e) => {
 
 const params = new URLSearchParams(location.search);
 $('sharpen').checked = params.get('sharpen') === '1';
+if (params.has('rate')) {
+  $('slow').checked = true;
+  $('rate').value = params.get('rate');
+}
 body.dataset.state = 'ready';
 if (params.has('file')) {
   const url = params.get('file');

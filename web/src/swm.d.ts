@@ -34,8 +34,10 @@ export interface DecodeInfo {
   vertices: number;
   /** Triangles of the decoded mesh. */
   triangles: number;
-  /** Time decode() took, copies included, in milliseconds. */
+  /** Time decode() took, copies included, in milliseconds (for a stream: since it was made). */
   decodeMs: number;
+  /** The subdivision level of a displaced file's mesh that a StreamDecoder handed out before the whole file was in. */
+  level?: number;
 }
 
 export interface DecodedMesh {
@@ -68,3 +70,29 @@ export function isReady(): boolean;
 
 /** Decodes a .swm file; throws SWMError. Needs `await init()` first. */
 export function decode(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: DecodeOptions): DecodedMesh;
+
+/**
+ * Decodes a .swm file as its bytes arrive: a displaced-subdivision file's
+ * base mesh and each finer level as soon as their bytes are in. Needs
+ * `await init()` first.
+ */
+export class StreamDecoder {
+  constructor(options?: DecodeOptions);
+  /** Adds bytes; the finest level they complete when finer than the last one returned (`info.level`), else null. */
+  push(chunk: Uint8Array | ArrayBuffer | ArrayBufferView): DecodedMesh | null;
+  /** The whole file's mesh (what decode() gives); throws for a file cut short or damaged. Releases the stream. */
+  finish(): DecodedMesh;
+  /** Releases the stream; idempotent. */
+  free(): void;
+}
+
+/**
+ * Decodes a .swm file from a fetch Response, a ReadableStream or an async
+ * iterable of byte chunks as it arrives, calling `onLevel` with each level
+ * of a displaced file; resolves to the whole file's mesh.
+ */
+export function decodeStream(
+  source: Response | ReadableStream<Uint8Array> | AsyncIterable<Uint8Array>,
+  options?: DecodeOptions,
+  onLevel?: (mesh: DecodedMesh) => void,
+): Promise<DecodedMesh>;

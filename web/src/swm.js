@@ -1,11 +1,12 @@
 // The swm decoder for JavaScript: a hand-kept glue over the exports of
 // dist/swm.wasm (crate web/wasm). Hand-kept rather than wasm-bindgen's
-// generated glue because the interface is four functions and one struct,
+// generated glue because the interface is eight functions and one struct,
 // and it needs no wasm-bindgen-cli build (BENCHMARKS.md, "Web").
 //
 // The module's Output struct, 32-bit little-endian fields in this order
 // (web/wasm/src/lib.rs): status, message, message_len, positions,
-// vertex_count, indices, triangle_count, normals, mode, major, minor.
+// vertex_count, indices, triangle_count, normals, mode, major, minor,
+// level.
 
 const OUT_STATUS = 0;
 const OUT_MESSAGE = 4;
@@ -18,6 +19,7 @@ const OUT_NORMALS = 28;
 const OUT_MODE = 32;
 const OUT_MAJOR = 36;
 const OUT_MINOR = 40;
+const OUT_LEVEL = 44;
 
 /** Error codes by the module's status. */
 const CODES = ['ok', 'argument', 'format', 'limit', 'unsupported', 'internal', 'internal'];
@@ -119,6 +121,30 @@ function asBytes(bytes) {
 export function decode(bytes, options = {}) {
   if (!wasm) throw new SWMError('swm: call `await init()` before decode()', 'init');
   bytes = asBytes(bytes);
+  const args = optionArgs(options);
+  const start = performance.now();
+  const x = wasm;
+  let input = 0;
+  let out = 0;
+  try {
+    input = x.swm_alloc(bytes.length);
+    if (input === 0) throw new SWMError(`out of memory for a ${bytes.length}-byte file`, 'limit');
+    new Uint8Array(x.memory.buffer, input, bytes.length).set(bytes);
+    out = x.swm_decode(input, bytes.length, ...args);
+    if (out === 0) throw new SWMError('out of memory', 'limit');
+    return readOutput(x, out, options, bytes.length, start);
+  } catch (e) {
+    throw trapped(e);
+  } finally {
+    if (wasm === x) {
+      x.swm_output_free(out);
+      if (input !== 0) x.swm_free(input, bytes.length);
+    }
+  }
+}
+
+/** The module's arguments for `options`, in `swm_decode`'s order after the bytes. */
+function optionArgs(options) {
   const limits = options.limits ?? {};
   // -1: the file's hint decides.
   const bend = count('bendSteps', options.bendSteps, -1);
@@ -135,61 +161,176 @@ export function decode(bytes, options = {}) {
     count('limits.maxAllocBytes', limits.maxAllocBytes, DEFAULT_LIMITS.maxAllocBytes),
     maxLevel,
   ];
-  const start = performance.now();
-  const x = wasm;
-  let input = 0;
-  let out = 0;
+  return args;
+}
+
+/**
+ * The mesh of the module's Output at `out` (copied out of its memory), or
+ * the SWMError it carries; `null` for a stream's push that completed no
+ * new level.
+ */
+function readOutput(x, out, options, byteCount, start) {
+  // Fresh views: memory.grow() during decoding detaches older ones.
+  const buffer = x.memory.buffer;
+  const u32 = (offset) => new DataView(buffer).getUint32(out + offset, true);
+  const status = u32(OUT_STATUS);
+  if (status !== 0) {
+    const text = new Uint8Array(buffer, u32(OUT_MESSAGE), u32(OUT_MESSAGE_LEN));
+    throw new SWMError(new TextDecoder().decode(text), CODES[status] ?? 'internal');
+  }
+  const vertices = u32(OUT_VERTEX_COUNT);
+  const triangles = u32(OUT_TRIANGLE_COUNT);
+  const level = new DataView(buffer).getInt32(out + OUT_LEVEL, true);
+  if (level < 0 && u32(OUT_POSITIONS) === 0) return null;
+  // slice() copies out of the module's memory, which the next call reuses.
+  const positions = new Float32Array(buffer, u32(OUT_POSITIONS), 3 * vertices).slice();
+  const indices = new Uint32Array(buffer, u32(OUT_INDICES), 3 * triangles).slice();
+  const normals = options.normals
+    ? new Float32Array(buffer, u32(OUT_NORMALS), 3 * vertices).slice()
+    : undefined;
+  const info = {
+    mode: MODES[u32(OUT_MODE)] ?? `mode ${u32(OUT_MODE)}`,
+    version: `${u32(OUT_MAJOR)}.${u32(OUT_MINOR)}`,
+    bytes: byteCount,
+    vertices,
+    triangles,
+    decodeMs: 0,
+  };
+  if (level >= 0) info.level = level;
+  const result = { positions, indices, info };
+  if (normals) result.normals = normals;
+  info.decodeMs = performance.now() - start;
+  return result;
+}
+
+/**
+ * `e` as the error to throw: a trap is a bug in the decoder, after which
+ * the heap may be inconsistent, so the instance is replaced before the
+ * next call (and every stream of the old one is dead).
+ */
+function trapped(e) {
+  if (!(e instanceof WebAssembly.RuntimeError)) return e;
+  wasm = null;
   try {
-    input = x.swm_alloc(bytes.length);
-    if (input === 0) throw new SWMError(`out of memory for a ${bytes.length}-byte file`, 'limit');
-    new Uint8Array(x.memory.buffer, input, bytes.length).set(bytes);
-    out = x.swm_decode(input, bytes.length, ...args);
-    if (out === 0) throw new SWMError('out of memory', 'limit');
-    // Fresh views: memory.grow() during decoding detaches older ones.
-    const buffer = x.memory.buffer;
-    const u32 = (offset) => new DataView(buffer).getUint32(out + offset, true);
-    const status = u32(OUT_STATUS);
-    if (status !== 0) {
-      const text = new Uint8Array(buffer, u32(OUT_MESSAGE), u32(OUT_MESSAGE_LEN));
-      throw new SWMError(new TextDecoder().decode(text), CODES[status] ?? 'internal');
-    }
-    const vertices = u32(OUT_VERTEX_COUNT);
-    const triangles = u32(OUT_TRIANGLE_COUNT);
-    // slice() copies out of the module's memory, which the next call reuses.
-    const positions = new Float32Array(buffer, u32(OUT_POSITIONS), 3 * vertices).slice();
-    const indices = new Uint32Array(buffer, u32(OUT_INDICES), 3 * triangles).slice();
-    const normals = options.normals
-      ? new Float32Array(buffer, u32(OUT_NORMALS), 3 * vertices).slice()
-      : undefined;
-    const info = {
-      mode: MODES[u32(OUT_MODE)] ?? `mode ${u32(OUT_MODE)}`,
-      version: `${u32(OUT_MAJOR)}.${u32(OUT_MINOR)}`,
-      bytes: bytes.length,
-      vertices,
-      triangles,
-      decodeMs: 0,
-    };
-    const result = { positions, indices, info };
-    if (normals) result.normals = normals;
-    info.decodeMs = performance.now() - start;
-    return result;
-  } catch (e) {
-    if (e instanceof WebAssembly.RuntimeError) {
-      // A trap is a bug in the decoder; the heap may be inconsistent, so
-      // the instance is replaced before the next call.
-      wasm = null;
-      try {
-        wasm = new WebAssembly.Instance(module, {}).exports;
-      } catch {
-        loading = null;
+    wasm = new WebAssembly.Instance(module, {}).exports;
+  } catch {
+    loading = null;
+  }
+  return new SWMError(`internal error: the decoder trapped (${e.message})`, 'internal');
+}
+
+/**
+ * Decodes a `.swm` file as its bytes arrive. A displaced-subdivision file
+ * (mode 2) stores its levels coarse to fine, so its base mesh can be shown
+ * once the first part is in and each finer level once its chunk is:
+ * `push(chunk)` returns the finest level the bytes so far complete when it
+ * is finer than the last one returned (`info.level` says which; the same
+ * mesh as `decode(bytes, { maxLevel: level })`), else `null`. `finish()`
+ * returns the whole file's mesh, what `decode` gives, or throws for a file
+ * cut short or damaged, and releases the stream (so does `free()`). Files
+ * of other modes give no level before `finish()`. Options as `decode`'s.
+ * Call `await init()` first.
+ */
+export class StreamDecoder {
+  constructor(options = {}) {
+    if (!wasm) throw new SWMError('swm: call `await init()` before new StreamDecoder()', 'init');
+    this.options = options;
+    this.received = 0;
+    this.started = performance.now();
+    this.x = wasm;
+    this.ptr = wasm.swm_stream_new(...optionArgs(options));
+    if (this.ptr === 0) throw new SWMError('a limit is not a non-negative number', 'argument');
+  }
+
+  /** Adds `chunk` (bytes); a newly completed level's mesh, or null. */
+  push(chunk) {
+    const x = this.live();
+    chunk = asBytes(chunk);
+    this.received += chunk.length;
+    let input = 0;
+    let out = 0;
+    try {
+      input = x.swm_alloc(chunk.length);
+      if (input === 0) throw new SWMError(`out of memory for a ${chunk.length}-byte piece`, 'limit');
+      new Uint8Array(x.memory.buffer, input, chunk.length).set(chunk);
+      out = x.swm_stream_push(this.ptr, input, chunk.length);
+      return readOutput(x, out, this.options, this.received, this.started);
+    } catch (e) {
+      throw trapped(e);
+    } finally {
+      if (wasm === x) {
+        x.swm_output_free(out);
+        if (input !== 0) x.swm_free(input, chunk.length);
       }
-      throw new SWMError(`internal error: the decoder trapped (${e.message})`, 'internal');
     }
-    throw e;
+  }
+
+  /** The whole file's mesh; releases the stream. */
+  finish() {
+    const x = this.live();
+    let out = 0;
+    try {
+      out = x.swm_stream_finish(this.ptr);
+      return readOutput(x, out, this.options, this.received, this.started);
+    } catch (e) {
+      throw trapped(e);
+    } finally {
+      if (wasm === x) x.swm_output_free(out);
+      this.free();
+    }
+  }
+
+  /** Releases the stream (idempotent). */
+  free() {
+    if (this.ptr !== 0 && wasm === this.x) this.x.swm_stream_free(this.ptr);
+    this.ptr = 0;
+  }
+
+  live() {
+    if (this.ptr === 0) throw new SWMError('the stream was finished or freed', 'argument');
+    if (wasm !== this.x) throw new SWMError('the decoder was restarted after a trap; this stream is gone', 'internal');
+    return this.x;
+  }
+}
+
+/**
+ * Decodes a `.swm` file from `source` (a fetch Response, a ReadableStream
+ * of bytes, or any async iterable of byte chunks) as it arrives, calling
+ * `onLevel(mesh)` with each level of a displaced file as soon as its bytes
+ * are in (see StreamDecoder); resolves to the whole file's mesh. Call
+ * `await init()` first.
+ */
+export async function decodeStream(source, options = {}, onLevel = () => {}) {
+  if (typeof Response !== 'undefined' && source instanceof Response) {
+    if (!source.ok) throw new SWMError(`HTTP ${source.status} ${source.url}`, 'load');
+    source = source.body;
+  }
+  const stream = new StreamDecoder(options);
+  try {
+    for await (const chunk of chunks(source)) {
+      const level = stream.push(chunk);
+      if (level) onLevel(level);
+    }
+    return stream.finish();
   } finally {
-    if (wasm === x) {
-      x.swm_output_free(out);
-      if (input !== 0) x.swm_free(input, bytes.length);
+    stream.free();
+  }
+}
+
+/** The chunks of a ReadableStream (which not every runtime iterates) or an async iterable. */
+async function* chunks(source) {
+  if (source && typeof source.getReader === 'function') {
+    const reader = source.getReader();
+    try {
+      for (;;) {
+        const { done, value } = await reader.read();
+        if (done) return;
+        yield value;
+      }
+    } finally {
+      reader.releaseLock();
     }
+  } else {
+    yield* source;
   }
 }

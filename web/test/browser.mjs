@@ -90,6 +90,7 @@ async function main() {
       await waitState(page, 'ready');
       await checkDecodes(page, data);
       await checkViewer(page, data);
+      await checkStreaming(page, origin, data);
       assert.deepEqual(problems, [], 'the page logged errors');
       console.log(`browser: ${data.cases.length} files, ${await browser.version()}: ok`);
     }
@@ -279,6 +280,33 @@ async function checkViewer(page, data) {
   assert.equal(good.error, '', 'the error message stays after a good file');
   const { drawn } = await drawnPixels(page);
   assert.ok(drawn > 0, 'nothing drawn after the damaged file');
+}
+
+/**
+ * The viewer over a slow connection (`&rate=`, bytes a second): the
+ * displaced file's base mesh is shown before its last bytes are in, then
+ * each finer level, and at the end the whole file's mesh.
+ */
+async function checkStreaming(page, origin, data) {
+  const c = data.cases.find((x) => x.mode === 'displaced');
+  // About two seconds for the whole file, in pieces of a twentieth.
+  const rate = Math.max(100, Math.ceil(c.bytes.length / 2));
+  await page.goto(`${origin}/demo/?file=/cases/${basename(c.swm)}&rate=${rate}`);
+  await waitState(page, 'shown');
+  const got = await page.evaluate(() => ({
+    levels: document.body.dataset.levels,
+    at: document.body.dataset.levelBytes,
+    triangles: document.getElementById('triangles').textContent,
+    error: document.getElementById('error').textContent,
+  }));
+  assert.equal(got.error, '', c.name);
+  assert.equal(got.levels, '0,1,2', `${c.name}: levels shown while streaming`);
+  const at = got.at.split(',').map(Number);
+  assert.ok(at[0] < c.bytes.length, `${c.name}: the base mesh waited for all ${c.bytes.length} bytes (${at})`);
+  assert.ok(at[0] < at[1] && at[1] <= at[2], `${c.name}: levels at ${at}`);
+  assert.equal(got.triangles, fmt(c.plain.indices.length / 3), `${c.name}: the whole mesh at the end`);
+  const { drawn, total } = await drawnPixels(page);
+  assert.ok(drawn > total / 100, `${c.name}: the streamed model covers ${drawn} of ${total} pixels`);
 }
 
 /** In the page: decode() `url` `runs` times on the page's thread. */

@@ -6,7 +6,7 @@
 // `npm test` (after `npm run build`) makes its own files (cases.mjs).
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { DEFAULT_LIMITS, decode, init, isReady, SWMError } from '../src/swm.js';
+import { DEFAULT_LIMITS, decode, decodeStream, init, isReady, StreamDecoder, SWMError } from '../src/swm.js';
 import { SWMLoader } from '../src/three.js';
 import { bitDiff, casesDir, loadCases } from './cases.mjs';
 
@@ -55,6 +55,52 @@ test('maxLevel gives what `swm decode --max-level 1` gives', async () => {
   // The golden file's two levels: a quarter of the triangles at level 1.
   assert.equal(displaced.level1.indices.length * 4, displaced.plain.indices.length);
   assert.throws(() => decode(displaced.bytes, { maxLevel: -1 }), { name: 'SWMError', code: 'argument' });
+});
+
+test('a stream hands out each level of a displaced file as its bytes arrive', async () => {
+  await init();
+  for (const c of cases) {
+    // In pieces of 64 bytes: every level comes out once, in order, and is
+    // what decode() gives at that level; finish() is the whole decode.
+    const stream = new StreamDecoder({ normals: true });
+    const levels = [];
+    for (let at = 0; at < c.bytes.length; at += 64) {
+      const r = stream.push(c.bytes.subarray(at, at + 64));
+      if (!r) continue;
+      const want = decode(c.bytes, { maxLevel: r.info.level, normals: true });
+      assert.equal(bitDiff(r.positions, want.positions, `${c.name} level ${r.info.level}`), '');
+      assert.equal(bitDiff(r.indices, want.indices, `${c.name} level ${r.info.level}`), '');
+      assert.equal(bitDiff(r.normals, want.normals, `${c.name} level ${r.info.level} normals`), '');
+      assert.ok(r.info.bytes <= at + 64, c.name);
+      levels.push(r.info.level);
+    }
+    const whole = stream.finish();
+    assert.equal(bitDiff(whole.positions, c.plain.positions, `${c.name} finish`), '');
+    assert.equal(whole.info.level, undefined);
+    if (c.mode === 'displaced') {
+      assert.deepEqual(levels, [0, 1, 2], c.name);
+      assert.equal(bitDiff(decode(c.bytes, { maxLevel: 1 }).positions, c.level1.positions, c.name), '');
+    } else {
+      assert.deepEqual(levels, [], `${c.name}: only displaced files have levels`);
+    }
+    assert.throws(() => stream.push(c.bytes), { name: 'SWMError', code: 'argument' });
+  }
+  // decodeStream over a ReadableStream: the same levels, then the file.
+  const displaced = cases.find((c) => c.mode === 'displaced');
+  const body = new ReadableStream({
+    start(controller) {
+      for (let at = 0; at < displaced.bytes.length; at += 100) controller.enqueue(displaced.bytes.slice(at, at + 100));
+      controller.close();
+    },
+  });
+  const seen = [];
+  const whole = await decodeStream(body, {}, (r) => seen.push(r.info.level));
+  assert.deepEqual(seen, [0, 1, 2]);
+  assert.equal(bitDiff(whole.positions, displaced.plain.positions, 'decodeStream'), '');
+  // Cut short: the levels so far, then the decoder's error; the decoder stays usable.
+  const cut = displaced.bytes.subarray(0, displaced.bytes.length - 3);
+  await assert.rejects(decodeStream([cut]), { name: 'SWMError', code: 'format' });
+  assert.equal(decode(displaced.bytes).positions.length, displaced.plain.positions.length);
 });
 
 test('Sharpen&Bend gives what `swm decode --sharpen --bend 1` gives', async () => {

@@ -133,6 +133,13 @@ impl StreamDecoder {
         self.total
     }
 
+    /// The file's header once its first bytes are in (its mode and
+    /// format version), `None` before.
+    pub fn header(&self) -> Option<Header> {
+        self.header
+            .or(self.compact.as_ref().and_then(|c| c.table.map(|t| t.0)))
+    }
+
     /// The finest level decoded so far of a displaced-subdivision (mode 2)
     /// file, and its mesh: `(0, base)` once the `HEAD` and `BASE` sections
     /// are in, then `(l, mesh)` as soon as the chunk of level `l` is, up

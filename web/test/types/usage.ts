@@ -2,7 +2,7 @@
 // hand-written declarations in src/*.d.ts accept the README's usage and
 // reject misuse (the @ts-expect-error lines must be errors).
 import * as THREE from 'three';
-import { decode, DEFAULT_LIMITS, init, isReady, SWMError, type DecodedMesh } from 'swm-decoder';
+import { decode, decodeStream, DEFAULT_LIMITS, init, isReady, StreamDecoder, SWMError, type DecodedMesh } from 'swm-decoder';
 import { SWMLoader, toBufferGeometry } from 'swm-decoder/three';
 import { SWMWorker } from 'swm-decoder/worker';
 
@@ -38,4 +38,16 @@ export async function plain(bytes: Uint8Array): Promise<number> {
   // @ts-expect-error: decode() is synchronous
   await decode(bytes).then(() => 0);
   return p.length + i.length + (n?.length ?? 0) + r.info.vertices;
+}
+
+export async function progressive(response: Response, chunk: Uint8Array): Promise<number> {
+  await init();
+  const s = new StreamDecoder({ normals: true });
+  const level: DecodedMesh | null = s.push(chunk);
+  const n = level?.info.level ?? -1;
+  s.free();
+  const whole = await decodeStream(response, { maxLevel: 1 }, (m) => void m.info.level);
+  // @ts-expect-error: push() returns a mesh or null, not a promise
+  await s.push(chunk).then(() => 0);
+  return n + whole.info.triangles;
 }

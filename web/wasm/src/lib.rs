@@ -20,6 +20,10 @@
 //!   [`swm_decode`], reads the returned [`Output`] (32-bit fields on
 //!   wasm32, in declaration order), copies the arrays out and releases
 //!   everything with [`swm_output_free`] and [`swm_free`].
+//! - A file arriving in pieces: [`swm_stream_new`], then
+//!   [`swm_stream_push`] per piece (each `Output` is an error, a newly
+//!   completed level of a displaced file, or empty), [`swm_stream_finish`]
+//!   for the whole mesh, and [`swm_stream_free`].
 //! - A decoding error is an `Output` with a non-zero `status` and a UTF-8
 //!   message; only a bug traps (`unreachable`), after which the glue
 //!   discards the instance, since its heap may be mid-update.
@@ -36,7 +40,7 @@ use alloc::string::{String, ToString};
 use alloc::vec::Vec;
 use core::ptr;
 
-use swm::{DecodeOptions, Error, Limits, TriMesh};
+use swm::{DecodeOptions, Error, Limits, StreamDecoder, TriMesh};
 
 /// Success.
 pub const STATUS_OK: u32 = 0;
@@ -84,6 +88,9 @@ pub struct Output {
     pub major: u32,
     /// Format version of the file, minor.
     pub minor: u32,
+    /// The subdivision level of a displaced file's mesh handed out by
+    /// [`swm_stream_push`]; -1 for a whole file's decode.
+    pub level: i32,
 }
 
 /// The `Output` and what its pointers point into. `repr(C)` with `out`
@@ -187,6 +194,131 @@ pub unsafe extern "C" fn swm_output_free(out: *mut Output) {
     }
 }
 
+/// A file decoded as its bytes arrive ([`swm_stream_new`]): the library's
+/// `StreamDecoder`, which hands out each level of a displaced file once
+/// its chunk is in, and the last level handed to the host.
+pub struct Stream {
+    /// `None` once a push failed: the stream is dead.
+    decoder: Option<StreamDecoder>,
+    normals: bool,
+    shown: Option<usize>,
+}
+
+/// A stream decoder with [`swm_decode`]'s options; NULL when a limit is
+/// not a non-negative number. Released by [`swm_stream_free`].
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn swm_stream_new(
+    sharpen: i32,
+    bend_steps: i32,
+    normals: u32,
+    max_vertices: f64,
+    max_faces: f64,
+    max_alloc_bytes: f64,
+    max_level: i32,
+) -> *mut Stream {
+    let Some(limits) = limits(max_vertices, max_faces, max_alloc_bytes) else {
+        return ptr::null_mut();
+    };
+    let options = DecodeOptions {
+        limits,
+        sharpen: (sharpen >= 0).then_some(sharpen > 0),
+        bend_steps: u32::try_from(bend_steps).ok(),
+        max_level: u8::try_from(max_level).ok(),
+    };
+    Box::into_raw(Box::new(Stream {
+        decoder: Some(StreamDecoder::new(options)),
+        normals: normals != 0,
+        shown: None,
+    }))
+}
+
+/// Adds `len` bytes at `data` to the stream. The [`Output`] is an error
+/// (and the stream dead), or the finest level of a displaced file that
+/// the bytes so far complete when it is finer than the last one handed
+/// out (its `level` field says which), or else an empty mesh with
+/// `level` -1: nothing new yet. Never NULL.
+///
+/// # Safety
+/// `stream` came from [`swm_stream_new`] and was not freed since; `data`
+/// points to `len` readable bytes, or `len` is 0.
+#[no_mangle]
+pub unsafe extern "C" fn swm_stream_push(
+    stream: *mut Stream,
+    data: *const u8,
+    len: usize,
+) -> *mut Output {
+    // SAFETY: the caller promises a live stream.
+    let s = unsafe { &mut *stream };
+    let bytes = if len == 0 || data.is_null() {
+        &[][..]
+    } else {
+        // SAFETY: the caller promises `len` readable bytes at `data`.
+        unsafe { core::slice::from_raw_parts(data, len) }
+    };
+    let owned = match s.decoder.take().map(|d| d.push(bytes)) {
+        None => failure(STATUS_ARGUMENT, "the stream failed before".to_string()),
+        Some(Err(e)) => failure(status_of(&e), message(&e)),
+        Some(Ok(d)) => {
+            let fresh = match (d.level(), d.header()) {
+                (Some((level, mesh)), Some(header)) if s.shown.is_none_or(|l| level > l) => {
+                    s.shown = Some(level);
+                    let level = i32::try_from(level).unwrap_or(i32::MAX);
+                    Some(owned(mesh.clone(), &header, s.normals, level))
+                }
+                _ => None,
+            };
+            s.decoder = Some(d);
+            fresh.unwrap_or_else(nothing)
+        }
+    };
+    Box::into_raw(Box::new(owned)).cast()
+}
+
+/// The whole file's mesh once every byte is in (what [`swm_decode`]
+/// gives for them), or the error of a file that is cut short or damaged.
+/// The stream stays to be freed. Never NULL.
+///
+/// # Safety
+/// `stream` came from [`swm_stream_new`] and was not freed since.
+#[no_mangle]
+pub unsafe extern "C" fn swm_stream_finish(stream: *mut Stream) -> *mut Output {
+    // SAFETY: the caller promises a live stream.
+    let s = unsafe { &mut *stream };
+    let owned = match s.decoder.take() {
+        None => failure(STATUS_ARGUMENT, "the stream failed before".to_string()),
+        Some(d) => {
+            let header = d.header();
+            match (d.finish(), header) {
+                (Ok(mesh), Some(header)) => owned(mesh, &header, s.normals, -1),
+                (Err(e), _) => failure(status_of(&e), message(&e)),
+                (Ok(_), None) => failure(STATUS_INTERNAL, "no header".to_string()),
+            }
+        }
+    };
+    Box::into_raw(Box::new(owned)).cast()
+}
+
+/// Releases a stream; NULL is ignored.
+///
+/// # Safety
+/// `stream` is NULL or came from [`swm_stream_new`] and was not freed
+/// since.
+#[no_mangle]
+pub unsafe extern "C" fn swm_stream_free(stream: *mut Stream) {
+    if !stream.is_null() {
+        // SAFETY: the caller promises it came from `swm_stream_new`.
+        drop(unsafe { Box::from_raw(stream) });
+    }
+}
+
+/// An `Output` with nothing in it: a push that completed no new level.
+fn nothing() -> Owned {
+    let mut o = failure(STATUS_OK, String::new());
+    o.out.message = ptr::null();
+    o
+}
+
 /// `Limits` from host numbers; `None` for NaN or a negative value.
 fn limits(vertices: f64, faces: f64, alloc_bytes: f64) -> Option<Limits> {
     // `as` saturates: +inf and values beyond u64 become u64::MAX.
@@ -207,10 +339,14 @@ fn decode(bytes: &[u8], options: &DecodeOptions, with_normals: bool) -> Owned {
         let header = swm::container::parse_container(bytes, &options.limits)?.header;
         Ok((mesh, header))
     });
-    let (mesh, header) = match result {
-        Ok(x) => x,
-        Err(e) => return failure(status_of(&e), message(&e)),
-    };
+    match result {
+        Ok((mesh, header)) => owned(mesh, &header, with_normals, -1),
+        Err(e) => failure(status_of(&e), message(&e)),
+    }
+}
+
+/// A decoded mesh as an [`Output`] and what it points into.
+fn owned(mesh: TriMesh, header: &swm::container::Header, with_normals: bool, level: i32) -> Owned {
     let normals = if with_normals {
         swm::vertex_normals(&mesh)
     } else {
@@ -232,6 +368,7 @@ fn decode(bytes: &[u8], options: &DecodeOptions, with_normals: bool) -> Owned {
         mode: header.mode.code().into(),
         major: header.major.into(),
         minor: header.minor.into(),
+        level,
     };
     // Moving the vectors into `Owned` moves their headers, not their heap
     // buffers, so the pointers above stay valid.
@@ -257,6 +394,7 @@ fn failure(status: u32, message: String) -> Owned {
             mode: 0,
             major: 0,
             minor: 0,
+            level: -1,
         },
         _mesh: TriMesh::default(),
         _normals: Vec::new(),

@@ -138,6 +138,99 @@ fn displaced_files_decode_level_by_level() {
     }
 }
 
+/// A file pushed through a stream in pieces of 1, 7 and 1,000 bytes and
+/// whole: each level of the displaced golden file comes out once, in
+/// order, as soon as its chunk is in (the finest, where one piece
+/// completes several), bit for bit the library's decode cut at that
+/// level; `finish` gives the whole file's mesh. Other modes give no level
+/// and the same whole mesh; a file cut short fails at `finish`.
+#[test]
+fn streams_hand_out_each_level_as_it_arrives() {
+    for (name, levels) in [
+        ("displaced-v1.2.swm", 3),
+        ("lossless-compact-v1.1.swm", 0),
+        ("swing-v1.1.swm", 0),
+    ] {
+        let bytes = golden(name);
+        for piece in [1, 7, 1000, bytes.len()] {
+            let s = swm_stream_new(-1, -1, 0, DEFAULT[0], DEFAULT[1], DEFAULT[2], -1);
+            assert!(!s.is_null());
+            let mut seen = Vec::new();
+            for chunk in bytes.chunks(piece) {
+                // SAFETY: a live stream and a readable chunk.
+                let out = unsafe { swm_stream_push(s, chunk.as_ptr(), chunk.len()) };
+                // SAFETY: never NULL.
+                let o = unsafe { &*out };
+                assert_eq!(o.status, STATUS_OK, "{name}: {}", message(o));
+                if o.level >= 0 {
+                    let expected = swm::decode(
+                        &bytes,
+                        &DecodeOptions {
+                            max_level: u8::try_from(o.level).ok(),
+                            ..Default::default()
+                        },
+                    )
+                    .unwrap();
+                    let (p, i, _) = arrays(o);
+                    assert_eq!(
+                        p,
+                        expected.positions.as_flattened(),
+                        "{name} level {}",
+                        o.level
+                    );
+                    assert_eq!(
+                        i,
+                        expected.triangles.as_flattened(),
+                        "{name} level {}",
+                        o.level
+                    );
+                    assert_eq!((o.mode, o.major, o.minor), (2, 1, 2));
+                    seen.push(o.level);
+                } else {
+                    assert_eq!((o.vertex_count, o.triangle_count), (0, 0));
+                }
+                // SAFETY: from `swm_stream_push`.
+                unsafe { swm_output_free(out) };
+            }
+            // Small pieces complete one level at a time; a large one may
+            // complete several, and the finest is handed out.
+            let every: Vec<i32> = (0..levels).collect();
+            if piece <= 7 {
+                assert_eq!(seen, every, "{name} in pieces of {piece}");
+            } else {
+                assert!(seen.windows(2).all(|w| w[0] < w[1]), "{name}: {seen:?}");
+                assert_eq!(seen.last(), every.last(), "{name} in pieces of {piece}");
+            }
+            // SAFETY: a live stream.
+            let out = unsafe { swm_stream_finish(s) };
+            // SAFETY: never NULL.
+            let o = unsafe { &*out };
+            assert_eq!(o.status, STATUS_OK, "{name}: {}", message(o));
+            assert_eq!(o.level, -1);
+            let whole = swm::decode(&bytes, &DecodeOptions::default()).unwrap();
+            assert_eq!(arrays(o).0, whole.positions.as_flattened());
+            // SAFETY: from `swm_stream_finish`, then a live stream.
+            unsafe {
+                swm_output_free(out);
+                swm_stream_free(s);
+            }
+        }
+        // Cut short: the levels so far, then an error at `finish`.
+        let s = swm_stream_new(-1, -1, 0, DEFAULT[0], DEFAULT[1], DEFAULT[2], -1);
+        let cut = &bytes[..bytes.len() - 3];
+        // SAFETY: as above.
+        unsafe {
+            swm_output_free(swm_stream_push(s, cut.as_ptr(), cut.len()));
+            let out = swm_stream_finish(s);
+            assert_eq!((*out).status, STATUS_FORMAT, "{name}");
+            swm_output_free(out);
+            swm_stream_free(s);
+        }
+    }
+    // A negative limit is refused.
+    assert!(swm_stream_new(-1, -1, 0, -1.0, 1.0, 1.0, -1).is_null());
+}
+
 #[test]
 fn errors_carry_the_status_and_the_library_message() {
     let bytes = golden("swing-v1.0.swm");
