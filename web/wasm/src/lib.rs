@@ -163,16 +163,9 @@ pub unsafe extern "C" fn swm_decode(
         // SAFETY: the caller promises `len` readable bytes at `data`.
         unsafe { core::slice::from_raw_parts(data, len) }
     };
-    let owned = match limits(max_vertices, max_faces, max_alloc_bytes) {
-        Some(limits) => {
-            let options = DecodeOptions {
-                limits,
-                sharpen: (sharpen >= 0).then_some(sharpen > 0),
-                bend_steps: u32::try_from(bend_steps).ok(),
-                max_level: u8::try_from(max_level).ok(),
-            };
-            decode(bytes, &options, normals != 0)
-        }
+    let limits = [max_vertices, max_faces, max_alloc_bytes];
+    let owned = match options(sharpen, bend_steps, limits, max_level) {
+        Some(options) => decode(bytes, &options, normals != 0),
         None => failure(
             STATUS_ARGUMENT,
             "a limit is not a non-negative number".to_string(),
@@ -217,14 +210,9 @@ pub extern "C" fn swm_stream_new(
     max_alloc_bytes: f64,
     max_level: i32,
 ) -> *mut Stream {
-    let Some(limits) = limits(max_vertices, max_faces, max_alloc_bytes) else {
+    let limits = [max_vertices, max_faces, max_alloc_bytes];
+    let Some(options) = options(sharpen, bend_steps, limits, max_level) else {
         return ptr::null_mut();
-    };
-    let options = DecodeOptions {
-        limits,
-        sharpen: (sharpen >= 0).then_some(sharpen > 0),
-        bend_steps: u32::try_from(bend_steps).ok(),
-        max_level: u8::try_from(max_level).ok(),
     };
     Box::into_raw(Box::new(Stream {
         decoder: Some(StreamDecoder::new(options)),
@@ -317,6 +305,22 @@ fn nothing() -> Owned {
     let mut o = failure(STATUS_OK, String::new());
     o.out.message = ptr::null();
     o
+}
+
+/// `DecodeOptions` from [`swm_decode`]'s arguments; `None` when a limit
+/// is NaN or negative.
+fn options(
+    sharpen: i32,
+    bend_steps: i32,
+    limits: [f64; 3],
+    max_level: i32,
+) -> Option<DecodeOptions> {
+    Some(DecodeOptions {
+        limits: self::limits(limits[0], limits[1], limits[2])?,
+        sharpen: (sharpen >= 0).then_some(sharpen > 0),
+        bend_steps: u32::try_from(bend_steps).ok(),
+        max_level: u8::try_from(max_level).ok(),
+    })
 }
 
 /// `Limits` from host numbers; `None` for NaN or a negative value.
