@@ -47,6 +47,7 @@ const BACKWARD: u32 = 1 << 31;
 pub(crate) const NONE: u32 = u32::MAX;
 
 /// The edges of a triangle list.
+#[derive(Debug)]
 pub(crate) struct Edges {
     /// Corners (`3f + k`), grouped by edge, each group in corner order.
     corners: Vec<u32>,
@@ -174,6 +175,23 @@ impl Edges {
         start.push(corners as u32);
         Edges {
             corners: list,
+            start,
+            of_corner,
+            mate,
+        }
+    }
+
+    /// An `Edges` from its arrays, as `new` would make them (the caller
+    /// vouches: `finer`, which derives a level's edges from the level
+    /// above, and is tested against `new`).
+    pub(crate) fn from_parts(
+        corners: Vec<u32>,
+        start: Vec<u32>,
+        of_corner: Vec<u32>,
+        mate: Vec<u32>,
+    ) -> Edges {
+        Edges {
+            corners,
             start,
             of_corner,
             mate,
