@@ -35,14 +35,25 @@
 //! that is renamed into place; [`discard_unfinished`] removes those of
 //! writes in progress, for programs that end on a signal.
 //!
-//! Readers keep positions and faces only. What else a file carried that
-//! is dropped (texture coordinates, normals, colours) is reported by
-//! [`read_mesh_with_report`] and [`read_mesh_bytes_with_report`], so that
-//! programs can say so ([`Attributes`]).
+//! The `TriMesh` readers keep positions and faces only. What else a file
+//! carried that is dropped (texture coordinates, normals, colours) is
+//! reported by [`read_mesh_with_report`] and
+//! [`read_mesh_bytes_with_report`], so that programs can say so
+//! ([`Attributes`]). [`read_attributed_mesh_with`] and
+//! [`read_attributed_mesh_bytes`] keep them too, as the streams of an
+//! [`AttributedMesh`] (the same mesh, bit for bit, and each attribute
+//! with its own per-corner indices), under the same guarantees and
+//! limits; an attribute a file gets wrong (a non-finite value, an index
+//! out of range, one that not every face has) is dropped and reported,
+//! never an error, so attributes never make a readable file unreadable.
+//! [`write_attributed_mesh`] writes them in every format that has a
+//! convention for them, and reports what a format cannot hold
+//! ([`WriteReport`]).
 //!
 //! One file per format; `source` maps or reads input files, `output`
 //! writes output files, `text` holds the ASCII scanning the text formats
-//! share, `attributes` the report of what was dropped.
+//! share, `attributes` the reports of what was dropped or not written,
+//! `builder` the mesh and streams a reader builds under the limits.
 
 mod attributes;
 mod builder;

@@ -455,3 +455,89 @@ fn spot_round_trips() {
         assert_eq!(corners(&back), corners(&expected), "{format:?}");
     }
 }
+
+/// suzanne and beetle: normals with their own indices (`f v//vn`),
+/// exact through OBJ and PLY, unit and within rounding through GLB.
+#[test]
+fn suzanne_and_beetle_normals_round_trip() {
+    for name in ["suzanne.obj", "beetle.obj"] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../shared/corpus")
+            .join(name);
+        if !path.is_file() {
+            crate::test_skip::skip("../shared/corpus not found");
+            return;
+        }
+        let (m, report) = read_attributed_mesh_with(&path, None, &Limits::default()).unwrap();
+        assert!(report.dropped.is_empty(), "{name}: {report:?}");
+        assert_eq!(kinds(&m), [AttributeKind::Normal], "{name}");
+        for format in [MeshFormat::Obj, MeshFormat::Ply] {
+            let (back, _) = read_attributed(&written(&m, format).0, format);
+            assert_eq!(corners(&back), corners(&m), "{name} {format:?}");
+        }
+        let (back, _) = read_attributed(&written(&m, MeshFormat::Glb).0, MeshFormat::Glb);
+        let (n, back_n) = (
+            m.stream(AttributeKind::Normal).unwrap(),
+            back.stream(AttributeKind::Normal).unwrap(),
+        );
+        for f in 0..m.mesh.triangles.len() as u32 {
+            for k in 0..3 {
+                let a = glam::Vec3::from_slice(n.corner_value(FaceId(f), k)).normalize();
+                let b = glam::Vec3::from_slice(back_n.corner_value(FaceId(f), k));
+                assert!(
+                    (b.length() - 1.0).abs() < 1e-5 && a.dot(b) > 1.0 - 1e-6,
+                    "{name} face {f}"
+                );
+            }
+        }
+    }
+}
+
+/// A node that mirrors and stretches its mesh turns its normals by the
+/// inverse transpose and keeps them unit; texture coordinates stay.
+#[test]
+fn gltf_normals_follow_the_node_transform() {
+    let cube = seamed_cube();
+    let (bytes, _) = written(&cube, MeshFormat::Glb);
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json = std::str::from_utf8(&bytes[20..20 + json_len]).unwrap();
+    let moved = json.replacen(
+        r#""nodes":[{"mesh":0}]"#,
+        r#""nodes":[{"mesh":0,"scale":[-1,2,1]}]"#,
+        1,
+    );
+    let mut moved = moved.trim_end().as_bytes().to_vec();
+    moved.resize(moved.len().div_ceil(4) * 4, b' ');
+    let bin = &bytes[20 + json_len..];
+    let mut glb = b"glTF".to_vec();
+    glb.extend(2u32.to_le_bytes());
+    glb.extend((20 + moved.len() as u32 + bin.len() as u32).to_le_bytes());
+    glb.extend((moved.len() as u32).to_le_bytes());
+    glb.extend(b"JSON");
+    glb.extend(&moved);
+    glb.extend(bin);
+    let (m, _) = read_attributed(&glb, MeshFormat::Glb);
+    let (n, uv) = (
+        m.stream(AttributeKind::Normal).unwrap(),
+        m.stream(AttributeKind::TexCoord(0)).unwrap(),
+    );
+    let (n0, uv0) = (
+        written_back(&cube, AttributeKind::Normal),
+        written_back(&cube, AttributeKind::TexCoord(0)),
+    );
+    assert_eq!(uv.values, uv0.values);
+    for (a, b) in n.values.chunks_exact(3).zip(n0.values.chunks_exact(3)) {
+        assert_eq!(a, [-b[0], b[1], b[2]]);
+    }
+    // Mirrored: the triangles are flipped, and the streams with them.
+    let (plain, _) = read_attributed(&bytes, MeshFormat::Glb);
+    let t = plain.mesh.triangles[0];
+    assert_eq!(m.mesh.triangles[0], [t[0], t[2], t[1]]);
+    assert_eq!(n.corners, m.mesh.triangles);
+}
+
+/// The stream of `kind` of `m` written as GLB and read back.
+fn written_back(m: &AttributedMesh, kind: AttributeKind) -> AttributeStream {
+    let (back, _) = read_attributed(&written(m, MeshFormat::Glb).0, MeshFormat::Glb);
+    back.stream(kind).unwrap().clone()
+}
