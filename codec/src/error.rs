@@ -32,6 +32,10 @@ pub enum Error {
     /// The input's topology cannot be handled (e.g. a non-orientable surface).
     #[error("{0}")]
     Topology(#[from] TopologyError),
+    /// An attribute stream of an [`AttributedMesh`](crate::AttributedMesh)
+    /// breaks its invariants (see `AttributedMesh::validate`).
+    #[error("{0}")]
+    Attribute(#[from] AttributeError),
     /// The file needs a newer decoder: a newer major version, or a mode,
     /// critical section or required flag this version does not know.
     #[error("{0}")]
@@ -251,6 +255,91 @@ impl fmt::Display for FormatError {
 }
 
 impl core::error::Error for FormatError {}
+
+/// What is wrong with one attribute stream of an
+/// [`AttributedMesh`](crate::AttributedMesh); `stream` is its index in
+/// `AttributedMesh::streams`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AttributeError {
+    /// The stream's dimension is not one its kind allows (normals 3,
+    /// texture coordinates 2 or 3, colours 3 or 4, generic 1 to 4).
+    Dims {
+        /// The stream.
+        stream: u32,
+        /// Its `dims`.
+        dims: u8,
+    },
+    /// The value array's length is not a multiple of `dims`.
+    ValueCount {
+        /// The stream.
+        stream: u32,
+        /// Its number of floats.
+        floats: u64,
+        /// Its `dims`.
+        dims: u8,
+    },
+    /// A value is NaN or infinite.
+    NonFinite {
+        /// The stream.
+        stream: u32,
+        /// The 0-based value (not float) index.
+        value: u64,
+    },
+    /// The stream does not have one index triple per triangle.
+    CornerCount {
+        /// The stream.
+        stream: u32,
+        /// Its number of triples.
+        triples: u64,
+        /// The mesh's number of triangles.
+        faces: u64,
+    },
+    /// A corner refers to a value the stream does not have.
+    IndexOutOfRange {
+        /// The stream.
+        stream: u32,
+        /// The index.
+        index: u32,
+        /// The stream's number of values.
+        values: u64,
+    },
+    /// Two streams have the same kind.
+    DuplicateKind {
+        /// The second of the two.
+        stream: u32,
+    },
+}
+
+impl fmt::Display for AttributeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            AttributeError::Dims { stream, dims } => {
+                write!(f, "attribute stream {stream}: {dims} components is not allowed for its kind")
+            }
+            AttributeError::ValueCount { stream, floats, dims } => write!(
+                f,
+                "attribute stream {stream}: {floats} floats is not a whole number of {dims}-component values"
+            ),
+            AttributeError::NonFinite { stream, value } => {
+                write!(f, "attribute stream {stream}: value {value} is not finite")
+            }
+            AttributeError::CornerCount { stream, triples, faces } => write!(
+                f,
+                "attribute stream {stream}: {triples} index triples for {faces} triangles"
+            ),
+            AttributeError::IndexOutOfRange { stream, index, values } => write!(
+                f,
+                "attribute stream {stream}: index {index} out of range ({values} values)"
+            ),
+            AttributeError::DuplicateKind { stream } => {
+                write!(f, "attribute stream {stream}: an earlier stream has the same kind")
+            }
+        }
+    }
+}
+
+impl core::error::Error for AttributeError {}
 
 /// What is malformed.
 #[derive(Clone, Debug, PartialEq, Eq)]

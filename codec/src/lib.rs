@@ -73,15 +73,15 @@ pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::{Framing, Mode};
 pub use displaced::cut_levels;
 pub use error::{
-    Error, ErrorBoundError, FileKind, FormatError, InputError, LimitError, Limited, Location,
-    Malformed, ParameterError, RetileError, RetileFailure, SizeError, TopologyError,
+    AttributeError, Error, ErrorBoundError, FileKind, FormatError, InputError, LimitError, Limited,
+    Location, Malformed, ParameterError, RetileError, RetileFailure, SizeError, TopologyError,
 };
 #[cfg(feature = "encoder")]
 pub use limits::EncodeLimits;
 pub use limits::Limits;
 pub use mesh::{
-    vertex_normals, vertex_normals_into, CornerId, CornerTable, FaceId, MeshStats, TriMesh,
-    VertexId,
+    vertex_normals, vertex_normals_into, AttributeKind, AttributeStream, AttributedMesh, CornerId,
+    CornerTable, FaceId, MeshStats, TriMesh, VertexId,
 };
 pub use options::DecodeOptions;
 pub use post::bend::{bend, Bent};
@@ -91,7 +91,9 @@ pub use post::SharpEdges;
 pub use stream::StreamDecoder;
 
 #[cfg(feature = "encoder")]
-pub use mesh::clean::{clean, CleanOptions, CleanReport, Cleaned};
+pub use mesh::clean::{
+    clean, clean_attributed, clean_with_origins, CleanOptions, CleanReport, Cleaned, FaceOrigin,
+};
 
 /// Result type of this crate.
 pub type Result<T, E = Error> = core::result::Result<T, E>;

@@ -1,7 +1,8 @@
-//! What a mesh file carried besides positions and faces: the per-vertex
-//! attributes swm does not code (texture coordinates, normals, colours),
-//! so that a program can say they were dropped instead of losing them
-//! in silence.
+//! What a mesh file carried besides positions and faces that was not
+//! kept (texture coordinates, normals, colours): all of them when a
+//! `TriMesh` is read, those the streams of an `AttributedMesh` could not
+//! take otherwise; and what a writer could not write. So that a program
+//! can say so instead of losing them in silence.
 //!
 //! Each reader sets the flags from what the file *declares* where the
 //! format declares it (a PLY property, an OFF keyword prefix, a glTF
@@ -24,6 +25,9 @@ pub struct Attributes {
     /// Vertex colours (OBJ `v x y z r g b`, PLY `red`/`green`/`blue`/`alpha`,
     /// OFF `C`, glTF `COLOR_n`).
     pub colors: bool,
+    /// Generic attribute streams ([`AttributeKind::Generic`](crate::AttributeKind::Generic)),
+    /// which no reader makes and no writer writes.
+    pub generic: bool,
 }
 
 impl Attributes {
@@ -39,9 +43,23 @@ impl Attributes {
             (self.uv, "texture coordinates"),
             (self.normals, "normals"),
             (self.colors, "colours"),
+            (self.generic, "generic attributes"),
         ]
         .into_iter()
         .filter_map(|(present, name)| present.then_some(name))
+    }
+
+    /// The flag of an attribute kind.
+    pub(crate) fn of(kind: crate::AttributeKind) -> Attributes {
+        use crate::AttributeKind as K;
+        let mut a = Attributes::default();
+        match kind {
+            K::Normal => a.normals = true,
+            K::TexCoord(_) => a.uv = true,
+            K::Color(_) => a.colors = true,
+            K::Generic(_) => a.generic = true,
+        }
+        a
     }
 
     /// Both sets together.
@@ -50,8 +68,19 @@ impl Attributes {
             uv: self.uv || other.uv,
             normals: self.normals || other.normals,
             colors: self.colors || other.colors,
+            generic: self.generic || other.generic,
         }
     }
+}
+
+/// What writing an [`AttributedMesh`](crate::AttributedMesh) left out
+/// because the format cannot hold it
+/// ([`write_attributed_mesh`](super::write_attributed_mesh)).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct WriteReport {
+    /// The attribute kinds some stream of which was not written.
+    pub unwritten: Attributes,
 }
 
 /// What reading a mesh file found besides the mesh

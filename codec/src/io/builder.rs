@@ -2,12 +2,24 @@
 //! before every allocation, and the limit error readers that count first
 //! report themselves.
 //!
+//! Attribute streams are read only when the caller asks for them
+//! (the readers' `keep`): otherwise the readers skip them, allocating and
+//! checking exactly what they did before streams existed. A stream is
+//! *per vertex* (one value per position, its triples the triangles: PLY
+//! vertex properties, glTF accessors, OBJ colours) or *per corner* (its
+//! own triples: OBJ `vt`/`vn`, a PLY face `texcoord` list). A stream
+//! that does not cover every vertex or corner (a glTF primitive without
+//! the texture coordinates the others have), or holds a non-finite
+//! value, is dropped at the end and reported, not kept in part.
+//!
 //! Below every reader and apart from `io`'s dispatch (`mod.rs`), which
 //! calls the readers: the readers import this, not the file that calls
 //! them.
 
 use super::Attributes;
-use crate::{Error, LimitError, Limited, Limits, TriMesh};
+use crate::{
+    AttributeKind, AttributeStream, AttributedMesh, Error, LimitError, Limited, Limits, TriMesh,
+};
 use std::io;
 
 /// The mesh a reader is building, the [`Limits`] it must stay within,
@@ -16,6 +28,18 @@ pub(super) struct Builder<'l> {
     pub(super) mesh: TriMesh,
     pub(super) limits: &'l Limits,
     pub(super) dropped: Attributes,
+    /// The streams being read.
+    pub(super) streams: Vec<Pending>,
+}
+
+/// A stream being read.
+pub(super) struct Pending {
+    pub(super) stream: AttributeStream,
+    /// One value per position, the triangles as triples (filled in by
+    /// [`Builder::finish`]).
+    pub(super) per_vertex: bool,
+    /// Known not to cover the mesh: dropped at the end.
+    pub(super) broken: bool,
 }
 
 impl<'l> Builder<'l> {
@@ -24,7 +48,50 @@ impl<'l> Builder<'l> {
             mesh: TriMesh::default(),
             limits,
             dropped: Attributes::default(),
+            streams: Vec::new(),
         }
+    }
+
+    /// Adds an empty stream; its index in `streams`.
+    pub(super) fn add_stream(&mut self, kind: AttributeKind, dims: u8, per_vertex: bool) -> usize {
+        self.streams.push(Pending {
+            stream: AttributeStream::new(kind, dims, Vec::new(), Vec::new()),
+            per_vertex,
+            broken: false,
+        });
+        self.streams.len() - 1
+    }
+
+    /// Checks the limits for `n` more values of stream `s` (and, for a
+    /// per-corner stream, `triples` more triples), then makes room.
+    pub(super) fn reserve_values(&mut self, s: usize, n: u64, triples: u64) -> Result<(), Error> {
+        let p = &self.streams[s];
+        let floats = (p.stream.values.len() as u64)
+            .saturating_add(n.saturating_mul(u64::from(p.stream.dims)));
+        let corners = (p.stream.corners.len() as u64).saturating_add(triples);
+        let extra = floats
+            .saturating_sub(p.stream.values.capacity() as u64)
+            .saturating_mul(4)
+            .saturating_add(
+                corners
+                    .saturating_sub(p.stream.corners.capacity() as u64)
+                    .saturating_mul(12),
+            );
+        let base = self.alloc_bytes(
+            self.mesh.positions.capacity() as u64,
+            self.mesh.triangles.capacity() as u64,
+        );
+        self.limits.check_alloc(base.saturating_add(extra))?;
+        let p = &mut self.streams[s].stream;
+        let more = |total: u64, len: usize| {
+            usize::try_from(total - len as u64).map_err(|_| out_of_memory())
+        };
+        let (nf, nc) = (
+            more(floats, p.values.len())?,
+            more(corners, p.corners.len())?,
+        );
+        p.values.try_reserve(nf).map_err(|_| out_of_memory())?;
+        p.corners.try_reserve(nc).map_err(|_| out_of_memory())
     }
 
     /// Checks the limits for `n` more vertices, then makes room for them.
@@ -78,13 +145,53 @@ impl<'l> Builder<'l> {
     /// Checks the memory for vertex and triangle slots (allocated ones,
     /// not just used ones).
     pub(super) fn check_alloc(&self, vertices: u64, triangles: u64) -> Result<(), Error> {
-        // 12 bytes per position and per triangle.
-        let bytes = vertices.saturating_add(triangles).saturating_mul(12);
-        Ok(self.limits.check_alloc(bytes)?)
+        Ok(self
+            .limits
+            .check_alloc(self.alloc_bytes(vertices, triangles))?)
     }
 
-    pub(super) fn finish(self) -> (TriMesh, Attributes) {
-        (self.mesh, self.dropped)
+    /// Bytes of `vertices` and `triangles` slots and of the streams: 12
+    /// per position and per triangle, and each stream's values and
+    /// triples (a per-vertex stream gets its copy of the triangles at the
+    /// end, counted now).
+    fn alloc_bytes(&self, vertices: u64, triangles: u64) -> u64 {
+        let mut bytes = vertices.saturating_add(triangles).saturating_mul(12);
+        for p in &self.streams {
+            let corners = match p.per_vertex {
+                true => triangles,
+                false => p.stream.corners.capacity() as u64,
+            };
+            bytes = bytes
+                .saturating_add((p.stream.values.capacity() as u64).saturating_mul(4))
+                .saturating_add(corners.saturating_mul(12));
+        }
+        bytes
+    }
+
+    /// The mesh, its streams, and what the file carried that they do not
+    /// keep: every stream that is broken, does not cover the mesh, or
+    /// holds a non-finite value is dropped and reported.
+    pub(super) fn finish(self) -> (AttributedMesh, Attributes) {
+        let mut dropped = self.dropped;
+        let mut streams = Vec::new();
+        let positions = self.mesh.positions.len();
+        let faces = self.mesh.triangles.len();
+        for p in self.streams {
+            let mut s = p.stream;
+            let whole = match p.per_vertex {
+                true => s.value_count() == positions,
+                false => s.corners.len() == faces,
+            };
+            if p.broken || !whole || !s.values.iter().all(|x| x.is_finite()) {
+                dropped = dropped.union(Attributes::of(s.kind));
+                continue;
+            }
+            if p.per_vertex {
+                s.corners = self.mesh.triangles.clone();
+            }
+            streams.push(s);
+        }
+        (AttributedMesh::new(self.mesh, streams), dropped)
     }
 }
 

@@ -35,14 +35,25 @@
 //! that is renamed into place; [`discard_unfinished`] removes those of
 //! writes in progress, for programs that end on a signal.
 //!
-//! Readers keep positions and faces only. What else a file carried that
-//! is dropped (texture coordinates, normals, colours) is reported by
-//! [`read_mesh_with_report`] and [`read_mesh_bytes_with_report`], so that
-//! programs can say so ([`Attributes`]).
+//! The `TriMesh` readers keep positions and faces only. What else a file
+//! carried that is dropped (texture coordinates, normals, colours) is
+//! reported by [`read_mesh_with_report`] and
+//! [`read_mesh_bytes_with_report`], so that programs can say so
+//! ([`Attributes`]). [`read_attributed_mesh_with`] and
+//! [`read_attributed_mesh_bytes`] keep them too, as the streams of an
+//! [`AttributedMesh`] (the same mesh, bit for bit, and each attribute
+//! with its own per-corner indices), under the same guarantees and
+//! limits; an attribute a file gets wrong (a non-finite value, an index
+//! out of range, one that not every face has) is dropped and reported,
+//! never an error, so attributes never make a readable file unreadable.
+//! [`write_attributed_mesh`] writes them in every format that has a
+//! convention for them, and reports what a format cannot hold
+//! ([`WriteReport`]).
 //!
 //! One file per format; `source` maps or reads input files, `output`
 //! writes output files, `text` holds the ASCII scanning the text formats
-//! share, `attributes` the report of what was dropped.
+//! share, `attributes` the reports of what was dropped or not written,
+//! `builder` the mesh and streams a reader builds under the limits.
 
 mod attributes;
 mod builder;
@@ -55,18 +66,20 @@ mod source;
 mod stl;
 mod text;
 
-use crate::{Error, FormatError, Limits, Malformed, ParameterError, TriMesh};
-pub use attributes::{Attributes, ReadReport};
+use crate::{AttributedMesh, Error, FormatError, Limits, Malformed, ParameterError, TriMesh};
+pub use attributes::{Attributes, ReadReport, WriteReport};
 pub use output::discard_unfinished;
 use output::write_atomic;
 use std::io::{BufWriter, Write};
 use std::ops::Deref;
 use std::path::Path;
 
-/// What every reader is: the bytes of a whole file, and the folder it
-/// was read from (for files that name other files), to its raw mesh and
-/// the vertex attributes it dropped.
-type Reader = fn(&[u8], Option<&Path>, &Limits) -> Result<(TriMesh, Attributes), Error>;
+/// What every reader is: the bytes of a whole file, the folder it was
+/// read from (for files that name other files), and whether to read
+/// attribute streams, to its raw mesh and the vertex attributes it
+/// dropped.
+type Reader =
+    fn(&[u8], Option<&Path>, &Limits, bool) -> Result<(AttributedMesh, Attributes), Error>;
 
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,10 +151,11 @@ impl MeshFormat {
     fn reader(self) -> Reader {
         // Only glTF files name other files; the other readers need no folder.
         match self {
-            MeshFormat::Obj => |b, _, l| obj::read(b, l),
-            MeshFormat::Ply => |b, _, l| ply::read(b, l),
-            MeshFormat::Off => |b, _, l| off::read(b, l),
-            MeshFormat::Stl => |b, _, l| stl::read(b, l),
+            MeshFormat::Obj => |b, _, l, keep| obj::read(b, l, keep),
+            MeshFormat::Ply => |b, _, l, keep| ply::read(b, l, keep),
+            MeshFormat::Off => |b, _, l, keep| off::read(b, l, keep),
+            // STL has no vertex attributes.
+            MeshFormat::Stl => |b, _, l, _| stl::read(b, l),
             // One reader for both: it tells them apart by the GLB magic.
             MeshFormat::Glb | MeshFormat::Gltf => gltf::read,
         }
@@ -206,7 +220,48 @@ pub fn read_mesh_with_report(
     let bytes = source::Source::open(path, limits)?;
     // A `.gltf` file's external buffers are beside it.
     let folder = path.parent().unwrap_or(Path::new(""));
-    read_bytes_in(&bytes, format, Some(folder), limits)
+    read_bytes_in(&bytes, format, Some(folder), limits, false).map(|(m, r)| (m.mesh, r))
+}
+
+/// [`read_mesh_with_report`] with the vertex attributes the file carries:
+/// normals, texture coordinates and colours, each an
+/// [`AttributeStream`](crate::AttributeStream) of per-corner indices
+/// (OBJ's `vt` and `vn` keep their own indexing; PLY and glTF per-vertex
+/// values index like the positions). The mesh is the one
+/// [`read_mesh_with_report`] returns, bit for bit; the report lists what
+/// the file carried that the streams still do not keep (an attribute
+/// that not every face or primitive has, a non-finite value, tangents
+/// are not read).
+///
+/// What each format gives: OBJ `vt` (2 components, 3 when a `w` is
+/// given), `vn` and `v x y z r g b` colours; PLY vertex `nx ny nz`,
+/// `u v` / `s t` / `texture_u texture_v`, `red green blue [alpha]`
+/// (integers scaled to 0..1) and the face `texcoord` list; OFF's `N`,
+/// `C` and `ST` vertex values; glTF `NORMAL`, `TEXCOORD_n` and `COLOR_0`
+/// (normalized integers decoded as §3.11 says), normals turned with each
+/// node's transform. All within the same [`Limits`].
+pub fn read_attributed_mesh_with(
+    path: &Path,
+    format: Option<MeshFormat>,
+    limits: &Limits,
+) -> Result<(AttributedMesh, ReadReport), Error> {
+    let format = match format {
+        Some(f) => f,
+        None => MeshFormat::from_path(path)?,
+    };
+    let bytes = source::Source::open(path, limits)?;
+    let folder = path.parent().unwrap_or(Path::new(""));
+    read_bytes_in(&bytes, format, Some(folder), limits, true)
+}
+
+/// [`read_attributed_mesh_with`] from the bytes of a file (see
+/// [`read_mesh_bytes`] for `.gltf` files).
+pub fn read_attributed_mesh_bytes(
+    bytes: &[u8],
+    format: MeshFormat,
+    limits: &Limits,
+) -> Result<(AttributedMesh, ReadReport), Error> {
+    read_bytes_in(bytes, format, None, limits, true)
 }
 
 /// Reads a mesh from the bytes of a file. A `.gltf` file must then hold
@@ -227,23 +282,25 @@ pub fn read_mesh_bytes_with_report(
     format: MeshFormat,
     limits: &Limits,
 ) -> Result<(TriMesh, ReadReport), Error> {
-    read_bytes_in(bytes, format, None, limits)
+    read_bytes_in(bytes, format, None, limits, false).map(|(m, r)| (m.mesh, r))
 }
 
-/// [`read_mesh_bytes`] for a file in `folder`.
+/// [`read_mesh_bytes`] for a file in `folder`, with its attribute
+/// streams if `keep`.
 fn read_bytes_in(
     bytes: &[u8],
     format: MeshFormat,
     folder: Option<&Path>,
     limits: &Limits,
-) -> Result<(TriMesh, ReadReport), Error> {
+    keep: bool,
+) -> Result<(AttributedMesh, ReadReport), Error> {
     let read = format.reader();
     let empty = || Error::Format(FormatError::new(format.name(), Malformed::Empty));
     if text::is_blank(bytes) {
         return Err(empty());
     }
-    let (mesh, dropped) = read(bytes, folder, limits)?;
-    if mesh.positions.is_empty() && mesh.triangles.is_empty() {
+    let (mesh, dropped) = read(bytes, folder, limits, keep)?;
+    if mesh.mesh.positions.is_empty() && mesh.mesh.triangles.is_empty() {
         return Err(empty());
     }
     Ok((mesh, ReadReport { dropped }))
@@ -301,6 +358,72 @@ pub fn write_mesh_to<W: Write>(w: W, format: MeshFormat, mesh: &TriMesh) -> Resu
     Ok(())
 }
 
+/// Writes a mesh with its attributes, the format given by the extension
+/// (see [`write_attributed_mesh_to`]), complete or not at all as
+/// [`write_mesh`] does. An invalid mesh ([`AttributedMesh::validate`]) is
+/// refused before anything is created.
+pub fn write_attributed_mesh(path: &Path, mesh: &AttributedMesh) -> Result<WriteReport, Error> {
+    write_attributed_mesh_as(path, MeshFormat::from_path(path)?, mesh)
+}
+
+/// [`write_attributed_mesh`] in the given format, whatever the name says.
+pub fn write_attributed_mesh_as(
+    path: &Path,
+    format: MeshFormat,
+    mesh: &AttributedMesh,
+) -> Result<WriteReport, Error> {
+    writable(format)?;
+    mesh.validate()?;
+    let mut report = WriteReport::default();
+    write_atomic(path, |file| {
+        report = write_attributed_mesh_to(file, format, mesh)?;
+        Ok(())
+    })?;
+    Ok(report)
+}
+
+/// Writes a mesh with its attributes in `format` to `w`; the report says
+/// which attributes the format could not hold and were left out.
+///
+/// - OBJ: `vt` (texture set 0), `vn` and `f v/vt/vn` with each stream's
+///   own indices, so seams are written as they are; RGB colour set 0 on
+///   the `v` lines (a position with several colours is written once per
+///   colour);
+/// - PLY (binary) and OFF: one vertex per distinct position and values
+///   ([`AttributedMesh::split_vertices`]) with normals, texture set 0 of
+///   2 components and colour set 0 (PLY `uchar` when every colour is an
+///   8-bit value, `float` otherwise);
+/// - GLB: split vertices with NORMAL (unit; computed as [`write_mesh_to`]
+///   does when the mesh has none), TEXCOORD_n (2 components) and
+///   COLOR_n;
+/// - STL: no attributes.
+///
+/// A mesh without streams gives the bytes [`write_mesh_to`] gives.
+pub fn write_attributed_mesh_to<W: Write>(
+    w: W,
+    format: MeshFormat,
+    mesh: &AttributedMesh,
+) -> Result<WriteReport, Error> {
+    writable(format)?;
+    mesh.validate()?;
+    let mut w = BufWriter::with_capacity(1 << 16, w);
+    let unwritten = match format {
+        MeshFormat::Obj => obj::write_attributed(&mut w, mesh)?,
+        MeshFormat::Ply => ply::write_attributed(&mut w, mesh)?,
+        MeshFormat::Off => off::write_attributed(&mut w, mesh)?,
+        MeshFormat::Stl => {
+            stl::write(&mut w, &mesh.mesh)?;
+            mesh.streams.iter().fold(Attributes::default(), |a, s| {
+                a.union(Attributes::of(s.kind))
+            })
+        }
+        MeshFormat::Glb => gltf::write_attributed(&mut w, mesh)?,
+        MeshFormat::Gltf => unreachable!("refused by `writable`"),
+    };
+    w.flush()?;
+    Ok(WriteReport { unwritten })
+}
+
 /// [`ParameterError::ReadOnly`] for a format that is not written.
 fn writable(format: MeshFormat) -> Result<(), Error> {
     if format.is_writable() {
@@ -326,3 +449,5 @@ pub(crate) fn shared_corpus_mesh(name: &str) -> Option<TriMesh> {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_attributes;

@@ -2,12 +2,17 @@
 //! Advanced Visualizer manual (Appendix B1, "Object Files (.obj)"); the
 //! parsing is done by the `tobj` crate.
 //!
-//! Only geometry statements matter here: `v x y z [w]` and
-//! `f v1[/vt[/vn]] v2 ...` with 1-based or negative (relative) indices;
-//! polygons are fan-triangulated. Texture coordinates, normals, groups,
-//! objects, materials, smoothing groups, points and lines are ignored;
-//! `vt` and `vn` statements and vertex colours (`v x y z r g b`, an
-//! extension many writers use) are reported as dropped attributes.
+//! Geometry statements: `v x y z [w]` and `f v1[/vt[/vn]] v2 ...` with
+//! 1-based or negative (relative) indices; polygons are fan-triangulated.
+//! Groups, objects, materials, smoothing groups, points and lines are
+//! ignored. When attributes are asked for (`keep`), `vt u [v [w]]`,
+//! `vn x y z` and vertex colours (`v x y z r g b`, an extension many
+//! writers use) become streams, `vt` and `vn` with the face's own indices
+//! (per corner, so seams stay as written); otherwise they are reported
+//! as dropped. An attribute that is malformed or that not every face
+//! corner names (`f 1/1 2/2 3` on a textured mesh) is dropped and
+//! reported, never an error: attributes do not make a readable file
+//! unreadable.
 //!
 //! tobj on its own would not return the raw mesh this module promises, so
 //! it only gets to see a filtered copy of the statements (see [`Feed`]):
@@ -30,7 +35,10 @@
 use super::builder::{limit, Builder};
 use super::text::{self, Text};
 use super::Attributes;
-use crate::{Error, FormatError, Limited, Limits, Location, Malformed, TriMesh};
+use crate::{
+    AttributeKind, AttributedMesh, Error, FormatError, Limited, Limits, Location, Malformed,
+    TriMesh,
+};
 use std::io::{self, BufRead, Read, Write};
 
 const FORMAT: &str = "OBJ";
@@ -57,6 +65,10 @@ struct Counts {
     triangles: u64,
     /// `vt`, `vn` and coloured `v` statements seen.
     dropped: Attributes,
+    /// `vt` and `vn` statements, and whether a `vt` has a third value.
+    texcoords: u64,
+    normals: u64,
+    texcoord_w: bool,
 }
 
 /// The first pass: counts, and the checks tobj does not make.
@@ -76,8 +88,15 @@ fn scan(bytes: &[u8]) -> Result<Counts, Error> {
                 counts.dropped.colors |= values >= 6;
                 counts.vertices += 1;
             }
-            Some(b"vt") => counts.dropped.uv = true,
-            Some(b"vn") => counts.dropped.normals = true,
+            Some(b"vt") => {
+                counts.dropped.uv = true;
+                counts.texcoords += 1;
+                counts.texcoord_w |= words.count() >= 3;
+            }
+            Some(b"vn") => {
+                counts.dropped.normals = true;
+                counts.normals += 1;
+            }
             Some(b"f") => {
                 let corners = words.count() as u64;
                 if corners < 3 {
@@ -92,8 +111,12 @@ fn scan(bytes: &[u8]) -> Result<Counts, Error> {
     Ok(counts)
 }
 
-/// Reads an OBJ file.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
+/// Reads an OBJ file, with its attributes if `keep`.
+pub(super) fn read(
+    bytes: &[u8],
+    limits: &Limits,
+    keep: bool,
+) -> Result<(AttributedMesh, Attributes), Error> {
     if let Some(why) = text::not_text(bytes) {
         return Err(FormatError::new(FORMAT, why).into());
     }
@@ -111,7 +134,15 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes
         .saturating_mul(100)
         .saturating_add(counts.faces.saturating_mul(200))
         .saturating_add(counts.triangles.saturating_mul(36));
-    limits.check_alloc(working)?;
+    // With attributes: their values (at most 3 floats each) and a triple
+    // per triangle for `vt` and for `vn`, all built beside tobj's output.
+    let attributes = match keep {
+        true => (counts.texcoords + counts.normals + counts.vertices)
+            .saturating_mul(12)
+            .saturating_add(counts.triangles.saturating_mul(24)),
+        false => 0,
+    };
+    limits.check_alloc(working.saturating_add(attributes))?;
     if counts.vertices > 1 << 32 {
         return Err(limit(Limited::Vertices, counts.vertices, 1 << 32));
     }
@@ -138,7 +169,9 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes
         .map_err(|e| load_error(e, feed.line, bytes, counts.vertices))?;
 
     let mut out = Builder::new(limits);
-    out.dropped = counts.dropped;
+    if !keep {
+        out.dropped = counts.dropped;
+    }
     out.reserve_vertices(counts.vertices)?;
     out.reserve_triangles(counts.triangles)?;
     // One model, whose vertices are the file's in file order (see
@@ -187,7 +220,106 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes
         }
         return Err(e.into());
     }
+    if keep {
+        read_attributes(bytes, &counts, &mut out)?;
+    }
     Ok(out.finish())
+}
+
+/// The `vt`, `vn` and colour streams, in a pass of their own (tobj never
+/// sees those statements): the values in file order, and per triangle of
+/// each face (fanned as the positions are) the values its corners name.
+fn read_attributes(bytes: &[u8], counts: &Counts, out: &mut Builder) -> Result<(), Error> {
+    let vt_dims = if counts.texcoord_w { 3 } else { 2 };
+    let add = |out: &mut Builder, kind, dims, n, per_vertex| -> Result<Option<usize>, Error> {
+        if n == 0 {
+            return Ok(None);
+        }
+        let s = out.add_stream(kind, dims, per_vertex);
+        let triples = if per_vertex { 0 } else { counts.triangles };
+        out.reserve_values(s, n, triples)?;
+        Ok(Some(s))
+    };
+    let normals = add(out, AttributeKind::Normal, 3, counts.normals, false)?;
+    let uv = add(
+        out,
+        AttributeKind::TexCoord(0),
+        vt_dims,
+        counts.texcoords,
+        false,
+    )?;
+    let colours = match counts.dropped.colors {
+        true => add(out, AttributeKind::Color(0), 3, counts.vertices, true)?,
+        false => None,
+    };
+    // Values read so far, for relative indices.
+    let (mut seen_vt, mut seen_vn) = (0i64, 0i64);
+    let mut face: Vec<[Option<u32>; 2]> = Vec::new();
+    let mut t = Text::new(bytes, 1);
+    while let Some((_, line)) = t.next_line() {
+        let mut words = text::tokens(uncomment(line));
+        let (stream, dims, values) = match words.next() {
+            Some(b"v") => {
+                let Some(s) = colours else { continue };
+                let rgb: Vec<&[u8]> = words.skip(3).take(3).collect();
+                (s, 3, rgb)
+            }
+            Some(b"vt") => {
+                seen_vt += 1;
+                let Some(s) = uv else { continue };
+                (s, vt_dims, words.take(3).collect())
+            }
+            Some(b"vn") => {
+                seen_vn += 1;
+                let Some(s) = normals else { continue };
+                (s, 3, words.take(3).collect())
+            }
+            Some(b"f") => {
+                face.clear();
+                for word in words {
+                    let mut parts = word.split(|&b| b == b'/').skip(1);
+                    let mut index = |seen: i64| {
+                        let i = text::parse_i64(parts.next()?)?;
+                        let i = if i < 0 { seen.checked_add(i)? } else { i - 1 };
+                        u32::try_from(i).ok().filter(|&i| i64::from(i) < seen)
+                    };
+                    let vt = index(seen_vt);
+                    face.push([vt, index(seen_vn)]);
+                }
+                for (slot, stream) in [normals, uv].into_iter().enumerate() {
+                    // Slot 0 of `face` is the texture coordinate.
+                    let Some(s) = stream else { continue };
+                    let k = 1 - slot;
+                    let corners: Option<Vec<u32>> = face.iter().map(|c| c[k]).collect();
+                    let pending = &mut out.streams[s];
+                    match corners {
+                        Some(c) if !pending.broken => {
+                            for pair in c[1..].windows(2) {
+                                pending.stream.corners.push([c[0], pair[0], pair[1]]);
+                            }
+                        }
+                        _ => pending.broken = true,
+                    }
+                }
+                continue;
+            }
+            _ => continue,
+        };
+        let dims = usize::from(dims);
+        let pending = &mut out.streams[stream];
+        let parsed: Option<Vec<f32>> = values.iter().map(|w| text::parse_f32(w)).collect();
+        let is_uv = Some(stream) == uv;
+        match parsed {
+            // `vt u` and `vt u v` leave the rest 0 (Appendix B1).
+            Some(v) if v.len() == dims || (is_uv && !v.is_empty()) => {
+                let v = &v[..v.len().min(dims)];
+                pending.stream.values.extend_from_slice(v);
+                pending.stream.values.extend((v.len()..dims).map(|_| 0.0));
+            }
+            _ => pending.broken = true,
+        }
+    }
+    Ok(())
 }
 
 /// Translates a tobj error; `line` is the line tobj was parsing.
@@ -412,6 +544,94 @@ pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> io::Result<()> {
         w.write_all(&line)?;
     }
     Ok(())
+}
+
+/// Writes OBJ with attributes: `v x y z [r g b]`, `vt u v [w]` (texture
+/// coordinate set 0), `vn x y z`, then `f v/vt/vn` with the streams' own
+/// indices, so seams are written as they are. Colours are per `v` line:
+/// a position with several colours is written once per colour. Returns
+/// what OBJ cannot hold (other texture sets and colour sets, alpha,
+/// generic streams), which is not written. Without any stream OBJ can
+/// hold, the file is [`write`]'s.
+pub(super) fn write_attributed<W: Write>(w: &mut W, m: &AttributedMesh) -> io::Result<Attributes> {
+    let mut unwritten = Attributes::default();
+    for s in &m.streams {
+        let written = match s.kind {
+            AttributeKind::Normal | AttributeKind::TexCoord(0) => true,
+            AttributeKind::Color(0) => s.dims == 3,
+            _ => false,
+        };
+        if !written {
+            unwritten = unwritten.union(Attributes::of(s.kind));
+        }
+    }
+    let colour = AttributeKind::Color(0);
+    let split;
+    let m = match m.stream(colour) {
+        Some(c) if c.corners != m.mesh.triangles || c.value_count() != m.mesh.positions.len() => {
+            split = m.split_vertices_by(|s| s.kind == colour);
+            &split
+        }
+        _ => m,
+    };
+    let colours = m.stream(colour).filter(|c| c.dims == 3);
+    let uv = m.stream(AttributeKind::TexCoord(0));
+    let normals = m.stream(AttributeKind::Normal);
+    if colours.is_none() && uv.is_none() && normals.is_none() {
+        write(w, &m.mesh)?;
+        return Ok(unwritten);
+    }
+    writeln!(
+        w,
+        "# written by swm: {} vertices, {} triangles",
+        m.mesh.positions.len(),
+        m.mesh.triangles.len()
+    )?;
+    for (v, [x, y, z]) in m.mesh.positions.iter().enumerate() {
+        match colours {
+            Some(c) => {
+                let [r, g, b] = [0, 1, 2].map(|k| c.values[3 * v + k]);
+                writeln!(w, "v {x} {y} {z} {r} {g} {b}")?;
+            }
+            None => writeln!(w, "v {x} {y} {z}")?,
+        }
+    }
+    if let Some(uv) = uv {
+        for t in uv.values.chunks_exact(usize::from(uv.dims)) {
+            match t {
+                [u, v] => writeln!(w, "vt {u} {v}")?,
+                [u, v, w3] => writeln!(w, "vt {u} {v} {w3}")?,
+                _ => unreachable!("validated: 2 or 3 components"),
+            }
+        }
+    }
+    if let Some(n) = normals {
+        for [x, y, z] in n.values.chunks_exact(3).map(|n| [n[0], n[1], n[2]]) {
+            writeln!(w, "vn {x} {y} {z}")?;
+        }
+    }
+    let mut line = Vec::with_capacity(80);
+    for (f, t) in m.mesh.triangles.iter().enumerate() {
+        line.clear();
+        line.push(b'f');
+        for (k, &v) in t.iter().enumerate() {
+            line.push(b' ');
+            push_decimal(&mut line, u64::from(v) + 1);
+            if uv.is_some() || normals.is_some() {
+                line.push(b'/');
+            }
+            if let Some(uv) = uv {
+                push_decimal(&mut line, u64::from(uv.corners[f][k]) + 1);
+            }
+            if let Some(n) = normals {
+                line.push(b'/');
+                push_decimal(&mut line, u64::from(n.corners[f][k]) + 1);
+            }
+        }
+        line.push(b'\n');
+        w.write_all(&line)?;
+    }
+    Ok(unwritten)
 }
 
 fn push_decimal(out: &mut Vec<u8>, mut n: u64) {

@@ -15,6 +15,13 @@
 //! reported as dropped (`ST` texture coordinates, `C` colours, `N`
 //! normals). `4OFF`, `nOFF` and binary OFF are refused.
 //!
+//! When attributes are asked for, the announced vertex values become
+//! per-vertex streams, in the order `OFF(5)` gives them: normal (3),
+//! colour (3 or 4, as many as the first vertex has; integers 0..255 when
+//! any value exceeds 1, then scaled to 0..1), texture coordinates (2). A
+//! vertex with another number of values drops them all (reported); face
+//! colours are not vertex attributes and are skipped.
+//!
 //! Invariants: the counts are checked against the bytes left and the
 //! [`Limits`] before any allocation; each vertex and face is one line, so
 //! errors carry the line number.
@@ -22,7 +29,10 @@
 use super::builder::Builder;
 use super::text::{self, Text};
 use super::Attributes;
-use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
+use crate::{
+    AttributeKind, AttributeStream, AttributedMesh, Error, FormatError, Limits, Location,
+    Malformed, TriMesh,
+};
 use std::io::{self, Write};
 
 const FORMAT: &str = "OFF";
@@ -66,6 +76,7 @@ fn keyword(word: &[u8], line: u64) -> Result<Option<Attributes>, Error> {
             uv,
             normals,
             colors,
+            generic: false,
         })),
         b"4OFF" | b"nOFF" | b"4nOFF" => Err(error(
             Malformed::Unsupported("OFF with other than 3 dimensions"),
@@ -75,8 +86,85 @@ fn keyword(word: &[u8], line: u64) -> Result<Option<Attributes>, Error> {
     }
 }
 
-/// Reads an OFF file.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
+/// The attribute streams of an OFF file being read: `(stream, dims)` for
+/// the normal, colour and texture coordinates the keyword announces.
+struct VertexValues {
+    streams: Vec<(usize, usize)>,
+    /// The colour stream, to scale at the end.
+    colour: Option<usize>,
+}
+
+impl VertexValues {
+    /// Adds the streams the keyword announces, the colour's width taken
+    /// from the first vertex line (`extra`: its values after x, y, z).
+    fn new(
+        announced: Attributes,
+        extra: usize,
+        vertices: u64,
+        out: &mut Builder,
+    ) -> Result<Self, Error> {
+        let normal = if announced.normals { 3 } else { 0 };
+        let uv = if announced.uv { 2 } else { 0 };
+        let colour = extra.saturating_sub(normal + uv);
+        let mut streams = Vec::new();
+        let mut colour_stream = None;
+        let mut add = |out: &mut Builder, kind, dims: usize| -> Result<usize, Error> {
+            let s = out.add_stream(kind, dims as u8, true);
+            out.reserve_values(s, vertices, 0)?;
+            streams.push((s, dims));
+            Ok(s)
+        };
+        if announced.normals {
+            add(out, AttributeKind::Normal, 3)?;
+        }
+        if announced.colors {
+            // Neither RGB nor RGBA: the stream is dropped at the end.
+            let s = add(out, AttributeKind::Color(0), colour.clamp(3, 4))?;
+            out.streams[s].broken |= !matches!(colour, 3 | 4);
+            colour_stream = Some(s);
+        }
+        if announced.uv {
+            add(out, AttributeKind::TexCoord(0), 2)?;
+        }
+        Ok(VertexValues {
+            streams,
+            colour: colour_stream,
+        })
+    }
+
+    /// Adds one vertex's values (the words after x, y, z).
+    fn push<'a>(&self, words: impl Iterator<Item = &'a [u8]>, out: &mut Builder) {
+        let parsed: Option<Vec<f32>> = words.map(text::parse_f32).collect();
+        let width: usize = self.streams.iter().map(|s| s.1).sum();
+        let parsed = parsed.filter(|v| v.len() == width);
+        let mut at = 0;
+        for &(s, dims) in &self.streams {
+            let pending = &mut out.streams[s];
+            match &parsed {
+                Some(v) => pending.stream.values.extend_from_slice(&v[at..at + dims]),
+                None => pending.broken = true,
+            }
+            at += dims;
+        }
+    }
+
+    /// Scales 0..255 colours to 0..1.
+    fn finish(&self, out: &mut Builder) {
+        if let Some(s) = self.colour {
+            let values = &mut out.streams[s].stream.values;
+            if values.iter().any(|&c| c > 1.0) {
+                values.iter_mut().for_each(|c| *c /= 255.0);
+            }
+        }
+    }
+}
+
+/// Reads an OFF file, with its attributes if `keep`.
+pub(super) fn read(
+    bytes: &[u8],
+    limits: &Limits,
+    keep: bool,
+) -> Result<(AttributedMesh, Attributes), Error> {
     if let Some(why) = text::not_text(bytes) {
         return Err(FormatError::new(FORMAT, why).into());
     }
@@ -137,9 +225,13 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes
         return Err(too_large("face", faces, left / 8));
     }
     let mut out = Builder::new(limits);
-    out.dropped = announced.unwrap_or_default();
+    let announced = announced.unwrap_or_default();
+    if !keep {
+        out.dropped = announced;
+    }
     out.reserve_vertices(vertices)?;
     out.reserve_triangles(faces)?;
+    let mut attributes: Option<VertexValues> = None;
 
     for i in 0..vertices {
         let (n, line) = data_line(&mut t).ok_or_else(|| error(Malformed::Truncated, t.line()))?;
@@ -155,6 +247,17 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes
             return Err(error(Malformed::NonFinite { vertex: i }, n));
         }
         out.mesh.positions.push(p);
+        if keep && !announced.is_empty() {
+            let values = match attributes.take() {
+                Some(v) => v,
+                None => VertexValues::new(announced, words.clone().count(), vertices, &mut out)?,
+            };
+            values.push(words, &mut out);
+            attributes = Some(values);
+        }
+    }
+    if let Some(values) = &attributes {
+        values.finish(&mut out);
     }
     for _ in 0..faces {
         let (n, line) = data_line(&mut t).ok_or_else(|| error(Malformed::Truncated, t.line()))?;
@@ -209,6 +312,64 @@ pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> io::Result<()> {
         writeln!(w, "3 {a} {b} {c}")?;
     }
     Ok(())
+}
+
+/// Writes OFF with the attributes it has prefixes for, one vertex per
+/// distinct position and values (see `AttributedMesh::split_vertices`):
+/// `[ST][C][N]OFF`, each vertex `x y z [nx ny nz] [r g b [a]] [s t]` in
+/// floats. Returns what OFF cannot hold (texture sets past 0, a third
+/// texture coordinate, colour sets past 0, generic streams), which is not
+/// written. Without any stream it can hold, the file is [`write`]'s.
+pub(super) fn write_attributed<W: Write>(w: &mut W, m: &AttributedMesh) -> io::Result<Attributes> {
+    let kept = |s: &AttributeStream| match s.kind {
+        AttributeKind::Normal | AttributeKind::Color(0) => true,
+        AttributeKind::TexCoord(0) => s.dims == 2,
+        _ => false,
+    };
+    let mut unwritten = Attributes::default();
+    for s in m.streams.iter().filter(|s| !kept(s)) {
+        unwritten = unwritten.union(Attributes::of(s.kind));
+    }
+    if !m.streams.iter().any(kept) {
+        write(w, &m.mesh)?;
+        return Ok(unwritten);
+    }
+    let split = m.split_vertices_by(kept);
+    // In the order of the keyword's prefixes, reversed on the line.
+    let normal = split.stream(AttributeKind::Normal);
+    let colour = split.stream(AttributeKind::Color(0));
+    let uv = split
+        .stream(AttributeKind::TexCoord(0))
+        .filter(|s| s.dims == 2);
+    let keyword = [
+        (uv.is_some(), "ST"),
+        (colour.is_some(), "C"),
+        (normal.is_some(), "N"),
+    ];
+    for (present, prefix) in keyword {
+        if present {
+            w.write_all(prefix.as_bytes())?;
+        }
+    }
+    writeln!(
+        w,
+        "OFF\n{} {} 0",
+        split.mesh.positions.len(),
+        split.mesh.triangles.len()
+    )?;
+    for (v, [x, y, z]) in split.mesh.positions.iter().enumerate() {
+        write!(w, "{x} {y} {z}")?;
+        for s in [normal, colour, uv].into_iter().flatten() {
+            for c in s.value(v as u32) {
+                write!(w, " {c}")?;
+            }
+        }
+        writeln!(w)?;
+    }
+    for [a, b, c] in &split.mesh.triangles {
+        writeln!(w, "3 {a} {b} {c}")?;
+    }
+    Ok(unwritten)
 }
 
 #[cfg(test)]

@@ -9,9 +9,17 @@
 //!
 //! What this reader keeps and how:
 //! - the `vertex` element's `x`, `y`, `z` properties, of any numeric type,
-//!   converted to `f32`; every other property is skipped, and normals,
-//!   texture coordinates and colours among them are reported as dropped
-//!   (see [`dropped`]);
+//!   converted to `f32`; when attributes are asked for, also `nx ny nz`
+//!   (a normal), the first of the pairs `u v`, `s t`, `texture_u
+//!   texture_v` (texture coordinate set 0) and `red green blue [alpha]`
+//!   (a colour; integer types scaled to 0..1: 8-bit by 1/255, 16-bit by
+//!   1/65535), each a per-vertex stream (see [`attribute_layout`]); every
+//!   other property is skipped, and normals, texture coordinates and
+//!   colours that are not kept are reported as dropped (see [`dropped`]);
+//! - the `face` element's `texcoord` list (2 floats per corner, as
+//!   MeshLab writes), when attributes are asked for: a per-corner texture
+//!   coordinate set after the vertex one, fanned as the face is; a face
+//!   whose list does not hold two values per corner drops the stream;
 //! - the `face` element's `vertex_indices` (or `vertex_index`) list, fan
 //!   triangulated as (v0, vi, vi+1);
 //! - the `tristrips` element's `vertex_indices` list: strips separated by
@@ -30,7 +38,10 @@
 use super::builder::Builder;
 use super::text::{self, Text};
 use super::Attributes;
-use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
+use crate::{
+    AttributeKind, AttributeStream, AttributedMesh, Error, FormatError, Limits, Location,
+    Malformed, TriMesh,
+};
 use std::io::{self, Write};
 
 const FORMAT: &str = "PLY";
@@ -122,6 +133,21 @@ struct Element<'a> {
     role: Role,
     /// Header line of the `element` statement.
     line: u64,
+    /// Per property of a vertex element, where its value goes when
+    /// attributes are read (see [`attribute_layout`]).
+    attrs: Vec<Option<Slot>>,
+    /// A face element's `texcoord` list: its property and its stream.
+    texcoord: Option<(usize, usize)>,
+}
+
+/// Where a vertex property's value goes: component `comp` of stream
+/// `stream` (an index of the builder's streams), divided by `divisor`
+/// (255 or 65535 for integer colours, else 1).
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    stream: usize,
+    comp: usize,
+    divisor: f64,
 }
 
 impl Element<'_> {
@@ -224,6 +250,8 @@ fn parse_header(bytes: &[u8]) -> Result<Header<'_>, Error> {
                     props: Vec::new(),
                     role: Role::Other,
                     line: n,
+                    attrs: Vec::new(),
+                    texcoord: None,
                 });
             }
             Some(b"property") => {
@@ -340,9 +368,109 @@ fn dropped(elements: &[Element]) -> Attributes {
     dropped
 }
 
-/// Reads a PLY file.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
-    let header = parse_header(bytes)?;
+/// The attribute streams of the vertex and face elements: adds them to
+/// `out` and records in each element where its properties go. A group is
+/// read only whole (all of `nx ny nz`, both of a pair, all of `red green
+/// blue`) and of scalar properties; what is left is reported as dropped.
+fn attribute_layout(elements: &mut [Element], out: &mut Builder) -> Attributes {
+    let mut dropped = Attributes::default();
+    for e in elements.iter_mut().filter(|e| e.count > 0) {
+        let find = |name: &[u8]| {
+            e.props
+                .iter()
+                .position(|p| p.name == name && matches!(p.kind, Kind::Scalar(_)))
+        };
+        match e.role {
+            Role::Vertex(_) => {
+                let mut attrs = vec![None; e.props.len()];
+                let mut group = |kind, names: &[&[u8]], out: &mut Builder| {
+                    let found: Option<Vec<usize>> = names.iter().map(|n| find(n)).collect();
+                    let found = found?;
+                    let s = out.add_stream(kind, found.len() as u8, true);
+                    for (comp, &k) in found.iter().enumerate() {
+                        let colour = matches!(kind, AttributeKind::Color(_));
+                        let divisor = match e.props[k].kind {
+                            Kind::Scalar(Scalar::U16 | Scalar::I16) if colour => 65535.0,
+                            Kind::Scalar(ty) if ty.is_integer() && colour => 255.0,
+                            _ => 1.0,
+                        };
+                        attrs[k] = Some(Slot {
+                            stream: s,
+                            comp,
+                            divisor,
+                        });
+                    }
+                    Some(())
+                };
+                group(AttributeKind::Normal, &[b"nx", b"ny", b"nz"], out);
+                let pairs: [[&[u8]; 2]; 3] =
+                    [[b"u", b"v"], [b"s", b"t"], [b"texture_u", b"texture_v"]];
+                let _ = pairs
+                    .iter()
+                    .find_map(|pair| group(AttributeKind::TexCoord(0), pair, out));
+                if find(b"alpha").is_some() {
+                    group(
+                        AttributeKind::Color(0),
+                        &[b"red", b"green", b"blue", b"alpha"],
+                        out,
+                    );
+                } else {
+                    group(AttributeKind::Color(0), &[b"red", b"green", b"blue"], out);
+                }
+                e.attrs = attrs;
+            }
+            Role::Face(_) => {
+                let list = e.props.iter().position(|p| {
+                    p.name == b"texcoord"
+                        && matches!(p.kind, Kind::List { item, .. } if !item.is_integer())
+                });
+                if let Some(k) = list {
+                    let set = out
+                        .streams
+                        .iter()
+                        .filter(|p| matches!(p.stream.kind, AttributeKind::TexCoord(_)))
+                        .count();
+                    let s = out.add_stream(AttributeKind::TexCoord(set as u8), 2, false);
+                    e.texcoord = Some((k, s));
+                }
+            }
+            _ => {}
+        }
+        // What the element declares and nothing reads.
+        let read = |k: usize| {
+            e.attrs.get(k).is_some_and(|a| a.is_some()) || e.texcoord.is_some_and(|t| t.0 == k)
+        };
+        let unread: Vec<Property> = e
+            .props
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| !read(k))
+            .map(|(_, p)| Property {
+                name: p.name,
+                kind: p.kind,
+            })
+            .collect();
+        let rest = Element {
+            name: e.name,
+            count: e.count,
+            props: unread,
+            role: e.role,
+            line: e.line,
+            attrs: Vec::new(),
+            texcoord: None,
+        };
+        dropped = dropped.union(self::dropped(core::slice::from_ref(&rest)));
+    }
+    dropped
+}
+
+/// Reads a PLY file, with its attributes if `keep`.
+pub(super) fn read(
+    bytes: &[u8],
+    limits: &Limits,
+    keep: bool,
+) -> Result<(AttributedMesh, Attributes), Error> {
+    let mut header = parse_header(bytes)?;
     let data = bytes.get(header.data..).unwrap_or_default();
     let ascii = header.encoding == Encoding::Ascii;
 
@@ -374,9 +502,18 @@ pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes
     let vertices = role_count(|r| matches!(r, Role::Vertex(_)));
     let faces = role_count(|r| matches!(r, Role::Face(_)));
     let mut out = Builder::new(limits);
-    out.dropped = dropped(&header.elements);
+    out.dropped = match keep {
+        true => attribute_layout(&mut header.elements, &mut out),
+        false => dropped(&header.elements),
+    };
     out.reserve_vertices(vertices)?;
     out.reserve_triangles(faces)?;
+    for s in 0..out.streams.len() {
+        match out.streams[s].per_vertex {
+            true => out.reserve_values(s, vertices, 0)?,
+            false => out.reserve_values(s, faces.saturating_mul(3), faces)?,
+        }
+    }
 
     let base = header.data as u64;
     if ascii {
@@ -569,11 +706,21 @@ fn read_record<V: Values>(
 ) -> Result<(), Error> {
     let at = values.mark();
     let mut p = [0f32; 3];
+    if let Role::Vertex(_) = e.role {
+        start_vertex(out);
+    }
+    // A face's corner count and `texcoord` values, which may come in
+    // either order.
+    let mut corners = None;
+    let mut texcoords: Option<Vec<f32>> = None;
     for (k, prop) in e.props.iter().enumerate() {
         match (prop.kind, e.role) {
             (Kind::Scalar(ty), Role::Vertex(xyz)) => match xyz.iter().position(|&c| c == k) {
                 Some(c) => p[c] = values.real(ty)? as f32,
-                None => values.skip(ty, 1)?,
+                None => match e.attrs.get(k).copied().flatten() {
+                    Some(slot) => set_attribute(out, slot, values.real(ty)?),
+                    None => values.skip(ty, 1)?,
+                },
             },
             (Kind::Scalar(ty), _) => values.skip(ty, 1)?,
             (Kind::List { count, item }, Role::Face(list)) if list == k => {
@@ -581,6 +728,7 @@ fn read_record<V: Values>(
                 if n < 3 {
                     return Err(error(Malformed::FaceTooSmall { count: n }, at));
                 }
+                corners = Some(n);
                 let first = vertex_index(values.int(item)?, vertices, at)?;
                 let mut prev = vertex_index(values.int(item)?, vertices, at)?;
                 for _ in 2..n {
@@ -591,6 +739,16 @@ fn read_record<V: Values>(
                 if n > 3 {
                     out.check_growth()?;
                 }
+            }
+            (Kind::List { count, item }, Role::Face(_)) if e.texcoord.is_some_and(|t| t.0 == k) => {
+                let n = list_count(values, count, at)?;
+                // Each value takes a byte at least: a lying count ends at
+                // the end of the data, not in a huge allocation.
+                let mut v = Vec::new();
+                for _ in 0..n {
+                    v.push(values.real(item)? as f32);
+                }
+                texcoords = Some(v);
             }
             (Kind::List { count, item }, Role::Strips(list)) if list == k => {
                 let n = list_count(values, count, at)?;
@@ -614,6 +772,9 @@ fn read_record<V: Values>(
             }
         }
     }
+    if let Some((_, s)) = e.texcoord {
+        add_corner_texcoords(out, s, corners, texcoords);
+    }
     if let Role::Vertex(_) = e.role {
         if !p.iter().all(|c| c.is_finite()) {
             return Err(error(Malformed::NonFinite { vertex: i }, at));
@@ -621,6 +782,40 @@ fn read_record<V: Values>(
         out.mesh.positions.push(p);
     }
     Ok(())
+}
+
+/// Makes room for one vertex's values in every per-vertex stream (zeros,
+/// which [`set_attribute`] then overwrites).
+fn start_vertex(out: &mut Builder) {
+    for p in out.streams.iter_mut().filter(|p| p.per_vertex) {
+        let s = &mut p.stream;
+        s.values.extend((0..s.dims).map(|_| 0.0));
+    }
+}
+
+/// Sets a component of the vertex [`start_vertex`] made room for.
+fn set_attribute(out: &mut Builder, slot: Slot, value: f64) {
+    let s = &mut out.streams[slot.stream].stream;
+    let at = s.values.len() - usize::from(s.dims) + slot.comp;
+    s.values[at] = (value / slot.divisor) as f32;
+}
+
+/// Adds a face's `texcoord` list to stream `s`, fanned as the face is: the
+/// stream is dropped (broken) if the list does not hold two values per
+/// corner.
+fn add_corner_texcoords(out: &mut Builder, s: usize, corners: Option<u64>, uv: Option<Vec<f32>>) {
+    let pending = &mut out.streams[s];
+    match (corners, uv) {
+        (Some(n), Some(uv)) if uv.len() as u64 == 2 * n && !pending.broken => {
+            let stream = &mut pending.stream;
+            let base = stream.value_count() as u32;
+            stream.values.extend_from_slice(&uv);
+            for k in 1..n as u32 - 1 {
+                stream.corners.push([base, base + k, base + k + 1]);
+            }
+        }
+        _ => pending.broken = true,
+    }
 }
 
 /// The last two vertices of a triangle strip and the parity of the next
@@ -711,23 +906,33 @@ fn read_fixed_vertices(
         .ok_or_else(|| values.truncated())?;
     let start = values.pos;
     let records = values.data.get(start..start + bytes).unwrap_or_default();
-    // Offsets and types of x, y, z inside a record.
+    // Offsets and types of x, y, z inside a record, and of the attributes.
     let mut offset = 0;
     let mut layout = [(0usize, Scalar::F32); 3];
+    let mut attributes = Vec::new();
     for (k, p) in e.props.iter().enumerate() {
         if let Kind::Scalar(ty) = p.kind {
             if let Some(c) = xyz.iter().position(|&x| x == k) {
                 layout[c] = (offset, ty);
             }
+            if let Some(slot) = e.attrs.get(k).copied().flatten() {
+                attributes.push((offset, ty, slot));
+            }
             offset += ty.size();
         }
     }
     let big = values.big;
-    let positions = &mut out.mesh.positions;
     if size == 0 {
         return Ok(());
     }
     for (i, record) in records.chunks_exact(size).enumerate() {
+        if !attributes.is_empty() {
+            start_vertex(out);
+            for &(off, ty, slot) in &attributes {
+                set_attribute(out, slot, scalar_at(record, off, ty, big));
+            }
+        }
+        let positions = &mut out.mesh.positions;
         let mut p = [0f32; 3];
         for (c, &(off, ty)) in p.iter_mut().zip(&layout) {
             *c = scalar_at(record, off, ty, big) as f32;
@@ -836,6 +1041,104 @@ pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> io::Result<()> {
         w.write_all(&record)?;
     }
     Ok(())
+}
+
+/// Writes binary little-endian PLY with the attributes it has property
+/// names for, one vertex per distinct position and values (see
+/// `AttributedMesh::split_vertices`): float `nx ny nz`, float `u v`
+/// (texture set 0), and `red green blue [alpha]`, as `uchar` when every
+/// component is exactly `k / 255` (what an 8-bit file read back gives),
+/// as `float` otherwise. Returns what PLY cannot hold (other texture and
+/// colour sets, a third texture coordinate, generic streams), which is
+/// not written. Without any stream it can hold, the file is [`write`]'s.
+pub(super) fn write_attributed<W: Write>(w: &mut W, m: &AttributedMesh) -> io::Result<Attributes> {
+    let kept = |s: &AttributeStream| match s.kind {
+        AttributeKind::Normal | AttributeKind::Color(0) => true,
+        AttributeKind::TexCoord(0) => s.dims == 2,
+        _ => false,
+    };
+    let mut unwritten = Attributes::default();
+    for s in m.streams.iter().filter(|s| !kept(s)) {
+        unwritten = unwritten.union(Attributes::of(s.kind));
+    }
+    if !m.streams.iter().any(kept) {
+        write(w, &m.mesh)?;
+        return Ok(unwritten);
+    }
+    let split = m.split_vertices_by(kept);
+    let normal = split.stream(AttributeKind::Normal);
+    let uv = split
+        .stream(AttributeKind::TexCoord(0))
+        .filter(|s| s.dims == 2);
+    let colour = split.stream(AttributeKind::Color(0));
+    // Exactly as the reader decodes a `uchar` colour.
+    let byte = |c: f32| {
+        let k = (f64::from(c) * 255.0).round();
+        (0.0..=255.0).contains(&k) && (k / 255.0) as f32 == c
+    };
+    let colour_bytes = colour.is_some_and(|c| c.values.iter().all(|&c| byte(c)));
+    let index_type = if split.mesh.positions.len() <= 1 << 31 {
+        "int"
+    } else {
+        "uint"
+    };
+    let mut header = String::from("ply\nformat binary_little_endian 1.0\ncomment written by swm\n");
+    header += &format!(
+        "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n",
+        split.mesh.positions.len()
+    );
+    let mut names: Vec<&str> = Vec::new();
+    if normal.is_some() {
+        names.extend(["nx", "ny", "nz"]);
+    }
+    if uv.is_some() {
+        names.extend(["u", "v"]);
+    }
+    for name in names {
+        header += &format!("property float {name}\n");
+    }
+    if let Some(c) = colour {
+        let ty = if colour_bytes { "uchar" } else { "float" };
+        for name in ["red", "green", "blue", "alpha"]
+            .iter()
+            .take(usize::from(c.dims))
+        {
+            header += &format!("property {ty} {name}\n");
+        }
+    }
+    header += &format!(
+        "element face {}\nproperty list uchar {index_type} vertex_indices\nend_header\n",
+        split.mesh.triangles.len()
+    );
+    w.write_all(header.as_bytes())?;
+    let mut record = Vec::with_capacity(64);
+    for (v, p) in split.mesh.positions.iter().enumerate() {
+        record.clear();
+        let floats = [normal, uv]
+            .into_iter()
+            .flatten()
+            .flat_map(|s| s.value(v as u32));
+        for c in p.iter().chain(floats) {
+            record.extend_from_slice(&c.to_le_bytes());
+        }
+        if let Some(c) = colour {
+            for &c in c.value(v as u32) {
+                match colour_bytes {
+                    true => record.push((f64::from(c) * 255.0).round() as u8),
+                    false => record.extend_from_slice(&c.to_le_bytes()),
+                }
+            }
+        }
+        w.write_all(&record)?;
+    }
+    for t in &split.mesh.triangles {
+        let mut record = [3u8; 13];
+        for (chunk, v) in record[1..].chunks_exact_mut(4).zip(t) {
+            chunk.copy_from_slice(&v.to_le_bytes());
+        }
+        w.write_all(&record)?;
+    }
+    Ok(unwritten)
 }
 
 #[cfg(test)]

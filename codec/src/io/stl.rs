@@ -45,8 +45,11 @@ const HEADER: usize = 84;
 const RECORD: usize = 50;
 
 /// Reads an STL file, ASCII or binary.
-pub(super) fn read(bytes: &[u8], limits: &Limits) -> Result<(TriMesh, Attributes), Error> {
-    read_either(bytes, limits).map(|mesh| (mesh, Attributes::default()))
+pub(super) fn read(
+    bytes: &[u8],
+    limits: &Limits,
+) -> Result<(crate::AttributedMesh, Attributes), Error> {
+    read_either(bytes, limits).map(|mesh| (mesh.into(), Attributes::default()))
 }
 
 /// Binary or ASCII, as the size and first word say.
@@ -109,7 +112,7 @@ fn read_binary(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
         }
         out.mesh.triangles.push([base, base + 1, base + 2]);
     }
-    Ok(out.finish().0)
+    Ok(out.finish().0.mesh)
 }
 
 fn read_ascii(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
@@ -197,7 +200,7 @@ fn read_ascii(bytes: &[u8], limits: &Limits) -> Result<TriMesh, Error> {
             return Err(syntax("expected endfacet", &t));
         }
     }
-    Ok(out.finish().0)
+    Ok(out.finish().0.mesh)
 }
 
 /// Writes binary STL with computed unit normals. The 80-byte header

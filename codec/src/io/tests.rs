@@ -642,6 +642,7 @@ fn readers_report_the_attributes_they_drop() {
         uv,
         normals,
         colors,
+        generic: false,
     };
     let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     let obj = |extra: &str| format!("{tri}{extra}f 1 2 3\n");

@@ -23,9 +23,16 @@
 //!
 //! Vertex order is kept (a stable compaction), and so is face order, so a
 //! clean mesh passes through unchanged.
+//!
+//! Attributes ([`clean_attributed`]): each output face remembers its
+//! input face and whether step 4 flipped it ([`FaceOrigin`]); its
+//! attribute triples are the input face's, with corners 1 and 2 swapped
+//! when the face was (the only corner permutation any step makes).
+//! Merging and splitting vertices change positions only: attribute
+//! streams index their own values per corner, so they need nothing else.
 
 use super::corner::{pair_edges, vertex_fans, Pairing};
-use super::{CornerId, CornerTable, FaceId, TriMesh, VertexId};
+use super::{AttributeStream, AttributedMesh, CornerId, CornerTable, FaceId, TriMesh, VertexId};
 use crate::{Error, TopologyError};
 
 /// Options for [`clean`]. The defaults do everything listed in the module docs.
@@ -110,9 +117,64 @@ pub struct Cleaned {
     pub distinct_vertices: u64,
 }
 
+/// Where a face of a cleaned mesh came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FaceOrigin {
+    /// The input face.
+    pub face: FaceId,
+    /// Whether its orientation was reversed: output corners (0, 1, 2)
+    /// are input corners (0, 2, 1).
+    pub flipped: bool,
+}
+
+impl FaceOrigin {
+    /// The output face's corners, from the input face's `corners`.
+    pub fn corners<T: Copy>(&self, corners: [T; 3]) -> [T; 3] {
+        let [a, b, c] = corners;
+        if self.flipped {
+            [a, c, b]
+        } else {
+            [a, b, c]
+        }
+    }
+}
+
 /// Cleans a mesh (see the module docs). The input must be valid
 /// ([`TriMesh::validate`]); readers guarantee that.
 pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
+    clean_with_origins(mesh, options).map(|(cleaned, _)| cleaned)
+}
+
+/// [`clean`] of a mesh with attributes: the cleaned mesh (as [`clean`]
+/// gives it for `mesh.mesh`) and the streams made to follow its faces,
+/// each triple taken from the face's input face and permuted as its
+/// corners were ([`FaceOrigin`]); values are kept as they are, used or
+/// not. The input must be valid ([`AttributedMesh::validate`]).
+pub fn clean_attributed(
+    mesh: &AttributedMesh,
+    options: &CleanOptions,
+) -> Result<(Cleaned, Vec<AttributeStream>), Error> {
+    mesh.validate()?;
+    let (cleaned, origins) = clean_with_origins(&mesh.mesh, options)?;
+    let streams = mesh
+        .streams
+        .iter()
+        .map(|s| AttributeStream {
+            corners: origins
+                .iter()
+                .map(|o| o.corners(s.corners[o.face.idx()]))
+                .collect(),
+            ..s.clone()
+        })
+        .collect();
+    Ok((cleaned, streams))
+}
+
+/// [`clean`], and for each face of the result where it came from.
+pub fn clean_with_origins(
+    mesh: &TriMesh,
+    options: &CleanOptions,
+) -> Result<(Cleaned, Vec<FaceOrigin>), Error> {
     mesh.validate()?;
     let mut report = CleanReport {
         input_vertices: mesh.positions.len() as u64,
@@ -130,7 +192,7 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
         .filter(|&(i, &r)| r as usize != i)
         .count() as u64;
 
-    let mut triangles = drop_degenerate(mesh, &remap, &mut report);
+    let (mut triangles, kept) = drop_degenerate(mesh, &remap, &mut report);
     // Step 3: drop the vertices no face uses, keeping the others' order.
     let positions = super::compact_vertices(&mesh.positions, &mut triangles);
     // Merged-away vertices are unreferenced too; count only the others.
@@ -140,7 +202,18 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
     if triangles.is_empty() {
         return Err(TopologyError::NoTriangles.into());
     }
-    let (manifold_components, pairing) = orient(&mut triangles, positions.len(), &mut report)?;
+    let mut flipped = vec![false; triangles.len()];
+    let (manifold_components, pairing) =
+        orient(&mut triangles, positions.len(), &mut report, &mut flipped)?;
+    // Steps 5 and 6 keep every face, in order, with its corners in order.
+    let origins = kept
+        .iter()
+        .zip(&flipped)
+        .map(|(&face, &flipped)| FaceOrigin {
+            face: FaceId(face),
+            flipped,
+        })
+        .collect();
     // Without non-manifold edges the orientation pass already saw every
     // edge; otherwise count again through the edges it had to leave out.
     report.input_components = if report.non_manifold_edges == 0 {
@@ -169,12 +242,13 @@ pub fn clean(mesh: &TriMesh, options: &CleanOptions) -> Result<Cleaned, Error> {
             Err(_) => split_non_manifold(&mut mesh, pairing, &mut report)?,
         }
     };
-    Ok(Cleaned {
+    let cleaned = Cleaned {
         mesh,
         table,
         report,
         distinct_vertices,
-    })
+    };
+    Ok((cleaned, origins))
 }
 
 /// The bits of a position, with -0.0 turned into +0.0 (adding 0.0 does
@@ -256,10 +330,16 @@ fn merge_coincident_by_sorting(positions: &[[f32; 3]]) -> Vec<u32> {
     remap
 }
 
-/// Step 2: remaps indices and drops repeated-index, zero-area and duplicate faces.
-fn drop_degenerate(mesh: &TriMesh, remap: &[u32], report: &mut CleanReport) -> Vec<[u32; 3]> {
+/// Step 2: remaps indices and drops repeated-index, zero-area and
+/// duplicate faces; the faces kept, and the input face of each.
+fn drop_degenerate(
+    mesh: &TriMesh,
+    remap: &[u32],
+    report: &mut CleanReport,
+) -> (Vec<[u32; 3]>, Vec<u32>) {
     let mut kept: Vec<[u32; 3]> = Vec::with_capacity(mesh.triangles.len());
-    for t in &mesh.triangles {
+    let mut origin: Vec<u32> = Vec::with_capacity(mesh.triangles.len());
+    for (f, t) in mesh.triangles.iter().enumerate() {
         let t = [
             remap[t[0] as usize],
             remap[t[1] as usize],
@@ -275,6 +355,7 @@ fn drop_degenerate(mesh: &TriMesh, remap: &[u32], report: &mut CleanReport) -> V
             continue;
         }
         kept.push(t);
+        origin.push(f as u32);
     }
     let drop = duplicate_faces(&kept, mesh.positions.len());
     let before = kept.len();
@@ -283,8 +364,13 @@ fn drop_degenerate(mesh: &TriMesh, remap: &[u32], report: &mut CleanReport) -> V
         f += 1;
         !drop[f - 1]
     });
+    let mut f = 0;
+    origin.retain(|_| {
+        f += 1;
+        !drop[f - 1]
+    });
     report.duplicate_faces = (before - kept.len()) as u64;
-    kept
+    (kept, origin)
 }
 
 /// Marks every face whose three vertices (in any order) are those of an
@@ -417,6 +503,7 @@ fn orient(
     triangles: &mut [[u32; 3]],
     vertex_count: usize,
     report: &mut CleanReport,
+    flipped: &mut [bool],
 ) -> Result<(u64, Pairing), Error> {
     let pairing = pair_edges(triangles, vertex_count, true);
     report.non_manifold_edges = pairing.cut_edges;
@@ -485,6 +572,7 @@ fn orient(
             report.flipped_faces += 1;
         }
     }
+    flipped.copy_from_slice(&flip);
     if report.flipped_faces > 0 {
         // Swapping vertices 1 and 2 of a face swaps the edges its corners
         // 1 and 2 face; renumber those corners on both sides of each pair.

@@ -8,6 +8,7 @@
 //! that the parts built on it (normals, topology) import it without
 //! importing the file that re-exports them.
 
+mod attributes;
 mod corner;
 mod ids;
 mod normals;
@@ -22,6 +23,7 @@ pub(crate) mod test_shapes;
 #[cfg(feature = "encoder")]
 pub mod clean;
 
+pub use attributes::{AttributeKind, AttributeStream, AttributedMesh};
 pub(crate) use corner::corners_by_vertex;
 pub use corner::CornerTable;
 pub use ids::{CornerId, FaceId, VertexId};

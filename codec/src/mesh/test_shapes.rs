@@ -47,3 +47,69 @@ pub(crate) fn uv_sphere(nu: u32, nv: u32) -> TriMesh {
     }
     TriMesh::new(positions, triangles)
 }
+
+/// [`unit_cube`] with per-face normals (6 values, one per side: a crease
+/// at every edge) and texture coordinates laid out as a cross of six
+/// squares, so that most edges are UV seams (24 values, 14 distinct), the quads'
+/// corners as on a real unwrapped cube: a position carries up to three
+/// normals and three texture coordinates.
+pub(crate) fn seamed_cube() -> super::AttributedMesh {
+    use super::{AttributeKind, AttributeStream};
+    let mesh = unit_cube();
+    let normals = [
+        [-1.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, -1.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let normal_corners = (0..12).map(|f| [f / 2; 3]).collect();
+    // A cross: squares (column, row) of a 4 x 3 grid, in quarters/thirds.
+    let cells = [(0, 1), (2, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
+    let mut uv = Vec::new();
+    let mut uv_corners = Vec::new();
+    for &(i, j) in &cells {
+        let base = (uv.len() / 2) as u32;
+        for (du, dv) in [(0, 0), (1, 0), (1, 1), (0, 1)] {
+            uv.push((i + du) as f32 / 4.0);
+            uv.push((j + dv) as f32 / 3.0);
+        }
+        uv_corners.push([base, base + 1, base + 2]);
+        uv_corners.push([base, base + 2, base + 3]);
+    }
+    super::AttributedMesh::new(
+        mesh,
+        vec![
+            AttributeStream::new(
+                AttributeKind::Normal,
+                3,
+                normals.iter().flatten().copied().collect(),
+                normal_corners,
+            ),
+            AttributeStream::new(AttributeKind::TexCoord(0), 2, uv, uv_corners),
+        ],
+    )
+}
+
+/// [`uv_sphere`] with an RGBA colour per vertex that no `u8` gives
+/// exactly (a float file keeps them, an 8-bit one would round them).
+pub(crate) fn coloured_sphere() -> super::AttributedMesh {
+    use super::{AttributeKind, AttributeStream};
+    let mesh = uv_sphere(12, 6);
+    let colours = mesh
+        .positions
+        .iter()
+        .flat_map(|p| [0.5 + 0.5 * p[0], 0.5 + 0.5 * p[1], 0.5 + 0.5 * p[2], 0.3])
+        .collect();
+    let corners = mesh.triangles.clone();
+    super::AttributedMesh::new(
+        mesh,
+        vec![AttributeStream::new(
+            AttributeKind::Color(0),
+            4,
+            colours,
+            corners,
+        )],
+    )
+}

@@ -71,6 +71,66 @@ pub(super) fn positions(a: &Accessor, cx: &Context) -> Result<Vec<[f32; 3]>, Err
     })
 }
 
+/// The values of a NORMAL, TEXCOORD_n or COLOR_n accessor, `dims`
+/// floats each (the accessor's type must have `dims` components, one of
+/// `allowed`): float components as they are, normalized integer ones
+/// decoded as §3.11 says (`c / 255`, `c / 65535`, `max(c / 127, -1)`,
+/// `max(c / 32767, -1)`). Integers that are not normalized need
+/// KHR_mesh_quantization, which is refused before this.
+pub(super) fn floats(
+    a: &Accessor,
+    cx: &Context,
+    allowed: &[usize],
+) -> Result<(usize, Vec<f32>), Error> {
+    let dims = match a.dimensions() {
+        Dimensions::Vec2 => 2,
+        Dimensions::Vec3 => 3,
+        Dimensions::Vec4 => 4,
+        _ => 0,
+    };
+    if !allowed.contains(&dims) {
+        return Err(cx.bad(Malformed::Unsupported(
+            "an attribute accessor of an unexpected type",
+        )));
+    }
+    let ty = a.data_type();
+    if ty == DataType::U32 {
+        return Err(cx.bad(Malformed::BadSyntax(
+            "an attribute of unsigned int components",
+        )));
+    }
+    if ty != DataType::F32 && !a.normalized() {
+        return Err(cx.bad(Malformed::Unsupported(
+            "integer attributes that are not normalized (KHR_mesh_quantization)",
+        )));
+    }
+    cx.limits.check_vertices(a.count() as u64)?;
+    let width = ty.size();
+    let component = move |b: &[u8]| -> f32 {
+        match ty {
+            DataType::U8 => f32::from(b[0]) / 255.0,
+            DataType::I8 => (f32::from(b[0] as i8) / 127.0).max(-1.0),
+            DataType::U16 => f32::from(u16::from_le_bytes([b[0], b[1]])) / 65535.0,
+            DataType::I16 => (f32::from(i16::from_le_bytes([b[0], b[1]])) / 32767.0).max(-1.0),
+            DataType::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+            // 32-bit integers are not attribute component types (§3.6.2.2).
+            DataType::U32 => f32::NAN,
+        }
+    };
+    let elements = read(a, cx, dims * width, [0.0f32; 4], |b| {
+        let mut v = [0.0; 4];
+        for (k, c) in v.iter_mut().take(dims).enumerate() {
+            *c = component(&b[k * width..]);
+        }
+        v
+    })?;
+    let mut out = Vec::new();
+    out.try_reserve_exact(elements.len() * dims)
+        .map_err(|_| Error::Io(std::io::ErrorKind::OutOfMemory.into()))?;
+    out.extend(elements.iter().flat_map(|v| v[..dims].iter().copied()));
+    Ok((dims, out))
+}
+
 /// The vertex indices of a primitive: unsigned scalars (§3.7.2.1).
 pub(super) fn indices(a: &Accessor, cx: &Context) -> Result<Vec<u32>, Error> {
     if a.dimensions() != Dimensions::Scalar {

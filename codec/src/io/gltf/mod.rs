@@ -27,9 +27,13 @@
 //! keep their front faces (§3.7.2.1, "winding order"). Points and lines
 //! are refused ([`Malformed::UnsupportedPrimitive`]). Skins, morph
 //! targets and instancing extensions are not applied: the mesh is read in
-//! its bind pose with its base positions. Every other attribute is
-//! ignored; normals, texture coordinates and colours are reported as
-//! dropped (`read::dropped`).
+//! its bind pose with its base positions. When attributes are asked for,
+//! NORMAL, every TEXCOORD_n and COLOR_0 become per-vertex streams (float
+//! or normalized integer accessors, §3.11), normals turned with their
+//! node; a stream that not every drawn primitive has is dropped and
+//! reported, as are COLOR_n past 0. Tangents, joints, weights and custom
+//! attributes are ignored; otherwise normals, texture coordinates and
+//! colours are reported as dropped (`read::dropped`).
 //!
 //! Memory: a file cannot make the reader allocate beyond the [`Limits`],
 //! which every primitive's counts are checked against before its
@@ -50,7 +54,7 @@ mod scene;
 mod write;
 
 pub(super) use read::read;
-pub(super) use write::write;
+pub(super) use write::{write, write_attributed};
 
 #[cfg(test)]
 mod tests;

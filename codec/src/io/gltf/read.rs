@@ -20,7 +20,7 @@ use super::container;
 use super::scene::{self, Draw};
 use crate::io::builder::Builder;
 use crate::io::Attributes;
-use crate::{Error, FormatError, Limits, Location, Malformed, TriMesh};
+use crate::{AttributeKind, AttributedMesh, Error, FormatError, Limits, Location, Malformed};
 use ::gltf::json::validation::Error as Invalid;
 use ::gltf::mesh::Mode;
 use ::gltf::Semantic;
@@ -36,7 +36,8 @@ pub(in crate::io) fn read(
     bytes: &[u8],
     base: Option<&Path>,
     limits: &Limits,
-) -> Result<(TriMesh, Attributes), Error> {
+    keep: bool,
+) -> Result<(AttributedMesh, Attributes), Error> {
     let (format, json, bin) = if container::is_glb(bytes) {
         let chunks = container::split(bytes)?;
         (container::FORMAT, chunks.json, chunks.bin)
@@ -55,10 +56,16 @@ pub(in crate::io) fn read(
     let draws = scene::draws(&doc, format)?;
 
     let mut needed = vec![false; doc.buffers().len()];
+    let kinds = if keep { kinds(&draws) } else { Vec::new() };
     for d in &draws {
         let p = &d.primitive;
         for a in p.get(&Semantic::Positions).into_iter().chain(p.indices()) {
             accessor::mark_buffers(&a, &mut needed);
+        }
+        for (_, semantic) in &kinds {
+            if let Some(a) = p.get(semantic) {
+                accessor::mark_buffers(&a, &mut needed);
+            }
         }
     }
     let origin = Origin { bin, base, format };
@@ -69,17 +76,120 @@ pub(in crate::io) fn read(
         format,
     };
     let mut out = Builder::new(limits);
+    // Streams in the order of `kinds`; their dimension is set by the
+    // first primitive that has them.
+    let mut dims: Vec<Option<usize>> = vec![None; kinds.len()];
     for d in &draws {
+        let before = out.mesh.positions.len();
         add(&mut out, d, &cx)?;
-        out.dropped = out.dropped.union(dropped(&d.primitive));
+        let added = out.mesh.positions.len() - before;
+        if keep {
+            add_attributes(&mut out, d, &cx, &kinds, &mut dims, added)?;
+        }
+        let mut unread = dropped(&d.primitive);
+        if keep {
+            // COLOR_n past 0 is not read; the rest is, or is reported
+            // by `finish` if not every primitive has it.
+            unread = Attributes {
+                colors: d
+                    .primitive
+                    .attributes()
+                    .any(|(s, _)| matches!(s, Semantic::Colors(n) if n > 0)),
+                ..Attributes::default()
+            };
+        }
+        out.dropped = out.dropped.union(unread);
     }
     let (mesh, dropped) = out.finish();
     // Vertices that no triangle uses are not a scene: a file that draws
     // no triangle is empty, as for the other formats (`read_mesh_bytes`).
-    if mesh.triangles.is_empty() {
-        return Ok((TriMesh::default(), dropped));
+    if mesh.mesh.triangles.is_empty() {
+        return Ok((AttributedMesh::default(), dropped));
     }
     Ok((mesh, dropped))
+}
+
+/// The attributes read, over all drawn primitives: NORMAL, every
+/// TEXCOORD_n and COLOR_0, each with its stream kind, in that order.
+fn kinds(draws: &[Draw]) -> Vec<(AttributeKind, Semantic)> {
+    let mut kinds: Vec<(AttributeKind, Semantic)> = Vec::new();
+    for d in draws {
+        for (semantic, _) in d.primitive.attributes() {
+            let kind = match semantic {
+                Semantic::Normals => AttributeKind::Normal,
+                Semantic::TexCoords(n) => match u8::try_from(n) {
+                    Ok(n) => AttributeKind::TexCoord(n),
+                    Err(_) => continue,
+                },
+                Semantic::Colors(0) => AttributeKind::Color(0),
+                _ => continue,
+            };
+            if !kinds.iter().any(|k| k.0 == kind) {
+                kinds.push((kind, semantic));
+            }
+        }
+    }
+    kinds.sort_by_key(|k| k.0);
+    kinds
+}
+
+/// Adds the attribute values of one drawn primitive, `added` vertices
+/// (none when it has no POSITION): a stream the primitive lacks, or whose
+/// accessor is not of the stream's type, is marked broken and dropped at
+/// the end. Normals are turned by the inverse transpose of the node's
+/// linear part and made unit again (kept bit for bit under no transform).
+fn add_attributes(
+    out: &mut Builder,
+    d: &Draw,
+    cx: &Context,
+    kinds: &[(AttributeKind, Semantic)],
+    dims: &mut [Option<usize>],
+    added: usize,
+) -> Result<(), Error> {
+    if added == 0 {
+        return Ok(());
+    }
+    let identity = d.world == DMat4::IDENTITY;
+    let normal_matrix = glam::DMat3::from_mat4(d.world).inverse().transpose();
+    for (k, &(kind, ref semantic)) in kinds.iter().enumerate() {
+        let allowed: &[usize] = match kind {
+            AttributeKind::Normal => &[3],
+            AttributeKind::TexCoord(_) => &[2],
+            _ => &[3, 4],
+        };
+        let values = match d.primitive.get(semantic) {
+            Some(a) => match accessor::floats(&a, cx, allowed) {
+                Ok(v) => Some(v),
+                Err(Error::Format(_)) => None,
+                Err(e) => return Err(e),
+            },
+            None => None,
+        };
+        let stream = match out.streams.iter().position(|p| p.stream.kind == kind) {
+            Some(s) => s,
+            None => {
+                let width = values.as_ref().map_or(allowed[0], |v| v.0);
+                dims[k] = Some(width);
+                out.add_stream(kind, width as u8, true)
+            }
+        };
+        match values {
+            Some((width, v)) if Some(width) == dims[k] && v.len() == added * width => {
+                out.reserve_values(stream, added as u64, 0)?;
+                let values = &mut out.streams[stream].stream.values;
+                if kind == AttributeKind::Normal && !identity {
+                    for n in v.chunks_exact(3) {
+                        let n = normal_matrix * DVec3::new(n[0].into(), n[1].into(), n[2].into());
+                        values.extend_from_slice(&n.normalize_or_zero().as_vec3().to_array());
+                    }
+                } else {
+                    values.extend_from_slice(&v);
+                }
+            }
+            _ => out.streams[stream].broken = true,
+        }
+    }
+    Ok(())
 }
 
 /// The attributes of a drawn primitive that are not read: normals,

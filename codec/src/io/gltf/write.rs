@@ -33,8 +33,12 @@
 //! The reader (`read`) reads these files back to the same positions and
 //! triangles.
 
+use crate::io::Attributes;
 use crate::mesh::vertex_normals;
-use crate::{Error, FormatError, Malformed, ParameterError, TriMesh};
+use crate::{
+    AttributeKind, AttributeStream, AttributedMesh, Error, FormatError, Malformed, ParameterError,
+    TriMesh,
+};
 use core::fmt::Write as _;
 use std::io::Write;
 
@@ -62,11 +66,115 @@ const FALLBACK_NORMAL: [f32; 3] = [0.0, 0.0, 1.0];
 /// (`write_mesh_to` validates it first); non-finite positions are refused
 /// here too, since they would make the JSON invalid.
 pub(in crate::io) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> Result<(), Error> {
+    let normals = vertex_normals(mesh);
+    let attributes = [
+        Attribute {
+            name: "POSITION".into(),
+            dims: 3,
+            values: mesh.positions.as_flattened(),
+        },
+        Attribute {
+            name: "NORMAL".into(),
+            dims: 3,
+            values: normals.as_flattened(),
+        },
+    ];
+    write_vertices(w, mesh, &attributes)
+}
+
+/// Writes `m` as a GLB file with its attributes, one vertex per distinct
+/// position and values (`AttributedMesh::split_vertices`): NORMAL (the
+/// normal stream made unit, or, without one, angle-weighted normals of
+/// the positions as [`write`] gives), TEXCOORD_n for texture set n of 2
+/// components, COLOR_n for colour set n. Returns what glTF cannot hold
+/// (3-component texture coordinates, generic streams), which is not
+/// written. `m` must be valid.
+pub(in crate::io) fn write_attributed<W: Write>(
+    w: &mut W,
+    m: &AttributedMesh,
+) -> Result<Attributes, Error> {
+    let kept = |s: &AttributeStream| match s.kind {
+        AttributeKind::Normal | AttributeKind::Color(_) => true,
+        AttributeKind::TexCoord(_) => s.dims == 2,
+        _ => false,
+    };
+    let mut unwritten = Attributes::default();
+    for s in m.streams.iter().filter(|s| !kept(s)) {
+        unwritten = unwritten.union(Attributes::of(s.kind));
+    }
+    let mut streams: Vec<AttributeStream> = m.streams.iter().filter(|s| kept(s)).cloned().collect();
+    match streams.iter_mut().find(|s| s.kind == AttributeKind::Normal) {
+        Some(n) => {
+            for v in n.values.chunks_exact_mut(3) {
+                // Unit within rounding already (what a glTF file read
+                // back holds): kept bit for bit, so files round-trip.
+                let n = glam::Vec3::from_slice(v);
+                if (n.length_squared() - 1.0).abs() > 1e-6 {
+                    let u = n.normalize_or_zero();
+                    let u = if u == glam::Vec3::ZERO {
+                        FALLBACK_NORMAL
+                    } else {
+                        u.to_array()
+                    };
+                    v.copy_from_slice(&u);
+                }
+            }
+        }
+        // Computed on the file's own indexing, before the split, so that
+        // a texture seam does not crease the shading.
+        None => streams.push(AttributeStream::new(
+            AttributeKind::Normal,
+            3,
+            vertex_normals(&m.mesh).into_iter().flatten().collect(),
+            m.mesh.triangles.clone(),
+        )),
+    }
+    streams.sort_by_key(|s| s.kind);
+    let split = AttributedMesh::new(m.mesh.clone(), streams).split_vertices();
+    let mut attributes = vec![Attribute {
+        name: "POSITION".into(),
+        dims: 3,
+        values: split.mesh.positions.as_flattened(),
+    }];
+    for s in &split.streams {
+        let name = match s.kind {
+            AttributeKind::Normal => "NORMAL".into(),
+            AttributeKind::TexCoord(n) => format!("TEXCOORD_{n}"),
+            AttributeKind::Color(n) => format!("COLOR_{n}"),
+            _ => unreachable!("not kept"),
+        };
+        attributes.push(Attribute {
+            name,
+            dims: s.dims,
+            values: &s.values,
+        });
+    }
+    write_vertices(w, &split.mesh, &attributes)?;
+    Ok(unwritten)
+}
+
+/// A vertex attribute to write: `dims` floats per vertex.
+struct Attribute<'a> {
+    name: String,
+    dims: u8,
+    values: &'a [f32],
+}
+
+/// Writes a GLB file of the positions' `mesh` triangles and per-vertex
+/// `attributes`, POSITION first (its bounds are taken from it). A
+/// zero normal (a vertex on no triangle of nonzero area) is written as
+/// [`FALLBACK_NORMAL`].
+fn write_vertices<W: Write>(
+    w: &mut W,
+    mesh: &TriMesh,
+    attributes: &[Attribute],
+) -> Result<(), Error> {
     let (min, max) = bounds(&mesh.positions)?;
     let vertices = mesh.positions.len() as u64;
     let triangles = mesh.triangles.len() as u64;
-    let json = json(vertices, triangles, min, max);
-    let len = lengths(json.len() as u64, vertices, triangles)?;
+    let json = json(attributes, vertices, triangles, min, max);
+    let floats: u64 = attributes.iter().map(|a| u64::from(a.dims)).sum();
+    let len = lengths(json.len() as u64, vertices, triangles, floats)?;
 
     w.write_all(MAGIC)?;
     w.write_all(&VERSION.to_le_bytes())?;
@@ -83,11 +191,17 @@ pub(in crate::io) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> Result<(), Er
     }
     w.write_all(&(padded(len.bin) as u32).to_le_bytes())?;
     w.write_all(CHUNK_BIN)?;
-    for p in &mesh.positions {
-        write_vec3(w, p)?;
-    }
-    for n in vertex_normals(mesh) {
-        write_vec3(w, &if n == [0.0; 3] { FALLBACK_NORMAL } else { n })?;
+    for a in attributes {
+        let normal = a.name == "NORMAL";
+        for v in a.values.chunks_exact(usize::from(a.dims)) {
+            let v = match normal && v == [0.0; 3] {
+                true => &FALLBACK_NORMAL[..],
+                false => v,
+            };
+            for c in v {
+                w.write_all(&c.to_le_bytes())?;
+            }
+        }
     }
     for t in &mesh.triangles {
         let mut record = [0u8; 12];
@@ -96,8 +210,8 @@ pub(in crate::io) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> Result<(), Er
         }
         w.write_all(&record)?;
     }
-    // 12 bytes per element: the BIN chunk needs no padding today, but
-    // write it should the layout change.
+    // Every element is a multiple of 4 bytes: the BIN chunk needs no
+    // padding today, but write it should the layout change.
     w.write_all(&[0u8; 3][..(padded(len.bin) - len.bin) as usize])?;
     Ok(())
 }
@@ -111,15 +225,18 @@ struct Lengths {
     total: u32,
 }
 
-/// The lengths of a file whose JSON text is `json` bytes long; an error
-/// if the file would not fit the u32 length fields of GLB.
-fn lengths(json: u64, vertices: u64, triangles: u64) -> Result<Lengths, Error> {
+/// The lengths of a file whose JSON text is `json` bytes long, with
+/// `floats` attribute floats per vertex; an error if the file would not
+/// fit the u32 length fields of GLB.
+fn lengths(json: u64, vertices: u64, triangles: u64, floats: u64) -> Result<Lengths, Error> {
     let mut total = HEADER_LEN + CHUNK_HEADER_LEN + padded(json);
     let mut bin = 0;
     if triangles > 0 {
-        // POSITION and NORMAL, then the indices.
-        bin = 24 * vertices + 12 * triangles;
-        total += CHUNK_HEADER_LEN + padded(bin);
+        // The attributes, then the indices.
+        bin = (4 * floats)
+            .saturating_mul(vertices)
+            .saturating_add(12 * triangles);
+        total = total.saturating_add(CHUNK_HEADER_LEN + padded(bin));
     }
     let total = u32::try_from(total).map_err(|_| {
         Error::Parameter(ParameterError::FileTooLarge {
@@ -129,14 +246,6 @@ fn lengths(json: u64, vertices: u64, triangles: u64) -> Result<Lengths, Error> {
         })
     })?;
     Ok(Lengths { json, bin, total })
-}
-
-fn write_vec3<W: Write>(w: &mut W, v: &[f32; 3]) -> std::io::Result<()> {
-    let mut record = [0u8; 12];
-    for (chunk, c) in record.chunks_exact_mut(4).zip(v) {
-        chunk.copy_from_slice(&c.to_le_bytes());
-    }
-    w.write_all(&record)
 }
 
 /// `n` rounded up to a multiple of 4.
@@ -166,9 +275,16 @@ fn bounds(positions: &[[f32; 3]]) -> Result<([f32; 3], [f32; 3]), Error> {
     Ok((min, max))
 }
 
-/// The JSON chunk's text, unpadded. With no triangles: the asset and a
-/// scene of one empty node.
-fn json(vertices: u64, triangles: u64, min: [f32; 3], max: [f32; 3]) -> String {
+/// The JSON chunk's text, unpadded: one accessor and one bufferView per
+/// attribute, in order, then the indices'. With no triangles: the asset
+/// and a scene of one empty node.
+fn json(
+    attributes: &[Attribute],
+    vertices: u64,
+    triangles: u64,
+    min: [f32; 3],
+    max: [f32; 3],
+) -> String {
     let mut s = String::with_capacity(1024);
     // `write!` into a String cannot fail.
     let _ = write!(
@@ -182,32 +298,57 @@ fn json(vertices: u64, triangles: u64, min: [f32; 3], max: [f32; 3]) -> String {
         s.push_str(r#""scenes":[{"nodes":[0]}],"nodes":[{}]}"#);
         return s;
     }
-    let attribute_len = 12 * vertices;
+    let n = attributes.len();
     let index_len = 12 * triangles;
     let _ = write!(s, r#""scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],"#);
-    let _ = write!(
-        s,
-        r#""meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1}},"indices":2,"mode":{TRIANGLES}}}]}}],"#
-    );
+    s.push_str(r#""meshes":[{"primitives":[{"attributes":{"#);
+    for (k, a) in attributes.iter().enumerate() {
+        let comma = if k > 0 { "," } else { "" };
+        let _ = write!(s, r#"{comma}"{}":{k}"#, a.name);
+    }
+    let _ = write!(s, r#"}},"indices":{n},"mode":{TRIANGLES}}}]}}],"#);
+    let lens: Vec<u64> = attributes
+        .iter()
+        .map(|a| 4 * u64::from(a.dims) * vertices)
+        .collect();
+    let attribute_bytes: u64 = lens.iter().sum();
     let _ = write!(
         s,
         r#""buffers":[{{"byteLength":{}}}],"#,
-        2 * attribute_len + index_len
+        attribute_bytes + index_len
     );
+    s.push_str(r#""bufferViews":["#);
+    let mut offset = 0;
+    for len in &lens {
+        let _ = write!(
+            s,
+            r#"{{"buffer":0,"byteOffset":{offset},"byteLength":{len},"target":{ARRAY_BUFFER}}},"#
+        );
+        offset += len;
+    }
     let _ = write!(
         s,
-        r#""bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":{attribute_len},"target":{ARRAY_BUFFER}}},{{"buffer":0,"byteOffset":{attribute_len},"byteLength":{attribute_len},"target":{ARRAY_BUFFER}}},{{"buffer":0,"byteOffset":{},"byteLength":{index_len},"target":{ELEMENT_ARRAY_BUFFER}}}],"#,
-        2 * attribute_len
+        r#"{{"buffer":0,"byteOffset":{offset},"byteLength":{index_len},"target":{ELEMENT_ARRAY_BUFFER}}}],"#
     );
+    s.push_str(r#""accessors":["#);
+    for (k, a) in attributes.iter().enumerate() {
+        let ty = match a.dims {
+            2 => "VEC2",
+            3 => "VEC3",
+            _ => "VEC4",
+        };
+        let _ = write!(
+            s,
+            r#"{{"bufferView":{k},"componentType":{FLOAT},"count":{vertices},"type":"{ty}""#
+        );
+        if k == 0 {
+            let _ = write!(s, r#","min":{},"max":{}"#, json_vec3(min), json_vec3(max));
+        }
+        s.push_str("},");
+    }
     let _ = write!(
         s,
-        r#""accessors":[{{"bufferView":0,"componentType":{FLOAT},"count":{vertices},"type":"VEC3","min":{},"max":{}}},"#,
-        json_vec3(min),
-        json_vec3(max)
-    );
-    let _ = write!(
-        s,
-        r#"{{"bufferView":1,"componentType":{FLOAT},"count":{vertices},"type":"VEC3"}},{{"bufferView":2,"componentType":{UNSIGNED_INT},"count":{},"type":"SCALAR"}}]}}"#,
+        r#"{{"bufferView":{n},"componentType":{UNSIGNED_INT},"count":{},"type":"SCALAR"}}]}}"#,
         3 * triangles
     );
     s
@@ -453,11 +594,11 @@ mod tests {
         let json = 1001;
         let fixed = 12 + 8 + 1004 + 8;
         let triangles = (u64::from(u32::MAX) - fixed) / 12;
-        let fits = lengths(json, 0, triangles).unwrap();
+        let fits = lengths(json, 0, triangles, 6).unwrap();
         assert_eq!(fits.json, json);
         assert_eq!(fits.bin, 12 * triangles);
         assert_eq!(u64::from(fits.total), fixed + 12 * triangles);
-        match lengths(json, 1, triangles) {
+        match lengths(json, 1, triangles, 6) {
             Err(Error::Parameter(ParameterError::FileTooLarge { format, bytes, max })) => {
                 assert_eq!((format, max), ("GLB", u64::from(u32::MAX)));
                 assert_eq!(bytes, fixed + 24 + 12 * triangles);
@@ -465,7 +606,7 @@ mod tests {
             other => panic!("{other:?}"),
         }
         // No triangles: no BIN chunk, whatever the vertex count.
-        let empty = lengths(json, u64::MAX / 64, 0).unwrap();
+        let empty = lengths(json, u64::MAX / 64, 0, 6).unwrap();
         assert_eq!((empty.bin, empty.total), (0, 12 + 8 + 1004));
     }
 
