@@ -95,9 +95,9 @@ def test_displaced_decodes_as_the_cli_level_by_level(swm_bin, tmp_path, max_leve
     v, f = swm.decode(packed.read_bytes(), max_level=max_level)
     cv, cf = swm.read(cli_ply)
     assert bits_equal(v, cv) and bits_equal(f, cf), max_level
-    # 586 base triangles, four times as many per level, two levels.
+    # 564 base triangles, four times as many per level, two levels.
     levels = 2 if max_level is None else min(max_level, 2)
-    assert len(f) == 586 * 4**levels
+    assert len(f) == 564 * 4**levels
     if max_level is None:
         info = swm.info(packed.read_bytes())
         cli = json.loads(run_cli(swm_bin, "info", packed, "--json").stdout)

@@ -14,7 +14,6 @@
 //! state for every query, so no earlier query steers its ties).
 
 use super::predict::Frame;
-use crate::metrics::ray::Lines;
 use crate::metrics::{NearestScratch, Surface};
 use rayon::prelude::*;
 
@@ -29,9 +28,9 @@ pub(crate) enum Fallback {
     Zero,
 }
 
-/// The input, ready for both queries.
+/// The input, ready for both queries: one tree answers the line
+/// crossings and the nearest points (`metrics::bvh::crossing`).
 pub(crate) struct Target<'a> {
-    pub lines: &'a Lines,
     pub surface: &'a Surface,
 }
 
@@ -48,13 +47,13 @@ pub(crate) fn offsets(
     let found: Vec<(f64, bool)> = frames
         .par_iter()
         .with_min_len(1024)
-        .map(|f| {
+        .map_init(Vec::new, |stack, f| {
             if f.normal == [0.0; 3] {
                 return (0.0, false);
             }
             match target
-                .lines
-                .nearest_crossing(f.point, f.normal, reach, facing)
+                .surface
+                .nearest_crossing(f.point, f.normal, reach, facing, stack)
             {
                 Some(t) => (t, false),
                 None => (miss(f, target, fallback), true),

@@ -7,7 +7,6 @@ use super::fit::{Fallback, Target};
 use super::predict::Rule;
 use super::write::{write, Plan, Settings, Written};
 use crate::container::{fix_crc, parse_container, Framing, Mode};
-use crate::metrics::ray::Lines;
 use crate::metrics::{distance_between, DistanceOptions, Surface};
 use crate::simplify::Simplifier;
 use crate::{Error, Limits, TriMesh};
@@ -56,12 +55,8 @@ fn written(faces: u32, plan: &Plan) -> (Written, Surface) {
     let mut base = s.simplify(faces);
     s.refit(&mut base);
     let r = s.reference();
-    let lines = Lines::new(&r.positions, &r.triangles);
     let surface = Surface::new(r).unwrap();
-    let target = Target {
-        lines: &lines,
-        surface: &surface,
-    };
+    let target = Target { surface: &surface };
     (write(&base, &target, plan).unwrap(), surface)
 }
 

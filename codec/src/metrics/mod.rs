@@ -251,6 +251,22 @@ impl Surface {
         Some((hit.triangle, triangle::closest_point(p, &t), hit.slot))
     }
 
+    /// The `t` of smallest magnitude in `[−reach, reach]` where the line
+    /// `p + t·d` crosses the surface, if any; with `facing`, only faces
+    /// whose normal points along `d` (`bvh::crossing`). `stack` is
+    /// scratch space.
+    #[cfg(feature = "encoder")]
+    pub(crate) fn nearest_crossing(
+        &self,
+        p: [f64; 3],
+        d: [f64; 3],
+        reach: f64,
+        facing: bool,
+        stack: &mut Vec<(u32, f64)>,
+    ) -> Option<f64> {
+        self.bvh.nearest_crossing(p, d, reach, facing, stack)
+    }
+
     /// Number of faces.
     pub fn face_count(&self) -> usize {
         self.faces.len()

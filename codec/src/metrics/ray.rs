@@ -8,20 +8,28 @@
 //! median centroid of its longest axis (leaves of up to [`LEAF`]
 //! triangles).
 //!
+//! The encoder asks these queries of the nearest-point tree it already
+//! has (`bvh::crossing`, with [`crossing`] below for each triangle);
+//! [`Lines`], a plain binary tree, is kept as the simple reference the
+//! tests check that one against.
+//!
 //! Invariants: the answer depends only on the triangles and the query
 //! (the tree's build is deterministic, the search keeps the crossing of
 //! smallest |t| and breaks exact ties towards positive t); encoder-side
 //! only, so `f64` throughout and no promise of bit-exact agreement with
 //! any other code.
 
+#[cfg(test)]
 use crate::prelude::*;
 
+#[cfg(test)]
 /// Most triangles in a leaf.
 const LEAF: usize = 4;
 /// Barycentric slack: a line through a shared edge or vertex hits one
 /// of the triangles around it rather than slipping between them.
 const EDGE_SLACK: f64 = 1e-9;
 
+#[cfg(test)]
 struct Node {
     lo: [f64; 3],
     hi: [f64; 3],
@@ -32,12 +40,14 @@ struct Node {
     count: u32,
 }
 
+#[cfg(test)]
 /// Triangles arranged for line queries.
 pub(crate) struct Lines {
     nodes: Vec<Node>,
     tris: Vec<[[f64; 3]; 3]>,
 }
 
+#[cfg(test)]
 impl Lines {
     /// The tree over `triangles` of `positions` (indices in range).
     pub fn new(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> Lines {
@@ -103,6 +113,7 @@ impl Lines {
     }
 }
 
+#[cfg(test)]
 fn build(
     nodes: &mut Vec<Node>,
     order: &mut [u32],
@@ -151,6 +162,7 @@ fn build(
     nodes[me].count = 0;
 }
 
+#[cfg(test)]
 /// Does the segment `p + t·d`, |t| ≤ bound, meet the node's box?
 fn slab(n: &Node, p: [f64; 3], d: [f64; 3], bound: f64) -> bool {
     let (mut t0, mut t1) = (-bound, bound);
@@ -174,7 +186,7 @@ fn slab(n: &Node, p: [f64; 3], d: [f64; 3], bound: f64) -> bool {
 /// Möller–Trumbore: the `t` where the line `p + t·d` crosses triangle
 /// `t`, if it does (either side; with `facing`, only a triangle whose
 /// normal points along `d`).
-fn crossing(p: [f64; 3], d: [f64; 3], t: &[[f64; 3]; 3], facing: bool) -> Option<f64> {
+pub(crate) fn crossing(p: [f64; 3], d: [f64; 3], t: &[[f64; 3]; 3], facing: bool) -> Option<f64> {
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let cross = |a: [f64; 3], b: [f64; 3]| {
         [
@@ -251,5 +263,49 @@ mod tests {
         let down = [0.0, 0.0, -1.0];
         assert_eq!(lines.nearest_crossing(q, up, 2.0, true), Some(-0.5));
         assert_eq!(lines.nearest_crossing(q, down, 2.0, true), None);
+    }
+}
+
+#[cfg(test)]
+mod against_the_tree {
+    use super::*;
+    use crate::metrics::{Build, Surface};
+
+    /// The nearest-point tree's line query (`bvh::crossing`) gives the
+    /// reference's `f64`, bit for bit, on a curved mesh in awkward units,
+    /// for lines in every direction, both facings and several reaches.
+    #[test]
+    fn the_wide_tree_agrees_with_the_reference_bit_for_bit() {
+        let mut m = crate::mesh::test_shapes::uv_sphere(40, 30);
+        for p in &mut m.positions {
+            let r = 1.0 + 0.1 * (5.0 * p[0]).sin() * (3.0 * p[1]).cos();
+            *p = p.map(|c| c * r * 1000.0 + 3.0);
+        }
+        let lines = Lines::new(&m.positions, &m.triangles);
+        let mut seed = 7u64;
+        let mut r = move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for how in [Build::Sah, Build::Morton] {
+            let surface = Surface::with_build(&m, how).unwrap();
+            let mut stack = Vec::new();
+            let mut hits = 0;
+            for _ in 0..4000 {
+                let p = [r() * 1200.0 + 3.0, r() * 1200.0 + 3.0, r() * 1200.0 + 3.0];
+                let d = [r(), r(), r()];
+                let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let d = d.map(|c| c / n);
+                for reach in [50.0, 400.0, 5000.0] {
+                    for facing in [false, true] {
+                        let a = lines.nearest_crossing(p, d, reach, facing);
+                        let b = surface.nearest_crossing(p, d, reach, facing, &mut stack);
+                        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "{p:?} {d:?}");
+                        hits += a.is_some() as usize;
+                    }
+                }
+            }
+            assert!(hits > 1000, "{hits}");
+        }
     }
 }

@@ -129,7 +129,7 @@ fn displaced_files_decode_level_by_level() {
         assert_eq!(o.status, STATUS_OK, "{}", message(o));
         assert_eq!((o.mode, o.major, o.minor), (2, 1, 2));
         let levels = if max_level < 0 { 2 } else { max_level.min(2) };
-        assert_eq!(o.triangle_count, 586 << (2 * levels));
+        assert_eq!(o.triangle_count, 564 << (2 * levels));
         let (p, i, _) = arrays(o);
         assert_eq!(p, expected.positions.as_flattened());
         assert_eq!(i, expected.triangles.as_flattened());

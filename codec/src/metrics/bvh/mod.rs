@@ -69,6 +69,8 @@ use build::LEAF_SIZE;
 
 mod aabb;
 mod build;
+#[cfg(feature = "encoder")]
+mod crossing;
 mod morton;
 use std::sync::atomic::{AtomicU64, Ordering};
 
