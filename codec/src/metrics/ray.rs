@@ -284,7 +284,9 @@ mod against_the_tree {
         let lines = Lines::new(&m.positions, &m.triangles);
         let mut seed = 7u64;
         let mut r = move || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         for how in [Build::Sah, Build::Morton] {

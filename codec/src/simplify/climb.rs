@@ -8,7 +8,16 @@
 //! only on the mesh and the budget (the distance's samples are seeded and
 //! summed in a fixed order), never on the thread count.
 
-use super::faces::{fit_faces, refitted, search_faces, whole_estimate, Fit, Whole};
+use super::faces::{fit_faces, refitted, search_faces, whole_estimate, Fit, Probing, Whole};
+
+/// The climb's probing.
+fn probing(lean: bool) -> Probing {
+    if lean {
+        Probing::Lean
+    } else {
+        Probing::Full
+    }
+}
 use super::simplifier::{
     file_distance, Simplifier, MIN_FACES, ON_SIZE_SLACK, QPS, QUICK_SAMPLES, START_QP,
 };
@@ -195,7 +204,7 @@ impl Climbed {
             let last = self.fits.iter().rev().find_map(|t| t.fit.as_ref());
             (Whole::Encode, last)
         };
-        let fit = fit_faces(s, qp, budget, prev, whole, lean)?;
+        let fit = fit_faces(s, qp, budget, prev, whole, probing(lean))?;
         self.record(s, qp, whole, fit, lean)?;
         Ok(self.fits.last().and_then(|t| t.fit.as_ref()))
     }
@@ -254,7 +263,7 @@ impl Climbed {
         let (made, first) = rayon::join(
             || {
                 todo.par_iter()
-                    .map(|&(q, whole)| fit_faces(s, q, budget, from, whole, true))
+                    .map(|&(q, whole)| fit_faces(s, q, budget, from, whole, Probing::Lean))
                     .collect::<Vec<_>>()
             },
             || from.map(measure).transpose(),
@@ -341,7 +350,7 @@ pub fn quick_fit<'r>(
 ) -> Result<Option<Fit>, Error> {
     let mut start = START_QP;
     let first = loop {
-        match search_faces(s, start, budget, None, Whole::Encode, true)? {
+        match search_faces(s, start, budget, None, Whole::Encode, Probing::Quick)? {
             Some(fit) => break fit,
             None if start == *QPS.start() => return Ok(None),
             None => start -= 1,
@@ -388,7 +397,7 @@ pub fn quick_fit<'r>(
     // the second search, which needs only its face count and slope.
     let (first, second) = rayon::join(
         || refitted(s, first.clone(), budget),
-        || fit_faces(s, qp, budget, Some(&first), whole, true),
+        || fit_faces(s, qp, budget, Some(&first), whole, Probing::Quick),
     );
     let first = first?;
     let Some(second) = second? else {

@@ -18,6 +18,34 @@ const PRECISION: f64 = 0.005;
 /// by a few tenths of a percent between neighbouring face counts, so
 /// chasing the last percent costs probes and buys noise.
 const FILL: f64 = 0.99;
+/// Effort `fast`'s fill: rate control's tolerance. On horse at 4 b/v
+/// both of its size searches stop a probe earlier.
+const QUICK_FILL: f64 = 0.97;
+
+/// How a size search spends its probes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Probing {
+    /// From the previous qp's face count, to [`FILL`] (effort `max`).
+    Full,
+    /// From the face count the previous fit predicts, to [`FILL`]
+    /// (effort `default`).
+    Lean,
+    /// As `Lean`, to [`QUICK_FILL`] (effort `fast`).
+    Quick,
+}
+
+impl Probing {
+    fn lean(self) -> bool {
+        self != Probing::Full
+    }
+
+    fn fill(self) -> f64 {
+        match self {
+            Probing::Quick => QUICK_FILL,
+            _ => FILL,
+        }
+    }
+}
 /// A bound the search never meets in practice (bisection over 2^32 face
 /// counts takes about 25 probes); if it did, the best fit so far stands.
 const MAX_PROBES: usize = 64;
@@ -84,12 +112,12 @@ pub fn fit_faces(
     budget: u64,
     prev: Option<&Fit>,
     whole: Whole,
-    lean: bool,
+    probing: Probing,
 ) -> Result<Option<Fit>, Error> {
     // The answer refitted to the input: once per qp, not per probe (the
     // lean search too: ranking fits as simplified chose worse qps, 4%
     // more L2 over spot, cheburashka, homer and teapot).
-    match search_faces(s, qp, budget, prev, whole, lean)? {
+    match search_faces(s, qp, budget, prev, whole, probing)? {
         Some(fit) => Ok(Some(refitted(s, fit, budget)?)),
         None => Ok(None),
     }
@@ -104,8 +132,9 @@ pub(super) fn search_faces(
     budget: u64,
     prev: Option<&Fit>,
     whole: Whole,
-    lean: bool,
+    probing: Probing,
 ) -> Result<Option<Fit>, Error> {
+    let (lean, fill) = (probing.lean(), probing.fill());
     let full = s.faces();
     let budget_f = budget as f64;
     let model_guess = model_faces(qp, 0.98 * budget_f) * s.first_probe_factor();
@@ -118,7 +147,7 @@ pub(super) fn search_faces(
         .filter(|p| p.faces < full && full > MIN_FACES)
         .map(|p| {
             if lean {
-                predicted_faces(p, qp, budget_f, full)
+                predicted_faces(p, qp, budget_f, full, fill)
             } else {
                 p.faces
             }
@@ -225,10 +254,10 @@ pub(super) fn search_faces(
             continue;
         };
         let narrow = (hi.faces - l.faces) as f64 <= (l.faces as f64 * PRECISION).max(1.0);
-        if narrow || l.size as f64 >= FILL * budget_f {
+        if narrow || l.size as f64 >= fill * budget_f {
             break;
         }
-        let band = (1.0 + FILL) / 2.0 * budget_f;
+        let band = (1.0 + fill) / 2.0 * budget_f;
         guess = if lean && hi.faces >= full {
             // Only the whole mesh above, whose slopes mislead: the lean
             // search aims along its last two probes (both fit), or the
@@ -291,7 +320,7 @@ fn model_faces(qp: u8, size: f64) -> f64 {
 /// in the middle of the accepted band: its file's size moved to `qp` as
 /// [`whole_estimate`] moves a whole mesh's (within a few tenths of a
 /// percent on bunny between neighbouring qps), then along its slope.
-fn predicted_faces(p: &Fit, qp: u8, budget: f64, full: u32) -> u32 {
+fn predicted_faces(p: &Fit, qp: u8, budget: f64, full: u32, fill: f64) -> u32 {
     let size = whole_estimate(
         p.bytes.len() as u64,
         p.qp,
@@ -302,7 +331,7 @@ fn predicted_faces(p: &Fit, qp: u8, budget: f64, full: u32) -> u32 {
         faces: p.faces,
         size: size.max(1),
     };
-    let faces = aim(at, p.slope, (1.0 + FILL) / 2.0 * budget);
+    let faces = aim(at, p.slope, (1.0 + fill) / 2.0 * budget);
     (faces.round() as u32).clamp(MIN_FACES, full - 1)
 }
 

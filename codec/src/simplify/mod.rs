@@ -48,6 +48,6 @@ mod refit;
 mod simplifier;
 
 pub use climb::{best_fit, quick_fit, Climb, LEAN_SAMPLES};
-pub use faces::{fit_faces, Fit, Whole};
+pub use faces::{fit_faces, Fit, Probing, Whole};
 pub(crate) use simplifier::{file_distance, ON_SIZE_SLACK};
 pub use simplifier::{lossless_bytes, smallest_bytes, Simplifier, QPS, QUICK_SAMPLES};
