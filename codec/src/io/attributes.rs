@@ -91,3 +91,33 @@ pub struct ReadReport {
     /// The vertex attributes the file carried and the mesh does not keep.
     pub dropped: Attributes,
 }
+
+/// The streams a vertex-list format (OFF, PLY) holds: normals, colour set
+/// 0 and a two-dimensional texture set 0.
+pub(super) fn per_vertex(s: &crate::AttributeStream) -> bool {
+    use crate::AttributeKind as K;
+    match s.kind {
+        K::Normal | K::Color(0) => true,
+        K::TexCoord(0) => s.dims == 2,
+        _ => false,
+    }
+}
+
+/// `m` split into one vertex per distinct position and values of the
+/// streams `kept` accepts (`None` when it accepts none), and the kinds of
+/// the streams it does not, which a writer leaves out.
+pub(super) fn split_kept(
+    m: &crate::AttributedMesh,
+    kept: impl Fn(&crate::AttributeStream) -> bool + Copy,
+) -> (Option<crate::AttributedMesh>, Attributes) {
+    let mut unwritten = Attributes::default();
+    for s in m.streams.iter().filter(|s| !kept(s)) {
+        unwritten = unwritten.union(Attributes::of(s.kind));
+    }
+    let split = m
+        .streams
+        .iter()
+        .any(kept)
+        .then(|| m.split_vertices_by(kept));
+    (split, unwritten)
+}

@@ -30,8 +30,7 @@ use super::builder::Builder;
 use super::text::{self, Text};
 use super::Attributes;
 use crate::{
-    AttributeKind, AttributeStream, AttributedMesh, Error, FormatError, Limits, Location,
-    Malformed, TriMesh,
+    AttributeKind, AttributedMesh, Error, FormatError, Limits, Location, Malformed, TriMesh,
 };
 use std::io::{self, Write};
 
@@ -321,20 +320,11 @@ pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> io::Result<()> {
 /// texture coordinate, colour sets past 0, generic streams), which is not
 /// written. Without any stream it can hold, the file is [`write`]'s.
 pub(super) fn write_attributed<W: Write>(w: &mut W, m: &AttributedMesh) -> io::Result<Attributes> {
-    let kept = |s: &AttributeStream| match s.kind {
-        AttributeKind::Normal | AttributeKind::Color(0) => true,
-        AttributeKind::TexCoord(0) => s.dims == 2,
-        _ => false,
-    };
-    let mut unwritten = Attributes::default();
-    for s in m.streams.iter().filter(|s| !kept(s)) {
-        unwritten = unwritten.union(Attributes::of(s.kind));
-    }
-    if !m.streams.iter().any(kept) {
+    let (split, unwritten) = super::attributes::split_kept(m, super::attributes::per_vertex);
+    let Some(split) = split else {
         write(w, &m.mesh)?;
         return Ok(unwritten);
-    }
-    let split = m.split_vertices_by(kept);
+    };
     // In the order of the keyword's prefixes, reversed on the line.
     let normal = split.stream(AttributeKind::Normal);
     let colour = split.stream(AttributeKind::Color(0));

@@ -39,8 +39,7 @@ use super::builder::Builder;
 use super::text::{self, Text};
 use super::Attributes;
 use crate::{
-    AttributeKind, AttributeStream, AttributedMesh, Error, FormatError, Limits, Location,
-    Malformed, TriMesh,
+    AttributeKind, AttributedMesh, Error, FormatError, Limits, Location, Malformed, TriMesh,
 };
 use std::io::{self, Write};
 
@@ -1052,20 +1051,11 @@ pub(super) fn write<W: Write>(w: &mut W, mesh: &TriMesh) -> io::Result<()> {
 /// colour sets, a third texture coordinate, generic streams), which is
 /// not written. Without any stream it can hold, the file is [`write`]'s.
 pub(super) fn write_attributed<W: Write>(w: &mut W, m: &AttributedMesh) -> io::Result<Attributes> {
-    let kept = |s: &AttributeStream| match s.kind {
-        AttributeKind::Normal | AttributeKind::Color(0) => true,
-        AttributeKind::TexCoord(0) => s.dims == 2,
-        _ => false,
-    };
-    let mut unwritten = Attributes::default();
-    for s in m.streams.iter().filter(|s| !kept(s)) {
-        unwritten = unwritten.union(Attributes::of(s.kind));
-    }
-    if !m.streams.iter().any(kept) {
+    let (split, unwritten) = super::attributes::split_kept(m, super::attributes::per_vertex);
+    let Some(split) = split else {
         write(w, &m.mesh)?;
         return Ok(unwritten);
-    }
-    let split = m.split_vertices_by(kept);
+    };
     let normal = split.stream(AttributeKind::Normal);
     let uv = split
         .stream(AttributeKind::TexCoord(0))
