@@ -67,6 +67,10 @@ pub(crate) struct Written {
     pub qp: u8,
     /// New vertices whose normal line missed the input, per level.
     pub misses: Vec<usize>,
+    /// The face count the base was simplified to (`Simplifier::simplify`'s
+    /// target; 0 until the caller sets it): where its vertices' origins
+    /// start (`encoder::provenance`).
+    pub base_target: u32,
 }
 
 /// The mode-2 file of `base` (a simplification of the input) refined
@@ -184,6 +188,7 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         base_faces,
         qp,
         misses,
+        base_target: 0,
     })
 }
 

@@ -99,7 +99,9 @@ impl CodingMethod for Displaced {
             s.refit(&mut base);
             let mut plan = self.plan(levels, job);
             plan.settings.qp = qp;
-            write(&base, &target, &plan)
+            let mut w = write(&base, &target, &plan)?;
+            w.base_target = faces;
+            Ok(w)
         };
         // The error of a file against the input, as the chooser measures
         // it (the reconstruction is the decoded file, bit for bit: no need
@@ -199,6 +201,13 @@ impl CodingMethod for Displaced {
             misses: w.misses.iter().map(|&m| m as u64).collect(),
             l2_relative: Some(l2),
         };
+        // The base's vertices stand for the survivors of its collapses;
+        // the levels' vertices descend from their edges' ends
+        // (`provenance`).
+        let seeds = match job.options.origins {
+            true => Some(self.base_seeds(job, w.base_target, w.qp, levels)?),
+            false => None,
+        };
         Ok(Some(Made {
             bytes: w.bytes,
             stats: MethodStats::Displaced(stats),
@@ -206,12 +215,37 @@ impl CodingMethod for Displaced {
             // The whole input as the base: short of the request, there
             // is nothing more to code.
             whole: w.base_faces >= s.faces() as usize,
-            seeds: None,
+            seeds,
         }))
     }
 }
 
 impl Displaced {
+    /// The seed of each base vertex of the file whose base was simplified
+    /// to `target` faces and coded at `qp` (in the decoder's order, as
+    /// `write` codes it): the simplified method's rule.
+    fn base_seeds(
+        &self,
+        job: &Job<'_, '_>,
+        target: u32,
+        qp: u8,
+        levels: usize,
+    ) -> Result<Vec<u32>, Error> {
+        let s = job.simplifier();
+        let mut base = s.simplify(target);
+        s.refit(&mut base);
+        let cleaned = crate::clean(&base, &crate::CleanOptions::default())?;
+        let framing = self.plan(levels, job).framing;
+        let (_, _, source) = crate::lossless::encode(&cleaned.table, &cleaned.mesh, qp, framing)?;
+        Ok(super::simplified::seeds(
+            s,
+            target,
+            &base,
+            &cleaned.mesh,
+            &source,
+        ))
+    }
+
     fn plan(&self, levels: usize, job: &Job<'_, '_>) -> Plan {
         Plan {
             levels,

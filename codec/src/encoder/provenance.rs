@@ -10,8 +10,9 @@
 //!    the chooser and the check already hold in a tree): the nearest one,
 //!    unless a descent over the surface finds one on the sheet the vertex
 //!    was made from. The descent starts at the method's *seed* where it
-//!    gave one (the simplified method: the survivor of the collapses that
-//!    made the vertex, `Simplifier::sources`), else at the face where the
+//!    gave one (the simplified method, and displaced subdivision for its
+//!    base's vertices: the survivor of the collapses that made the
+//!    vertex, `Simplifier::sources`), else at the face where the
 //!    vertex's parent was found: its lowest-numbered neighbour in the
 //!    decoded mesh, made before it (a retiled tip's gate, a subdivided
 //!    vertex's edge end, the lossless traversal's earlier vertex). It
@@ -55,7 +56,7 @@ pub(crate) const MAX_STEPS: usize = 256;
 
 /// The origin of every vertex of the file `bytes` decoded plainly;
 /// `seeds`, when the method gave them, the reference vertex each decoded
-/// vertex stands for (`u32::MAX`: none).
+/// vertex stands for (`u32::MAX`, or past the list's end: none).
 pub(crate) fn of_file(
     job: &super::method::Job<'_, '_>,
     bytes: &[u8],
@@ -67,7 +68,7 @@ pub(crate) fn of_file(
         job.simplifier().reference(),
         job.reference()?,
         &decoded,
-        seeds.filter(|s| s.len() == decoded.vertex_count()),
+        seeds.filter(|s| s.len() <= decoded.vertex_count()),
     ))
 }
 
@@ -105,7 +106,7 @@ pub(crate) fn origins(
         // Where the descent starts: the method's seed, else a corner of
         // the face the vertex's parent (its lowest-numbered neighbour,
         // made before it) was found on.
-        let start = match seeds.map_or(u32::MAX, |s| s[i]) {
+        let start = match seeds.and_then(|s| s.get(i).copied()).unwrap_or(u32::MAX) {
             u32::MAX => near.parent[i]
                 .and_then(|u| on.get(u as usize))
                 .filter(|&&g| g != u32::MAX)
@@ -423,6 +424,17 @@ mod file_tests {
             };
             on_their_sheet(&input, outer_faces, &options);
         }
+        // Displaced subdivision: its base through the collapses, its
+        // levels from their edges' ends.
+        let options = EncodeOptions {
+            mode: EncodeMode::Displaced {
+                target: SwingTarget::Bytes(600),
+                max_bytes: None,
+            },
+            origins: true,
+            ..Default::default()
+        };
+        on_their_sheet(&input, outer_faces, &options);
     }
 
     fn on_their_sheet(input: &TriMesh, outer_faces: usize, options: &EncodeOptions) {

@@ -110,7 +110,7 @@ pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Resul
         let seeds = job
             .options
             .origins
-            .then(|| seeds(s, &fit, &cleaned.mesh, &source));
+            .then(|| seeds(s, fit.faces, &fit.mesh, &cleaned.mesh, &source));
         (bytes, lossless, seeds)
     };
     debug_assert_eq!(bytes, fit.bytes, "lossless encoding is deterministic");
@@ -132,20 +132,22 @@ pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Resul
     })
 }
 
-/// For each vertex of the fit's file as decoded (`source`: the cleaned
-/// mesh's vertex each decoded vertex is), the reference vertex that the
-/// simplification kept for it (`Simplifier::sources`): cleaning moves no
-/// vertex, so a cleaned vertex is the fit's vertex at its position.
-fn seeds(
+/// For each vertex of a simplification's file as decoded (`source`: the
+/// cleaned mesh's vertex each decoded vertex is), the reference vertex
+/// that the simplification kept for it (`Simplifier::sources`).
+/// `made` is `Simplifier::simplify(target)`, refitted or not (a refit
+/// keeps vertex numbers); cleaning moves no vertex, so a cleaned vertex
+/// is `made`'s vertex at its position.
+pub(crate) fn seeds(
     s: &crate::simplify::Simplifier<'_>,
-    fit: &crate::simplify::Fit,
+    target: u32,
+    made: &crate::TriMesh,
     cleaned: &crate::TriMesh,
     source: &[u32],
 ) -> Vec<u32> {
     use crate::mesh::clean::position_key as key;
-    let sources = s.sources(fit.faces);
-    let mut by_key: Vec<([u32; 3], u32)> = fit
-        .mesh
+    let sources = s.sources(target);
+    let mut by_key: Vec<([u32; 3], u32)> = made
         .positions
         .iter()
         .enumerate()
