@@ -145,28 +145,14 @@ pub(crate) fn seeds(
     cleaned: &crate::TriMesh,
     source: &[u32],
 ) -> Vec<u32> {
-    use crate::mesh::clean::position_key as key;
     let sources = s.sources(target);
-    let mut by_key: Vec<([u32; 3], u32)> = made
-        .positions
-        .iter()
-        .enumerate()
-        .map(|(v, p)| (key(p), v as u32))
-        .collect();
-    by_key.sort_unstable();
+    let made = crate::mesh::clean::PositionIndex::new(&made.positions);
     source
         .iter()
         .map(|&c| {
-            let Some(p) = cleaned.positions.get(c as usize) else {
-                return u32::MAX;
-            };
-            let k = key(p);
-            let i = by_key.partition_point(|e| e.0 < k);
-            by_key
-                .get(i)
-                .filter(|e| e.0 == k)
-                .and_then(|e| sources.get(e.1 as usize).copied())
-                .unwrap_or(u32::MAX)
+            let v = made.find(cleaned.positions.get(c as usize)?)?;
+            sources.get(v as usize).copied()
         })
+        .map(|seed| seed.unwrap_or(u32::MAX))
         .collect()
 }

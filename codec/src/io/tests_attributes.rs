@@ -280,20 +280,7 @@ fn gltf_normalized_accessors_and_partial_streams() {
             ]
         })
     };
-    let glb = |doc: &serde_json::Value| {
-        let mut json = serde_json::to_vec(doc).unwrap();
-        json.resize(json.len().div_ceil(4) * 4, b' ');
-        let mut out = b"glTF".to_vec();
-        out.extend(2u32.to_le_bytes());
-        out.extend((28 + json.len() as u32 + bin.len() as u32).to_le_bytes());
-        out.extend((json.len() as u32).to_le_bytes());
-        out.extend(b"JSON");
-        out.extend(json);
-        out.extend((bin.len() as u32).to_le_bytes());
-        out.extend(b"BIN\0");
-        out.extend(&bin);
-        out
-    };
+    let glb = |doc: &serde_json::Value| super::gltf::tests::glb(doc, &bin);
     let (m, report) = read_attributed(&glb(&doc(false)), MeshFormat::Glb);
     assert!(report.dropped.is_empty());
     assert_eq!(

@@ -261,6 +261,33 @@ pub(crate) fn position_key(p: &[f32; 3]) -> [u32; 3] {
     ]
 }
 
+/// The vertices of a mesh by position ([`position_key`]): which vertex
+/// stands at a position another mesh carries (cleaning, simplification by
+/// a subset of vertices and a refit's numbering move none).
+pub(crate) struct PositionIndex {
+    /// (key, vertex), sorted: the lowest-numbered vertex of a key first.
+    sorted: Vec<([u32; 3], u32)>,
+}
+
+impl PositionIndex {
+    pub(crate) fn new(positions: &[[f32; 3]]) -> PositionIndex {
+        let mut sorted: Vec<([u32; 3], u32)> = positions
+            .iter()
+            .enumerate()
+            .map(|(v, p)| (position_key(p), v as u32))
+            .collect();
+        sorted.sort_unstable();
+        PositionIndex { sorted }
+    }
+
+    /// The lowest-numbered vertex at `p`, if any.
+    pub(crate) fn find(&self, p: &[f32; 3]) -> Option<u32> {
+        let k = position_key(p);
+        let i = self.sorted.partition_point(|e| e.0 < k);
+        self.sorted.get(i).filter(|e| e.0 == k).map(|e| e.1)
+    }
+}
+
 /// Maps each vertex to the lowest-numbered vertex at the same position.
 ///
 /// A hash table (open addressing, at most half full) visited in vertex

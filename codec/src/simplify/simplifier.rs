@@ -246,21 +246,10 @@ impl<'a> Simplifier<'a> {
             return out;
         }
         let mesh = self.simplify(target);
-        let mut by_key: Vec<([u32; 3], u32)> = self
-            .work
-            .positions
-            .iter()
-            .enumerate()
-            .map(|(v, p)| (crate::mesh::clean::position_key(p), v as u32))
-            .collect();
-        by_key.sort_unstable();
+        let work = crate::mesh::clean::PositionIndex::new(&self.work.positions);
         mesh.positions
             .iter()
-            .map(|p| {
-                let k = crate::mesh::clean::position_key(p);
-                let i = by_key.partition_point(|e| e.0 < k);
-                by_key.get(i).filter(|e| e.0 == k).map_or(u32::MAX, |e| e.1)
-            })
+            .map(|p| work.find(p).unwrap_or(u32::MAX))
             .collect()
     }
 

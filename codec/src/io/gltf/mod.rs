@@ -57,4 +57,4 @@ pub(super) use read::read;
 pub(super) use write::{write, write_attributed};
 
 #[cfg(test)]
-mod tests;
+pub(super) mod tests;

@@ -15,7 +15,7 @@ const POSITIONS: [[f32; 3]; 5] = [
 ];
 
 /// A GLB file: `doc` with a BIN chunk of `bin`.
-fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
+pub(in crate::io) fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json = serde_json::to_vec(doc).unwrap();
     json.resize(json.len().div_ceil(4) * 4, b' ');
     let mut bin = bin.to_vec();
