@@ -31,7 +31,7 @@
 //! surfaces and the sample count, never on the thread count: fixed
 //! chunks, each summed in order, the chunk sums added in order.
 
-use super::sample::{area, carried_counts, face_points, SplitMix};
+use super::sample::{carried_counts, face_points, SplitMix};
 use super::{OneSided, Scratch, Sums, Surface, SurfaceDistance};
 use crate::Error;
 use rayon::prelude::*;
@@ -141,10 +141,7 @@ fn thinned(from: &Surface, to: &Surface, faces: u64, samples: u64) -> OneSided {
     points.extend(edges.into_iter().map(|(_, f, e)| (f, e)));
     points.sort_by_key(|e| e.0);
     let face_counts = if from.area > 0.0 {
-        carried_counts(
-            (0..from.face_count()).map(|f| area(&from.triangle(f))),
-            p * density,
-        )
+        carried_counts(from.areas.iter().copied(), p * density)
     } else {
         vec![0; from.face_count()]
     };

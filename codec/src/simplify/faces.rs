@@ -159,12 +159,16 @@ pub(super) fn search_faces(
         Whole::Encode => {
             // The lean search's first probe comes from the model or the
             // previous fit, never from the whole mesh's file: where that
-            // file is unlikely to fit (a budget under a bit per face; a
-            // dense scan's whole file takes 1.5 or more), the probe is
+            // file is unlikely to fit (a budget under 1.5 bits per face:
+            // bunny-1m's whole file takes 1.55 at qp 10 and 1.36 at qp 8,
+            // and 1.0 at 2 b/v once kept it off this path), the probe is
             // simplified beside it, and dropped if it does fit. The same
-            // probes either way; on two cores the whole file's time (0.4 s
-            // on a million triangles) leaves the wall clock.
-            let full_bytes = if lean && budget.saturating_mul(8) < full as u64 && full > MIN_FACES {
+            // probes either way; on two cores the whole file's time (0.5 s
+            // on a million triangles) leaves the wall clock; where the
+            // whole file does fit, the wasted probe costs its simplification
+            // less that time.
+            let ahead_pays = budget.saturating_mul(16) < 3 * full as u64;
+            let full_bytes = if lean && ahead_pays && full > MIN_FACES {
                 let faces = from_prev
                     .unwrap_or_else(|| (model_guess.round() as u32).clamp(MIN_FACES, full - 1));
                 // The long task first: the file is the one left to steal.
