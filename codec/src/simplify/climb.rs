@@ -8,7 +8,7 @@
 //! only on the mesh and the budget (the distance's samples are seeded and
 //! summed in a fixed order), never on the thread count.
 
-use super::faces::{fit_faces, refitted, search_faces, whole_estimate, Fit, Probing, Whole};
+use super::faces::{fit_faces, whole_estimate, Fit, Probing, Whole};
 
 /// The climb's probing.
 fn probing(lean: bool) -> Probing {
@@ -18,9 +18,7 @@ fn probing(lean: bool) -> Probing {
         Probing::Full
     }
 }
-use super::simplifier::{
-    file_distance, Simplifier, MIN_FACES, ON_SIZE_SLACK, QPS, QUICK_SAMPLES, START_QP,
-};
+use super::simplifier::{file_distance, Simplifier, MIN_FACES, ON_SIZE_SLACK, QPS, START_QP};
 use crate::metrics::{Surface, SurfaceDistance};
 use crate::Error;
 use rayon::prelude::*;
@@ -53,7 +51,7 @@ pub const LEAN_SAMPLES: u64 = 30_000;
 /// A whole-mesh file estimated at this much over the budget is taken as
 /// over it: the estimate is a lower bound below the qp it starts from
 /// and within a few percent above it.
-const WHOLE_MARGIN: f64 = 1.05;
+pub(super) const WHOLE_MARGIN: f64 = 1.05;
 
 /// The fit of lowest measured L2 against `reference` over [`QPS`], and
 /// that L2 relative to the reference's diagonal; `None` when no qp fits
@@ -333,94 +331,4 @@ impl Climbed {
         }
         Ok(t.distance.as_ref().map(|d| d.l2()))
     }
-}
-/// The quick search of effort `fast`: the fit at [`START_QP`] (coarser
-/// until something fits), then the fit at the quantization its face
-/// count predicts (as [`best_fit`] starts its climb) when that is two or more
-/// steps away; the one of lower
-/// L2 against `reference` with [`QUICK_SAMPLES`] samples each way is
-/// kept. About two size searches instead of four to six, and two small
-/// measures instead of four to six large ones. When the whole mesh fits, the
-/// finest quantization whose whole-mesh file still fits. `None` when
-/// nothing fits.
-pub fn quick_fit<'r>(
-    s: &Simplifier<'_>,
-    budget: u64,
-    reference: &(dyn Fn() -> Result<&'r Surface, Error> + Sync),
-) -> Result<Option<Fit>, Error> {
-    let mut start = START_QP;
-    let first = loop {
-        match search_faces(s, start, budget, None, Whole::Encode, Probing::Quick)? {
-            Some(fit) => break fit,
-            None if start == *QPS.start() => return Ok(None),
-            None => start -= 1,
-        }
-    };
-    // The whole mesh fits: the finest quantization whose whole-mesh file
-    // still fits (nothing is simplified; only the grid can improve). A
-    // finer grid makes a larger file, so the answer is bisected: on
-    // bunny-1m at 8 b/v three files instead of five.
-    if first.faces >= s.faces() {
-        let (mut lo, mut hi) = (first, *QPS.end() + 1);
-        while lo.qp + 1 < hi {
-            let qp = lo.qp + (hi - lo.qp) / 2;
-            let bytes = s.whole_bytes(qp)?;
-            if bytes.len() as u64 <= budget {
-                lo = Fit { qp, bytes, ..lo };
-            } else {
-                hi = qp;
-            }
-        }
-        return Ok(Some(lo));
-    }
-    let predicted = ((first.faces.max(1) as f64).log2() - 2.5).round() as i64;
-    let qp = predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8;
-    // A neighbouring quantization is not worth a second size search: on
-    // the shared corpus keeping the start there cost 1% of L2 (geometric
-    // mean) and bunny at 4 b/v 100 ms of its 0.36 s. Starting at the
-    // quantization the bits-per-face model predicts, instead, cost 36%.
-    if qp.abs_diff(first.qp) <= 1 {
-        return Ok(Some(refitted(s, first, budget)?));
-    }
-    // The second search as the lean climb's: from the face count the
-    // first predicts, and without the whole mesh's file when the first
-    // one's shows it far over the budget (a million triangles take half
-    // a second to code).
-    let whole = s.whole_bytes(first.qp)?.len() as u64;
-    let estimate = whole_estimate(whole, first.qp, qp, s.mesh.positions.len() as u64);
-    let whole = if estimate as f64 > WHOLE_MARGIN * budget as f64 {
-        Whole::Over(estimate)
-    } else {
-        Whole::Encode
-    };
-    // The prediction holds on scans and misses on CAD parts, whose best
-    // quantization is finer (alligator at 2 b/v: 6 predicted, 11 best);
-    // a few samples tell the two fits apart at a fraction of a decode.
-    // (The reference is asked for where it is used: it may still be in
-    // the making beside this search, `encoder::simplified`.)
-    let l2 = |f: &Fit| -> Result<f64, Error> {
-        Ok(file_distance(&f.bytes, reference()?, QUICK_SAMPLES)?.l2())
-    };
-    // The first fit's refit and its measure (a tenth of the encode on
-    // horse) run beside the second search, which needs only its face
-    // count and slope; the second fit is refitted and measured after it
-    // (bunny-1m at 2 b/v: 0.1 s of the wall clock less than measuring
-    // both after the search).
-    let (first, second) = rayon::join(
-        || -> Result<(Fit, f64), Error> {
-            let first = refitted(s, first.clone(), budget)?;
-            let l2_first = l2(&first)?;
-            Ok((first, l2_first))
-        },
-        || fit_faces(s, qp, budget, Some(&first), whole, Probing::Quick),
-    );
-    let (first, l2_first) = first?;
-    let Some(second) = second? else {
-        return Ok(Some(first));
-    };
-    Ok(Some(if l2(&second)? <= l2_first {
-        second
-    } else {
-        first
-    }))
 }

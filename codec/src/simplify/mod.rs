@@ -44,10 +44,12 @@ mod climb;
 mod faces;
 mod heap;
 pub mod qem;
+mod quick;
 mod refit;
 mod simplifier;
 
-pub use climb::{best_fit, quick_fit, Climb, LEAN_SAMPLES};
+pub use climb::{best_fit, Climb, LEAN_SAMPLES};
 pub use faces::{fit_faces, Fit, Probing, Whole};
+pub use quick::quick_fit;
 pub(crate) use simplifier::{file_distance, ON_SIZE_SLACK};
 pub use simplifier::{lossless_bytes, smallest_bytes, Simplifier, QPS, QUICK_SAMPLES};
