@@ -33,10 +33,11 @@
 //! the second one; the measure decides between the two fits.
 //!
 //! When the whole mesh fits at the first quantization, the finest
-//! quantization whose whole file still fits is found by bisection, and
-//! beside it a simplified mesh two steps finer than that (a quarter of
-//! the whole file's rounding error, for about a quarter fewer faces),
-//! when the face-count rule for the whole mesh is at least that fine:
+//! quantization whose whole file still fits is found by bisection, then
+//! weighed against a simplified mesh two steps finer (a quarter of the
+//! whole file's rounding error, for about a quarter fewer faces), when
+//! the face-count rule for the whole mesh is at least that fine and the
+//! whole file's grid step is at least a sixteenth of the mean edge:
 //! at 8 b/v a whole scan at qp 10 had 1.6-4 times the error of a
 //! simplification at qp 12-13 (bunny, horse). The face-count rule's own
 //! grid (qp 14 on both) measured 1.20 and 0.58 against 0.94 and 0.57 at
@@ -141,49 +142,35 @@ fn whole_first(
     budget: u64,
     l2: &(dyn Fn(&Fit) -> Result<f64, Error> + Sync),
 ) -> Result<Fit, Error> {
-    let qp = predicted_qp(s.faces());
-    // The whole file's size at each finer qp, estimated from the first:
-    // where the prediction is no more than a step beyond the finest that
-    // fits, nothing is simplified.
-    let whole_size = first.bytes.len() as u64;
-    let vertices = s.mesh.positions.len() as u64;
-    let finest_whole = (first.qp..=*QPS.end())
-        .take_while(|&q| whole_estimate(whole_size, first.qp, q, vertices) <= budget)
-        .last()
-        .unwrap_or(first.qp);
     // A finer grid makes a larger file, so the finest whole file that
     // fits is bisected: on bunny-1m at 8 b/v three files instead of five.
-    let bisect = |first: Fit| -> Result<Fit, Error> {
-        let (mut lo, mut hi) = (first, *QPS.end() + 1);
-        while lo.qp + 1 < hi {
-            let qp = lo.qp + (hi - lo.qp) / 2;
-            let bytes = s.whole_bytes(qp)?;
-            if bytes.len() as u64 <= budget {
-                lo = Fit { qp, bytes, ..lo };
-            } else {
-                hi = qp;
-            }
+    let (mut lo, mut hi) = (first, *QPS.end() + 1);
+    while lo.qp + 1 < hi {
+        let qp = lo.qp + (hi - lo.qp) / 2;
+        let bytes = s.whole_bytes(qp)?;
+        if bytes.len() as u64 <= budget {
+            lo = Fit { qp, bytes, ..lo };
+        } else {
+            hi = qp;
         }
-        Ok(lo)
-    };
-    if qp < finest_whole + 2 {
-        return bisect(first);
     }
-    // Two steps finer than the whole file (see the module docs).
-    let qp = qp.min(finest_whole + 2);
-    let over = whole_estimate(whole_size, first.qp, qp, vertices).max(budget + 1);
-    // The simplification's search beside the bisection: each is a few
-    // whole-mesh passes.
-    let (whole, simplified) = rayon::join(
-        || bisect(first),
+    let whole = lo;
+    // Two steps finer than the whole file (see the module docs), where
+    // the face-count rule is that fine and the grid shows on the edges.
+    let qp = whole.qp + 2;
+    if predicted_qp(s.faces()) < qp || qp > *QPS.end() || !rounding_shows(s, whole.qp) {
+        return Ok(whole);
+    }
+    let vertices = s.mesh.positions.len() as u64;
+    let over = whole_estimate(whole.bytes.len() as u64, whole.qp, qp, vertices).max(budget + 1);
+    let (simplified, l2_whole) = rayon::join(
         || fit_faces(s, qp, budget, None, Whole::Over(over), Probing::Quick),
+        || l2(&whole),
     );
-    let whole = whole?;
     let Some(simplified) = simplified? else {
         return Ok(whole);
     };
-    let (l2_whole, l2_simplified) = rayon::join(|| l2(&whole), || l2(&simplified));
-    Ok(if l2_simplified? < l2_whole? {
+    Ok(if l2(&simplified)? < l2_whole? {
         simplified
     } else {
         whole
@@ -197,6 +184,31 @@ struct Figures {
     bytes: f64,
     /// Its measured L2 (absolute).
     l2: f64,
+}
+
+/// Whether the grid at `qp` is coarse enough against the mesh's edges for
+/// a simplification at a finer grid to have a chance: its step at least
+/// a sixteenth of the mean edge. Measured: bunny's and horse's whole files
+/// at 8 b/v (qp 10, edges 9.7 and 5.5 steps long) lost to a
+/// simplification two steps finer (L2 1.24 against 0.94, 1.46 against
+/// 0.57); bunny-1m's (qp 14, edges 38 steps long) won, after a search
+/// that took its encode from 2.1 to 7.5 s of work.
+fn rounding_shows(s: &Simplifier<'_>, qp: u8) -> bool {
+    let m = s.mesh;
+    let Some((lo, hi)) = m.bbox() else {
+        return false;
+    };
+    let step = (hi - lo).max_element() / ((1u64 << qp) - 1) as f64;
+    let (mut sum, mut n) = (0.0f64, 0u64);
+    for t in &m.triangles {
+        for k in 0..3 {
+            let (a, b) = (m.positions[t[k] as usize], m.positions[t[(k + 1) % 3] as usize]);
+            let d: f64 = (0..3).map(|i| (a[i] as f64 - b[i] as f64).powi(2)).sum();
+            sum += d.sqrt();
+            n += 1;
+        }
+    }
+    n > 0 && step * 16.0 * n as f64 >= sum
 }
 
 /// The error model of the module's docs, calibrated on the first fit.
