@@ -6,8 +6,8 @@
 //! Modules, one step each, in layers (each uses only those listed after
 //! it): `encode` (the encoder's quantization of the input streams),
 //! `stream` (seams, shared values, the coding loop, encoder beside
-//! decoder), `predict` (the rules: Draco's portable texture-coordinate
-//! projection, the geometric normal, the constrained multi-parallelogram),
+//! decoder), `predict` (the rules: constrained multi-parallelograms,
+//! Draco's portable texture-coordinate projection, the geometric normal),
 //! `spec` (a stream's header), `frame` (the mesh the streams are coded
 //! over), `octahedral` (normals on the octahedron), `residual` (the
 //! residual coder).
