@@ -60,9 +60,12 @@ pub(crate) fn decode(
 ) -> Result<Vec<AttributeStream>, Error> {
     let specs = spec::read_specs(bytes)?;
     let corners = frame.table.corner_count() as u64;
-    // Per stream: a group and a flag per corner, up to a value (4 u64)
-    // per corner, and its floats.
-    limits.check_alloc(corners.saturating_mul(64))?;
+    // While a stream decodes: a group and a flag per corner, up to a
+    // value (4 u64) per corner and its floats, about 64 bytes per
+    // corner; what each decoded stream keeps (its triples and floats),
+    // at most 24 more per corner.
+    let streams = specs.len() as u64;
+    limits.check_alloc(corners.saturating_mul(64 + 24 * streams))?;
     let mut out = Vec::with_capacity(specs.len());
     for (spec, chunk) in specs {
         let (group, values) = stream::decode(frame, &spec, chunk)?;

@@ -232,7 +232,10 @@ pub(crate) fn encode(frame: &Frame<'_>, spec: &Spec, index: &[u32], values: &[u6
         let mut local: Vec<(u32, u32)> = Vec::new(); // (input value, group)
         for wedge in s.wedges(vertex) {
             let input = index[wedge[0] as usize];
-            if !local.is_empty() {
+            // A merge names one of at most 2^24 earlier values (the raw
+            // bits' limit); past that (a vertex of more than 16 million
+            // values, beyond any limit) a value is coded anew.
+            if !local.is_empty() && index_bits(local.len()) <= crate::entropy::MAX_RAW_BITS {
                 let earlier = local.iter().position(|&(i, _)| i == input);
                 enc.encode(s.merge_model.get(0), u32::from(earlier.is_some()));
                 if let Some(j) = earlier {
@@ -298,7 +301,13 @@ pub(crate) fn decode(
         let mut local: Vec<u32> = Vec::new();
         for wedge in s.wedges(vertex) {
             if !local.is_empty() && dec.decode(s.merge_model.get(0))? == 1 {
-                let j = dec.decode_bits(index_bits(local.len()))? as usize;
+                let bits = index_bits(local.len());
+                if bits > crate::entropy::MAX_RAW_BITS {
+                    return Err(super::spec::bad(
+                        "more values at one vertex than a merge can name",
+                    ));
+                }
+                let j = dec.decode_bits(bits)? as usize;
                 let g = *local
                     .get(j)
                     .ok_or_else(|| super::bad("merge names no earlier value"))?;
