@@ -163,6 +163,30 @@ fn creased_cube_and_coloured_sphere_round_trip() {
     let mut both = textured_sphere(10, 6);
     both.streams.extend(coloured_sphere_on(&both.mesh));
     check_round_trip(&both, &lossless(12));
+    // A generic scalar and a three-component texture set (parallelograms
+    // only: the projection is for two components).
+    let m = &both.mesh;
+    let scalar = m.positions.iter().map(|p| p[0] * p[1] - p[2]).collect();
+    let uvw = m
+        .positions
+        .iter()
+        .flat_map(|p| [p[0], p[1] * 0.5, p[2] * 2.0])
+        .collect();
+    both.streams.push(AttributeStream::new(
+        AttributeKind::Generic(7),
+        1,
+        scalar,
+        m.triangles.clone(),
+    ));
+    both.streams.push(AttributeStream::new(
+        AttributeKind::TexCoord(1),
+        3,
+        uvw,
+        m.triangles.clone(),
+    ));
+    let mut options = lossless(12);
+    options.attributes.generic_bits = 12;
+    check_round_trip(&both, &options);
 }
 
 /// A colour per vertex of `mesh`, smooth over the surface.
