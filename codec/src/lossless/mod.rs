@@ -126,11 +126,7 @@ pub(crate) fn encode_attributed(
     qp: u8,
     framing: Framing,
 ) -> Result<(Vec<u8>, LosslessStats), Error> {
-    let mut prepared = Prepared::new(table, mesh, framing)?;
-    if streams.is_empty() {
-        return prepared.file(&mesh.positions, qp);
-    }
-    prepared.keep_for_attributes(table, mesh)?;
+    let prepared = Prepared::build(table, mesh, framing, !streams.is_empty())?;
     prepared.file_with(&mesh.positions, qp, Some((streams, quantization)))
 }
 
@@ -187,6 +183,20 @@ impl Prepared {
         mesh: &TriMesh,
         framing: Framing,
     ) -> Result<Self, Error> {
+        Self::build(table, mesh, framing, false)
+    }
+
+    /// [`Self::new`], keeping for [`Self::file_with`] what coding
+    /// attributes needs when `for_attributes` ([`ForAttributes`]: the
+    /// decoder's table, the traversal and which input corner each table
+    /// corner is, from Edgebreaker's `tip_corners`: decoded triangle `t`
+    /// is the closed input's triangle of `tips[t]`, that corner first).
+    fn build(
+        table: &CornerTable,
+        mesh: &TriMesh,
+        framing: Framing,
+        for_attributes: bool,
+    ) -> Result<Self, Error> {
         let closed = edgebreaker::close_holes(table).table;
         let eb = edgebreaker::encode(&closed)?;
         let conn = eb.connectivity;
@@ -218,6 +228,22 @@ impl Prepared {
             .iter()
             .map(|k| Some(eb.vertex_order[k.idx()].0).filter(|&v| v < real))
             .collect();
+        let attributes = for_attributes.then(|| {
+            let faces = mesh.face_count() as u32;
+            let input_corner = eb
+                .tip_corners
+                .iter()
+                .flat_map(|&tip| [tip, tip.next(), tip.prev()])
+                .map(|c| (c.0 / 3 < faces).then_some((c.0 / 3, (c.0 % 3) as u8)))
+                .collect();
+            Box::new(ForAttributes {
+                decoded,
+                excluded,
+                order: traversal.order,
+                vertex_order: eb.vertex_order.iter().map(|v| v.0).collect(),
+                input_corner,
+            })
+        });
         Ok(Prepared {
             conn,
             dummies,
@@ -229,37 +255,8 @@ impl Prepared {
             framing,
             vertices: real,
             triangles: mesh.face_count() as u32,
-            attributes: None,
+            attributes,
         })
-    }
-
-    /// Keeps what [`Self::file_with`] needs to code attributes: the
-    /// connectivity decoded once more, as the decoder will, and the
-    /// input corner of each of its corners (Edgebreaker's `tip_corners`:
-    /// decoded triangle `t` is the closed input's triangle of
-    /// `tips[t]`, that corner first).
-    fn keep_for_attributes(&mut self, table: &CornerTable, mesh: &TriMesh) -> Result<(), Error> {
-        let closed = edgebreaker::close_holes(table).table;
-        let eb = edgebreaker::encode(&closed)?;
-        let decoded = edgebreaker::decode(&eb.connectivity)?;
-        let real = mesh.vertex_count() as u32;
-        let excluded: Vec<bool> = eb.vertex_order.iter().map(|v| v.0 >= real).collect();
-        let order = crate::geometry::traverse_except(&decoded, &excluded)?.order;
-        let faces = mesh.face_count() as u32;
-        let input_corner = eb
-            .tip_corners
-            .iter()
-            .flat_map(|&tip| [tip, tip.next(), tip.prev()])
-            .map(|c| (c.0 / 3 < faces).then_some((c.0 / 3, (c.0 % 3) as u8)))
-            .collect();
-        self.attributes = Some(Box::new(ForAttributes {
-            decoded,
-            excluded,
-            order,
-            vertex_order: eb.vertex_order.iter().map(|v| v.0).collect(),
-            input_corner,
-        }));
-        Ok(())
     }
 
     /// The file with `positions` (the prepared mesh's, or any of the same
@@ -273,7 +270,8 @@ impl Prepared {
     }
 
     /// [`Self::file`], with `ATTR` for `attrs` when given (the streams
-    /// of the prepared mesh; [`Self::keep_for_attributes`] first).
+    /// of the prepared mesh, built with `for_attributes`; none, or a
+    /// `Prepared` without them, writes the file without `ATTR`).
     fn file_with(
         &self,
         positions: &[[f32; 3]],
