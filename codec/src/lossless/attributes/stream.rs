@@ -120,50 +120,70 @@ impl<'a> State<'a> {
         3 * a.max(b) + a.min(b)
     }
 
-    /// The wedges of vertex `v`: its corners on real faces, joined
-    /// across continuous edges, each list increasing, the lists ordered
-    /// by their lowest corner.
-    pub(crate) fn wedges(&self, v: crate::VertexId) -> Vec<Vec<u32>> {
-        let corners: Vec<u32> = self
-            .frame
-            .corners_of(v)
-            .iter()
-            .copied()
-            .filter(|&c| self.frame.real[c as usize / 3])
-            .collect();
-        let mut parent: Vec<usize> = (0..corners.len()).collect();
-        fn root(parent: &mut [usize], mut i: usize) -> usize {
-            while parent[i] != i {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
+    /// The wedges of vertex `v` into `w`: its corners on real faces,
+    /// joined across continuous edges, each wedge's corners increasing,
+    /// the wedges ordered by their lowest corner.
+    pub(crate) fn wedges(&self, v: crate::VertexId, w: &mut Wedges) {
+        w.corners.clear();
+        let real = &self.frame.real;
+        w.corners.extend(
+            self.frame
+                .corners_of(v)
+                .iter()
+                .copied()
+                .filter(|&c| real[c as usize / 3]),
+        );
+        let n = w.corners.len();
+        w.parent.clear();
+        w.parent.extend(0..n as u32);
+        fn root(parent: &mut [u32], mut i: usize) -> usize {
+            while parent[i] as usize != i {
+                parent[i] = parent[parent[i] as usize];
+                i = parent[i] as usize;
             }
             i
         }
         let o = self.frame.table.opposites();
-        for (i, &c) in corners.iter().enumerate() {
+        for i in 0..n {
             // Across the edge c → n(c) (it faces p(c)), the corner at v
             // is p(O[p(c)]).
-            let e = prev(c);
+            let e = prev(w.corners[i]);
             if !self.continuous[e as usize] {
                 continue;
             }
             let other = prev(o[e as usize].0);
-            if let Ok(j) = corners.binary_search(&other) {
-                let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
-                parent[ri.max(rj)] = ri.min(rj);
+            if let Ok(j) = w.corners.binary_search(&other) {
+                let (ri, rj) = (root(&mut w.parent, i), root(&mut w.parent, j));
+                w.parent[ri.max(rj)] = ri.min(rj) as u32;
             }
         }
-        let mut slot = vec![usize::MAX; corners.len()];
-        let mut out: Vec<Vec<u32>> = Vec::new();
-        for (i, &c) in corners.iter().enumerate() {
-            let r = root(&mut parent, i);
-            if slot[r] == usize::MAX {
-                slot[r] = out.len();
-                out.push(Vec::new());
+        // Wedge numbers in order of first corner, then the corners laid
+        // out wedge by wedge (a counting sort, stable: increasing within).
+        w.slot.clear();
+        w.slot.resize(n, u32::MAX);
+        w.starts.clear();
+        w.starts.push(0);
+        for i in 0..n {
+            let r = root(&mut w.parent, i);
+            if w.slot[r] == u32::MAX {
+                w.slot[r] = (w.starts.len() - 1) as u32;
+                w.starts.push(0);
             }
-            out[slot[r]].push(c);
+            let k = w.slot[r] as usize;
+            w.starts[k + 1] += 1;
+            w.parent[i] = r as u32;
         }
-        out
+        for k in 1..w.starts.len() {
+            w.starts[k] += w.starts[k - 1];
+        }
+        w.flat.clear();
+        w.flat.resize(n, 0);
+        let mut fill = w.starts.clone();
+        for i in 0..n {
+            let k = w.slot[w.parent[i] as usize] as usize;
+            w.flat[fill[k] as usize] = w.corners[i];
+            fill[k] += 1;
+        }
     }
 
     /// Records a new group with `value` for `corners`.
@@ -194,6 +214,28 @@ impl<'a> State<'a> {
         }
         let p = sh(octahedral::invert(un(pred), bits));
         (p, sh(octahedral::invert(un(value), bits)), true)
+    }
+}
+
+/// The wedges of one vertex, in buffers reused from vertex to vertex.
+#[derive(Default)]
+pub(crate) struct Wedges {
+    corners: Vec<u32>,
+    parent: Vec<u32>,
+    slot: Vec<u32>,
+    flat: Vec<u32>,
+    starts: Vec<u32>,
+}
+
+impl Wedges {
+    /// How many.
+    fn count(&self) -> usize {
+        self.starts.len().saturating_sub(1)
+    }
+
+    /// Wedge `k`'s corners, increasing.
+    fn get(&self, k: usize) -> &[u32] {
+        &self.flat[self.starts[k] as usize..self.starts[k + 1] as usize]
     }
 }
 
@@ -228,9 +270,13 @@ pub(crate) fn encode(frame: &Frame<'_>, spec: &Spec, index: &[u32], values: &[u6
         }
     }
     let d = spec.coded_dims();
+    let mut wedges = Wedges::default();
+    let mut local: Vec<(u32, u32)> = Vec::new(); // (input value, group)
     for &vertex in frame.order {
-        let mut local: Vec<(u32, u32)> = Vec::new(); // (input value, group)
-        for wedge in s.wedges(vertex) {
+        local.clear();
+        s.wedges(vertex, &mut wedges);
+        for k in 0..wedges.count() {
+            let wedge = wedges.get(k);
             let input = index[wedge[0] as usize];
             // A merge names one of at most 2^24 earlier values (the raw
             // bits' limit); past that (a vertex of more than 16 million
@@ -240,13 +286,13 @@ pub(crate) fn encode(frame: &Frame<'_>, spec: &Spec, index: &[u32], values: &[u6
                 enc.encode(s.merge_model.get(0), u32::from(earlier.is_some()));
                 if let Some(j) = earlier {
                     enc.encode_bits(j as u32, index_bits(local.len()));
-                    s.assign(local[j].1, &wedge);
+                    s.assign(local[j].1, wedge);
                     continue;
                 }
             }
             let mut value = [0u64; 4];
             value[..d].copy_from_slice(&values[input as usize * d..(input as usize + 1) * d]);
-            match s.predict(&wedge) {
+            match s.predict(wedge) {
                 Prediction::Fixed { class, value: pred } => {
                     let (p, q, _) = if spec.is_normal() {
                         s.normal_frame(pred, value)
@@ -264,7 +310,7 @@ pub(crate) fn encode(frame: &Frame<'_>, spec: &Spec, index: &[u32], values: &[u6
                     s.residuals.encode(&mut enc, 0, &value[..d], &p[..d]);
                 }
             }
-            let g = s.push(&value, &wedge);
+            let g = s.push(&value, wedge);
             local.push((input, g));
         }
     }
@@ -297,9 +343,13 @@ pub(crate) fn decode(
         }
     }
     let d = spec.coded_dims();
+    let mut wedges = Wedges::default();
+    let mut local: Vec<u32> = Vec::new();
     for &vertex in frame.order {
-        let mut local: Vec<u32> = Vec::new();
-        for wedge in s.wedges(vertex) {
+        local.clear();
+        s.wedges(vertex, &mut wedges);
+        for k in 0..wedges.count() {
+            let wedge = wedges.get(k);
             if !local.is_empty() && dec.decode(s.merge_model.get(0))? == 1 {
                 let bits = index_bits(local.len());
                 if bits > crate::entropy::MAX_RAW_BITS {
@@ -311,11 +361,11 @@ pub(crate) fn decode(
                 let g = *local
                     .get(j)
                     .ok_or_else(|| super::bad("merge names no earlier value"))?;
-                s.assign(g, &wedge);
+                s.assign(g, wedge);
                 continue;
             }
             let mut value = [0u64; 4];
-            match s.predict(&wedge) {
+            match s.predict(wedge) {
                 Prediction::Fixed { class, value: pred } => {
                     let mut p = pred;
                     let mut mirrored = false;
@@ -335,7 +385,7 @@ pub(crate) fn decode(
                     s.residuals.decode(&mut dec, 0, &p[..d], &mut value[..d])?;
                 }
             }
-            let g = s.push(&value, &wedge);
+            let g = s.push(&value, wedge);
             local.push(g);
         }
     }
