@@ -1,7 +1,8 @@
-//! `swm encode` on inputs that carry vertex attributes swm does not code
-//! (texture coordinates, normals, colours): one warning line on stderr
-//! naming exactly what was found, and stdout (text or `--json`) the same
-//! as for the bare mesh.
+//! `swm encode` on inputs that carry vertex attributes (texture
+//! coordinates, normals, colours): the lossy modes do not code them, and
+//! say so in one warning line on stderr naming exactly what was found,
+//! stdout (text or `--json`) the same as for the bare mesh; the lossless
+//! mode keeps them (`ATTR`, format 1.2) without a warning.
 
 mod common;
 use common::*;
@@ -127,12 +128,32 @@ fn warnings(out: &Output) -> Vec<String> {
         .collect()
 }
 
-/// Encodes `file` and the bare torus the same ways: one warning naming
-/// `names`, and stdout as for the bare mesh, in text and in JSON.
-fn check(dir: &Path, file: &Path, names: &str) {
+/// Encodes `file` and the bare torus the same ways: in a lossy mode one
+/// warning naming `names`, and stdout as for the bare mesh, in text and
+/// in JSON; in the lossless mode no warning, and the file decodes with
+/// `streams` attribute streams.
+fn check(dir: &Path, file: &Path, names: &str, streams: usize) {
+    let out = encode(file, &["--mode", "lossless"]);
+    if streams == 0 {
+        // Values no face corner names (`f 1 2 3` after `vt` lines) stay
+        // behind, and the warning says why.
+        let expected = format!(
+            "swm: warning: {}: the input's {names} are not kept (not every face corner names them, or a value is malformed)",
+            file.display()
+        );
+        assert_eq!(warnings(&out), [expected]);
+    } else {
+        assert!(warnings(&out).is_empty(), "{:?}", warnings(&out));
+    }
+    let bytes = std::fs::read(file.with_extension("swm")).unwrap();
+    let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
+    assert_eq!(decoded.streams.len(), streams);
     let bare = dir.join("bare.obj");
     std::fs::write(&bare, obj("")).unwrap();
-    for mode in [&["--mode", "auto"][..], &["--mode", "lossless"]] {
+    for mode in [
+        &["--mode", "auto"][..],
+        &["--mode", "lossless", "--size", "900"],
+    ] {
         let plain = encode(&bare, mode);
         assert!(warnings(&plain).is_empty(), "{:?}", warnings(&plain));
         let out = encode(file, mode);
@@ -170,7 +191,7 @@ fn obj_texture_coordinates_and_normals() {
     let dir = scratch("attributes-obj");
     let file = dir.join("uv.obj");
     std::fs::write(&file, obj("vt 0 0\nvt 1 0\nvn 0 0 1\n")).unwrap();
-    check(&dir, &file, "texture coordinates and normals");
+    check(&dir, &file, "texture coordinates and normals", 0);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -179,7 +200,7 @@ fn ply_normals_and_colours() {
     let dir = scratch("attributes-ply");
     let file = dir.join("painted.ply");
     std::fs::write(&file, ply_with_normals_and_colours()).unwrap();
-    check(&dir, &file, "normals and colours");
+    check(&dir, &file, "normals and colours", 2);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -188,7 +209,7 @@ fn gltf_texcoord_0() {
     let dir = scratch("attributes-glb");
     let file = dir.join("textured.glb");
     std::fs::write(&file, glb_with_texcoords()).unwrap();
-    check(&dir, &file, "texture coordinates");
+    check(&dir, &file, "texture coordinates", 1);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -210,8 +231,8 @@ fn bare_meshes_and_stl_warn_of_nothing() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// On the pipe path too: the input named `-`, the warning on stderr, and
-/// with `-o -` the file alone on stdout.
+/// On the pipe path too: the input named `-`, the warning on stderr (a
+/// lossy mode), and with `-o -` the file alone on stdout.
 #[test]
 fn standard_input_warns_too() {
     let dir = scratch("attributes-stdin");
@@ -220,7 +241,8 @@ fn standard_input_warns_too() {
     let run = |output: &str| {
         std::process::Command::new(env!("CARGO_BIN_EXE_swm"))
             .args([
-                "encode", "-", "--format", "obj", "-o", output, "--mode", "lossless",
+                "encode", "-", "--format", "obj", "-o", output, "--mode", "lossless", "--size",
+                "900",
             ])
             .stdin(std::fs::File::open(&file).unwrap())
             .output()

@@ -1239,3 +1239,147 @@ fn displaced_v1_2_reencodes_to_the_same_bytes() {
         "re-encoding the golden open ellipsoid no longer gives golden/displaced-v1.2.swm"
     );
 }
+
+// --- Format 1.2: vertex attributes in the lossless mode (ATTR) ---
+
+/// The golden torus (with its hole) with texture coordinates (`u = i/8`,
+/// `v = j/6`: seams where `i` or `j` wraps, each grid value shared by the
+/// corners of its vertex) and its unit normals `(cos φ·cos θ, sin φ·cos θ,
+/// sin θ)`, from the same exact cosines: format-spec/08-attributes.md's
+/// golden mesh.
+fn golden_textured_torus() -> swm::AttributedMesh {
+    let mesh = golden_torus();
+    let h = 0.5f64.sqrt();
+    let t = 0.75f64.sqrt();
+    let cos8 = [1.0, h, 0.0, -h, -1.0, -h, 0.0, h];
+    let sin8 = [0.0, h, 1.0, h, 0.0, -h, -1.0, -h];
+    let cos6 = [1.0, 0.5, -0.5, -1.0, -0.5, 0.5];
+    let sin6 = [0.0, t, t, 0.0, -t, -t];
+    let (nu, nv) = (8u32, 6u32);
+    let mut normals = Vec::new();
+    for i in 0..nu as usize {
+        for j in 0..nv as usize {
+            normals.extend([cos8[i] * cos6[j], sin8[i] * cos6[j], sin6[j]].map(|x| x as f32));
+        }
+    }
+    let mut uv = Vec::new();
+    for i in 0..=nu {
+        for j in 0..=nv {
+            uv.extend([i as f32 / nu as f32, j as f32 / nv as f32]);
+        }
+    }
+    let uv_id = |i: u32, j: u32| i * (nv + 1) + j;
+    let mut uv_corners = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            if (i, j) == (3, 2) {
+                continue;
+            }
+            let (a, b, c, d) = (
+                uv_id(i, j),
+                uv_id(i + 1, j),
+                uv_id(i + 1, j + 1),
+                uv_id(i, j + 1),
+            );
+            uv_corners.push([a, b, c]);
+            uv_corners.push([a, c, d]);
+        }
+    }
+    let normal_corners = mesh.triangles.clone();
+    swm::AttributedMesh::new(
+        mesh,
+        vec![
+            swm::AttributeStream::new(swm::AttributeKind::TexCoord(0), 2, uv, uv_corners),
+            swm::AttributeStream::new(swm::AttributeKind::Normal, 3, normals, normal_corners),
+        ],
+    )
+}
+
+fn golden_attr_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Lossless { qp: 11 },
+        ..Default::default()
+    }
+}
+
+/// [`mesh_hash`] continued over each stream: its values as
+/// little-endian `f32`s, then its triples as little-endian `u32`s.
+fn attributed_hash(m: &swm::AttributedMesh) -> u64 {
+    let mut bytes = Vec::new();
+    for s in &m.streams {
+        for v in &s.values {
+            bytes.extend(v.to_le_bytes());
+        }
+        for t in &s.corners {
+            for i in t {
+                bytes.extend(i.to_le_bytes());
+            }
+        }
+    }
+    let mut h = mesh_hash(&m.mesh);
+    for b in bytes {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01B3);
+    }
+    h
+}
+
+const LOSSLESS_ATTR_V1_2: &[u8] = include_bytes!("../format-spec/golden/lossless-attr-v1.2.swm");
+
+/// The test vector of format-spec/08-attributes.md ("Golden file").
+const LOSSLESS_ATTR_V1_2_FNV1A64: u64 = 0xF2D1_1078_3D1F_3C4E;
+
+/// Writes the attribute golden file (run once, by hand:
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_lossless_attr_v1_2_golden`).
+#[test]
+#[ignore]
+fn write_lossless_attr_v1_2_golden() {
+    let encoded = swm::encode_attributed(&golden_textured_torus(), &golden_attr_options()).unwrap();
+    let decoded = swm::decode_attributed(&encoded.bytes, &DecodeOptions::default()).unwrap();
+    let dir = if std::env::var_os("SWM_WRITE_GOLDEN").is_some_and(|v| v == "1") {
+        std::path::PathBuf::from(format!(
+            "{}/../format-spec/golden",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+    } else {
+        std::env::temp_dir()
+    };
+    std::fs::write(dir.join("lossless-attr-v1.2.swm"), &encoded.bytes).unwrap();
+    let values: Vec<usize> = decoded.streams.iter().map(|s| s.value_count()).collect();
+    println!(
+        "{} bytes, {} vertices, {} triangles, values {values:?}, hash {:#018X}",
+        encoded.bytes.len(),
+        decoded.mesh.positions.len(),
+        decoded.mesh.triangles.len(),
+        attributed_hash(&decoded)
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads `ATTR`
+/// of format 1.2 as specified.
+#[test]
+fn lossless_attr_v1_2_decodes_to_its_test_vector() {
+    let info = swm::inspect(LOSSLESS_ATTR_V1_2, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Lossless));
+    assert_eq!(info.attributes.len(), 2);
+    let m = swm::decode_attributed(LOSSLESS_ATTR_V1_2, &DecodeOptions::default())
+        .expect("golden file lossless-attr-v1.2.swm must decode");
+    assert_eq!(
+        attributed_hash(&m),
+        LOSSLESS_ATTR_V1_2_FNV1A64,
+        "decoded mesh differs from format-spec/08-attributes.md's test vector"
+    );
+    // The plain decoder gives the same mesh, the torus's.
+    let plain = swm::decode(LOSSLESS_ATTR_V1_2, &DecodeOptions::default()).unwrap();
+    assert_eq!(plain, m.mesh);
+}
+
+/// The encoder still writes the golden bytes from the golden torus.
+#[test]
+fn lossless_attr_v1_2_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode_attributed(&golden_textured_torus(), &golden_attr_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, LOSSLESS_ATTR_V1_2,
+        "re-encoding the golden textured torus no longer gives golden/lossless-attr-v1.2.swm"
+    );
+}

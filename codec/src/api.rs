@@ -20,8 +20,8 @@ pub use crate::encoder::stats::{
 };
 #[cfg(feature = "encoder")]
 pub use crate::options::{
-    Effort, EncodeMode, EncodeOptions, ErrorBound, SwingTarget, SwingTuning, AUTO_SAMPLES,
-    DEFAULT_ANGLE_BITS,
+    AttributeQuantization, Effort, EncodeMode, EncodeOptions, ErrorBound, SwingTarget, SwingTuning,
+    AUTO_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 
 #[cfg(feature = "encoder")]
@@ -35,6 +35,40 @@ pub use crate::options::{
 /// ([`Error::ErrorBound`]), the encoder's limits.
 pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error> {
     crate::encoder::encode(mesh, options)
+}
+
+#[cfg(feature = "encoder")]
+/// Encodes a mesh with its attribute streams (normals, texture
+/// coordinates, colours, generic) in the lossless mode
+/// (`options.mode` must be [`EncodeMode::Lossless`]; a lossy mode is a
+/// [`ParameterError::NotApplicable`](crate::ParameterError::NotApplicable)
+/// error, as its triangles are not the input's). Each stream is
+/// quantized as `options.attributes` says and coded with its seams in
+/// the section `ATTR` (format 1.2); a mesh without streams gives the
+/// same bytes as [`encode`]. Deterministic, as [`encode`].
+///
+/// # Errors
+/// As [`encode`], and an invalid mesh or stream
+/// ([`AttributedMesh::validate`](crate::AttributedMesh::validate)).
+pub fn encode_attributed(
+    mesh: &crate::AttributedMesh,
+    options: &EncodeOptions,
+) -> Result<Encoded, Error> {
+    crate::encoder::lossless::encode_attributed(mesh, options)
+}
+
+/// Decodes a `.swm` file with its attribute streams: those of a
+/// lossless file's `ATTR` section (format 1.2), none for a file without
+/// one or of another mode. The mesh is [`decode`]'s (vertex and value
+/// order are the decoder's); corners at one vertex share a value
+/// exactly when they did in the encoder's input. Post-processing
+/// (`options.sharpen`, `bend_steps`) changes the triangles, so with
+/// streams it is not run. Hostile bytes are handled as by [`decode`].
+pub fn decode_attributed(
+    bytes: &[u8],
+    options: &DecodeOptions,
+) -> Result<crate::AttributedMesh, Error> {
+    crate::decoder::decode_attributed(bytes, options)
 }
 
 /// Decodes a `.swm` file. Every byte is treated as hostile: a malformed

@@ -48,7 +48,10 @@ static LOSSLESS: ModeDecoder = ModeDecoder {
         // connectivity is decoded and checked against the header.
         crate::lossless::decode_topology(file, &conn, &dummies, table)?;
         let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
-        let stats = LosslessStats::new(&file.header, &conn, dummies.len(), sections, len);
+        let mut stats = LosslessStats::new(&file.header, &conn, dummies.len(), sections, len);
+        if let Some(attr) = file.find(crate::container::Tag::ATTR) {
+            stats.attributes = crate::lossless::attributes::inspect(attr.bytes)?;
+        }
         Ok(Inspected {
             qp: q.bits,
             stats,
@@ -131,6 +134,18 @@ pub(crate) fn decode_container(
     sharpen_and_bend(mesh, post, &options.limits)
 }
 
+/// [`crate::decode_attributed`].
+pub(crate) fn decode_attributed(
+    bytes: &[u8],
+    options: &DecodeOptions,
+) -> Result<crate::AttributedMesh, Error> {
+    let file = parse_container(bytes, &options.limits)?;
+    if file.header.mode == Mode::Lossless && file.find(crate::container::Tag::ATTR).is_some() {
+        return crate::lossless::decode_attributed(&file, &options.limits);
+    }
+    decode_container(&file, options).map(Into::into)
+}
+
 /// The decoder's optional post-processing: EdgeSharpener, then Bender
 /// with the edges it tagged.
 fn sharpen_and_bend(
@@ -183,6 +198,9 @@ pub struct FileInfo {
     /// The encoder's post-processing hint (what a default decode runs),
     /// when the file has one this version understands.
     pub post: Option<crate::post::hint::PostProcessing>,
+    /// The attribute streams of a lossless file's `ATTR` (format 1.2),
+    /// in file order; empty without one.
+    pub attributes: Vec<crate::AttributeInfo>,
     /// A displaced-subdivision (mode 2) file's levels, coarse to fine:
     /// the bytes of each level's `DISP` chunk (the file cut after `l` of
     /// them, [`cut_levels`](crate::cut_levels), decodes to level `l`).
@@ -195,6 +213,7 @@ pub(crate) fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> 
     let file = parse_container(bytes, limits)?;
     let h = &file.header;
     let seen = (for_mode(h.mode).inspect)(&file, limits, bytes.len())?;
+    let attributes = seen.stats.attributes.clone();
     Ok(FileInfo {
         version: (h.major, h.minor),
         framing: h.framing(),
@@ -204,6 +223,7 @@ pub(crate) fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> 
         stats: seen.stats,
         swing: seen.swing,
         post: crate::post::hint::read(&file),
+        attributes,
         levels: seen.levels,
     })
 }

@@ -61,13 +61,13 @@ pub mod io;
 
 #[cfg(feature = "encoder")]
 pub use api::HintReport;
-pub use api::{decode, inspect, FileInfo, LosslessStats, SwingStats};
+pub use api::{decode, decode_attributed, inspect, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
-    encode, Attempt, Candidate, CandidateFailure, Check, DisplacedStats, Effort, EncodeMode,
-    EncodeOptions, EncodeStats, Encoded, ErrorBound, Measured, Method, MethodStats, Origin,
-    PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport, SwingTarget, SwingTuning,
-    AUTO_SAMPLES, CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
+    encode, encode_attributed, Attempt, AttributeQuantization, Candidate, CandidateFailure, Check,
+    DisplacedStats, Effort, EncodeMode, EncodeOptions, EncodeStats, Encoded, ErrorBound, Measured,
+    Method, MethodStats, Origin, PieceOutcome, PieceReport, RateReport, SimplifiedStats,
+    SwingReport, SwingTarget, SwingTuning, AUTO_SAMPLES, CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::{Framing, Mode};
@@ -79,6 +79,7 @@ pub use error::{
 #[cfg(feature = "encoder")]
 pub use limits::EncodeLimits;
 pub use limits::Limits;
+pub use lossless::attributes::AttributeInfo;
 pub use mesh::{
     vertex_normals, vertex_normals_into, AttributeKind, AttributeStream, AttributedMesh, CornerId,
     CornerTable, FaceId, MeshStats, TriMesh, VertexId,

@@ -192,6 +192,45 @@ pub struct EncodeOptions {
     /// from). Default `false`: on a file of a million vertices it is a
     /// million nearest-point queries.
     pub origins: bool,
+    /// Quantization of the attribute streams a lossless encode of an
+    /// [`AttributedMesh`](crate::AttributedMesh) keeps
+    /// ([`encode_attributed`](crate::encode_attributed)). Default:
+    /// Draco's defaults, see [`AttributeQuantization`].
+    pub attributes: AttributeQuantization,
+}
+
+#[cfg(feature = "encoder")]
+/// Quantization bits per attribute kind, as Draco's `draco_encoder`
+/// takes them (`-qn`, `-qt`, `-qg`; `swm encode --qn --qt --qg`), with
+/// its defaults. Normals are quantized on the octahedron (two
+/// coordinates of `normal_bits` each); texture coordinates, colours and
+/// generic streams per component on a grid over the stream's bounding
+/// box, the same step on every component.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct AttributeQuantization {
+    /// Bits per octahedral coordinate of a normal, 4..=16. Default 8
+    /// (the decoded normal within 1° of the input's).
+    pub normal_bits: u8,
+    /// Bits per texture coordinate, 2..=24. Default 10 (a step of
+    /// 1/1023 of the coordinates' extent: a texel of a 1024² texture
+    /// over a [0, 1] chart).
+    pub texcoord_bits: u8,
+    /// Bits per colour component, 2..=24. Default 8.
+    pub color_bits: u8,
+    /// Bits per component of a generic stream, 2..=24. Default 8.
+    pub generic_bits: u8,
+}
+
+#[cfg(feature = "encoder")]
+impl Default for AttributeQuantization {
+    fn default() -> Self {
+        AttributeQuantization {
+            normal_bits: 8,
+            texcoord_bits: 10,
+            color_bits: 8,
+            generic_bits: 8,
+        }
+    }
 }
 
 #[cfg(feature = "encoder")]

@@ -4,7 +4,10 @@
 //! The first byte picks the options, so one corpus exercises both paths:
 //! even, the defaults (what a viewer does); odd, EdgeSharpener and one
 //! Bender step under tight limits, which reach the post-processing code and
-//! the limit checks on Bender's fourfold output.
+//! the limit checks on Bender's fourfold output. Bit 1 set also decodes
+//! the attribute streams (`swm::decode_attributed`, a lossless file's
+//! `ATTR`): an error, or a mesh whose streams pass
+//! `AttributedMesh::validate` and whose mesh is `decode`'s.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -30,10 +33,21 @@ fuzz_target!(|data: &[u8]| {
             limits: TIGHT,
             sharpen: Some(true),
             bend_steps: Some(1),
+            max_level: None,
         }
     };
-    if let Ok(mesh) = swm::decode(file, &options) {
+    let plain = swm::decode(file, &options);
+    if let Ok(mesh) = &plain {
         // A decoded mesh is a mesh: indices in range, positions finite.
         mesh.validate().expect("decode returned an invalid mesh");
+    }
+    if selector & 2 != 0 {
+        if let Ok(m) = swm::decode_attributed(file, &options) {
+            m.validate().expect("decode_attributed returned an invalid mesh");
+            // Post-processing is skipped for a file with streams.
+            if m.streams.is_empty() {
+                assert_eq!(Some(&m.mesh), plain.as_ref().ok(), "decode_attributed's mesh is not decode's");
+            }
+        }
     }
 });

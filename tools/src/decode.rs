@@ -90,16 +90,29 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         limits,
     };
     let start = Instant::now();
-    let mesh = swm::decode(&bytes, &options).map_err(|e| CliError::new(&args.input, e))?;
+    // With its attribute streams, when the file has them (a lossless
+    // file's `ATTR`); a file without any decodes to the plain mesh.
+    let attributed =
+        swm::decode_attributed(&bytes, &options).map_err(|e| CliError::new(&args.input, e))?;
     let seconds = start.elapsed().as_secs_f64();
-    if crate::pipe::is_stdio(&args.output) {
+    let report = if crate::pipe::is_stdio(&args.output) {
         let mut out = Vec::new();
-        swm::io::write_mesh_to(&mut out, format, &mesh)
-            .and_then(|()| crate::pipe::write_stdout(&out))
+        swm::io::write_attributed_mesh_to(&mut out, format, &attributed)
+            .and_then(|r| crate::pipe::write_stdout(&out).map(|()| r))
     } else {
-        swm::io::write_mesh_as(&args.output, format, &mesh)
+        swm::io::write_attributed_mesh_as(&args.output, format, &attributed)
     }
     .map_err(|e| CliError::new(&args.output, e))?;
+    let unwritten: Vec<&str> = report.unwritten.names().collect();
+    if !unwritten.is_empty() {
+        eprintln!(
+            "swm: warning: {}: the file's {} are not written ({} cannot hold them)",
+            args.output.display(),
+            unwritten.join(" and "),
+            format.name()
+        );
+    }
+    let mesh = attributed.mesh;
     if args.json {
         let info =
             swm::inspect(&bytes, &options.limits).map_err(|e| CliError::new(&args.input, e))?;

@@ -134,6 +134,18 @@ pub struct Args {
     /// Lossless without a size: bits per coordinate [default: 12].
     #[arg(long, value_parser = clap::value_parser!(u8).range(6..=24))]
     qp: Option<u8>,
+    /// Lossless without a size: bits per texture coordinate, as Draco's
+    /// -qt [default: 10].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(2..=24))]
+    qt: Option<u8>,
+    /// Lossless without a size: bits per octahedral coordinate of a
+    /// normal, as Draco's -qn [default: 8].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(4..=16))]
+    qn: Option<u8>,
+    /// Lossless without a size: bits per colour or generic component, as
+    /// Draco's -qg [default: 8].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(2..=24))]
+    qg: Option<u8>,
     /// Swing: stop with an error after this many steps of retiling work
     /// (walks and searches on the surface, over every run of rate
     /// control; bunny at 1 b/v takes about 10^8). Default: no cap.
@@ -184,6 +196,22 @@ impl Args {
         self.qp.unwrap_or(12)
     }
 
+    /// The attribute quantization of --qt, --qn and --qg.
+    fn attributes(&self) -> swm::AttributeQuantization {
+        let d = swm::AttributeQuantization::default();
+        swm::AttributeQuantization {
+            normal_bits: self.qn.unwrap_or(d.normal_bits),
+            texcoord_bits: self.qt.unwrap_or(d.texcoord_bits),
+            color_bits: self.qg.unwrap_or(d.color_bits),
+            generic_bits: self.qg.unwrap_or(d.generic_bits),
+        }
+    }
+
+    /// Whether --qt, --qn or --qg was given.
+    fn attribute_bits(&self) -> bool {
+        self.qt.is_some() || self.qn.is_some() || self.qg.is_some()
+    }
+
     /// The options given that do not apply to the chosen mode, as a usage
     /// error: they would be silently ignored otherwise.
     pub fn check_mode(&self) -> Result<(), String> {
@@ -208,6 +236,7 @@ impl Args {
                 "swing",
                 vec![
                     (self.qp.is_some(), "--qp"),
+                    (self.attribute_bits(), "--qt, --qn, --qg"),
                     (self.effort != EffortArg::Default, "--effort"),
                     (self.max_error.is_some(), "--max-error"),
                     (self.max_error_units.is_some(), "--max-error-units"),
@@ -217,6 +246,7 @@ impl Args {
                 "auto",
                 vec![
                     (self.qp.is_some(), "--qp"),
+                    (self.attribute_bits(), "--qt, --qn, --qg"),
                     (self.angle_bits.is_some(), "--angle-bits"),
                 ],
             ),
@@ -224,6 +254,7 @@ impl Args {
                 "displaced",
                 vec![
                     (self.qp.is_some(), "--qp"),
+                    (self.attribute_bits(), "--qt, --qn, --qg"),
                     (self.effort != EffortArg::Default, "--effort"),
                     (self.max_error.is_some(), "--max-error"),
                     (self.max_error_units.is_some(), "--max-error-units"),
@@ -236,6 +267,10 @@ impl Args {
                 "lossless",
                 vec![
                     (self.qp.is_some() && sized, "--qp with --size or --bpv"),
+                    (
+                        self.attribute_bits() && sized,
+                        "--qt, --qn, --qg with --size or --bpv",
+                    ),
                     (
                         self.effort != EffortArg::Default && !sized,
                         "--effort without --size, --bpv or --max-error",
@@ -280,8 +315,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let format = crate::pipe::input_format(&args.input, args.format)?;
     let progress = crate::progress::Progress::spinner(args.quiet).prefix("swm encode");
     progress.phase("reading");
-    let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
-    progress.suspend(|| warn_dropped(&args.input, &read.dropped));
+    let bounded = args.max_error.is_some() || args.max_error_units.is_some();
+    // The lossless mode at a given qp keeps the input's attributes
+    // (`ATTR`, format 1.2); every other mode drops them, with a warning.
+    let keeps_attributes =
+        args.mode == ModeArg::Lossless && args.size.is_none() && args.bpv.is_none() && !bounded;
+    let (mesh, attributed) = if keeps_attributes {
+        let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
+        let why = "not every face corner names them, or a value is malformed";
+        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
+        (m.mesh.clone(), Some(m))
+    } else {
+        let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
+        let why = "swm codes positions and triangles only";
+        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
+        (mesh, None)
+    };
     let target = match (args.size, args.bpv, args.edge_length) {
         (Some(b), _, _) => swm::SwingTarget::Bytes(b),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
@@ -294,7 +343,6 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         (_, bpv, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
     };
     let max_bytes = args.max_size;
-    let bounded = args.max_error.is_some() || args.max_error_units.is_some();
     let mode = match args.mode {
         ModeArg::Lossless if args.size.is_none() && args.bpv.is_none() && !bounded => {
             swm::EncodeMode::Lossless { qp: args.qp() }
@@ -333,6 +381,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             FramingArg::Fixed => swm::Framing::Fixed,
         },
         effort: args.effort.into(),
+        attributes: args.attributes(),
         ..Default::default()
     };
     progress.phase("encoding");
@@ -344,7 +393,11 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         && args.edge_length.is_none()
         && !bounded
         && args.mode != ModeArg::Lossless;
-    let encoded = match swm::encode(&mesh, &options) {
+    let encoded = match attributed.as_ref() {
+        Some(m) => swm::encode_attributed(m, &options),
+        None => swm::encode(&mesh, &options),
+    };
+    let encoded = match encoded {
         // Allowed to write more than asked: the smallest file there is.
         Err(swm::Error::Size(e)) if args.or_smallest || defaulted => {
             let Some(mode) = at_size(&options.mode, e.smallest) else {
@@ -701,10 +754,12 @@ fn warn_missed_size(input: &std::path::Path, r: &swm::RateReport, bytes: u64) {
     );
 }
 
-/// The one warning line for what the input carried that no `.swm` file
-/// holds: on stderr whatever carries the report, as warnings are not
-/// results (and `--json` on stdout stays the JSON alone).
-fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes) {
+/// The one warning line for what the input carried that the file will
+/// not hold, and `why`: on stderr whatever carries the report, as
+/// warnings are not results (and `--json` on stdout stays the JSON
+/// alone). A lossy mode keeps no attribute; the lossless mode keeps
+/// every stream the reader could attach to the faces.
+fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes, why: &str) {
     let names: Vec<&str> = dropped.names().collect();
     let listed = match names.as_slice() {
         [] => return,
@@ -713,7 +768,7 @@ fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes) {
     };
     // Every name is a plural: "are".
     eprintln!(
-        "swm: warning: {}: the input's {listed} are not kept (swm codes positions and triangles only)",
+        "swm: warning: {}: the input's {listed} are not kept ({why})",
         input.display()
     );
 }

@@ -148,6 +148,20 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
         v["bits_per_triangle"].as_f64().unwrap_or(0.0)
     );
     print_post(&info);
+    for a in &info.attributes {
+        let what = if a.kind == swm::AttributeKind::Normal {
+            "bits per octahedral coordinate"
+        } else {
+            "bits per component"
+        };
+        say!(
+            "  attribute             {}, {} components, {} {what}, {} bytes",
+            crate::report::attribute_name(a.kind),
+            a.dims,
+            a.bits,
+            a.bytes
+        );
+    }
     print_sections_and_clers(&s.sections, s.triangles, s.clers);
     Ok(())
 }

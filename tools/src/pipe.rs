@@ -127,6 +127,20 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), swm::Error> {
 
 /// Reads the mesh `path` names (standard input for `-`) in `format`,
 /// within the default limits, with the report of what it dropped.
+/// [`read_mesh`] with the input's attribute streams.
+pub fn read_attributed_mesh(
+    path: &Path,
+    format: swm::io::MeshFormat,
+) -> Result<(swm::AttributedMesh, swm::io::ReadReport), CliError> {
+    let limits = swm::Limits::default();
+    let err = |e| CliError::new(path, e);
+    if is_stdio(path) {
+        let bytes = read_stdin(limits.max_input_bytes).map_err(err)?;
+        return swm::io::read_attributed_mesh_bytes(&bytes, format, &limits).map_err(err);
+    }
+    swm::io::read_attributed_mesh_with(path, Some(format), &limits).map_err(err)
+}
+
 pub fn read_mesh(
     path: &Path,
     format: swm::io::MeshFormat,

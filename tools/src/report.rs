@@ -60,7 +60,25 @@ pub fn lossless_json(s: &swm::LosslessStats, qp: u8) -> Value {
         "bits_per_vertex": 8.0 * s.file_bytes as f64 / s.vertices.max(1) as f64,
         "clers": { "C": c, "L": l, "E": e, "R": r, "S": s_ },
         "sections": sections,
+        "attributes": s.attributes.iter().map(|a| json!({
+            "kind": attribute_name(a.kind),
+            "dims": a.dims,
+            "bits": a.bits,
+            "bytes": a.bytes,
+        })).collect::<Vec<_>>(),
     })
+}
+
+/// An attribute stream's kind in words: "normals", "texture coordinates
+/// 0", "colours 0", "generic 3".
+pub fn attribute_name(kind: swm::AttributeKind) -> String {
+    match kind {
+        swm::AttributeKind::Normal => "normals".into(),
+        swm::AttributeKind::TexCoord(n) => format!("texture coordinates {n}"),
+        swm::AttributeKind::Color(n) => format!("colours {n}"),
+        swm::AttributeKind::Generic(n) => format!("generic {n}"),
+        _ => "unknown".into(),
+    }
 }
 
 /// The figures of a SwingWrapper file.

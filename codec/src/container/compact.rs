@@ -43,13 +43,13 @@ pub(crate) const MODE_AT: usize = 8;
 /// one-byte section count, the CRC.
 pub(crate) const MIN_COMPACT_LEN: usize = MODE_AT + 1 + 3 + 1 + super::header::CRC_LEN;
 
-/// Registered tags and their codes: code `k` (1..=16) is `CODES[k − 1]`
-/// (15 and 16, `BASE` and `DISP`, registered by format 1.2).
-/// Code 0 announces a literal four-byte tag; codes 17–255 are reserved
+/// Registered tags and their codes: code `k` (1..=17) is `CODES[k − 1]`
+/// (15, 16 and 17, `BASE`, `DISP` and `ATTR`, registered by format 1.2).
+/// Code 0 announces a literal four-byte tag; codes 18–255 are reserved
 /// for tags later versions register, and a decoder that meets one cannot
 /// tell whether the section is critical, so it rejects the file as
 /// unsupported.
-pub(crate) const CODES: [Tag; 16] = [
+pub(crate) const CODES: [Tag; 17] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -66,6 +66,7 @@ pub(crate) const CODES: [Tag; 16] = [
     Tag::CLRD,
     Tag::BASE,
     Tag::DISP,
+    Tag::ATTR,
 ];
 
 /// The one-byte code of a registered tag.

@@ -61,6 +61,10 @@ impl Tag {
     /// range-coded chunk per level, coarse to fine
     /// (format-spec/07-displaced.md).
     pub const DISP: Tag = Tag(*b"DISP");
+    /// Critical (format 1.2). Lossless vertex attributes: per stream its
+    /// kind, quantization, seams and predicted values
+    /// (format-spec/08-attributes.md).
+    pub const ATTR: Tag = Tag(*b"ATTR");
     /// Ancillary. Key/value metadata (see [`meta_entries`](super::meta_entries)).
     pub const META: Tag = Tag(*b"meta");
     /// Ancillary (format 1.1). The encoder's post-processing hint:
@@ -104,7 +108,7 @@ impl Tag {
 /// any other critical tag.
 /// The position in this list is the bit a parser uses to spot duplicates.
 /// (At most 16: the parser keeps them in a `u16`.)
-pub(crate) const KNOWN_CRITICAL: [Tag; 14] = [
+pub(crate) const KNOWN_CRITICAL: [Tag; 15] = [
     Tag::HEAD,
     Tag::CLRS,
     Tag::TOPO,
@@ -119,6 +123,7 @@ pub(crate) const KNOWN_CRITICAL: [Tag; 14] = [
     Tag::CLRD,
     Tag::BASE,
     Tag::DISP,
+    Tag::ATTR,
 ];
 
 /// Ancillary tags of format 1.0, then those 1.1 added. Other ancillary

@@ -137,13 +137,13 @@ fn every_registered_tag_has_one_code_and_others_are_literal() {
 
 #[test]
 fn reserved_codes_are_unsupported_and_bad_literals_malformed() {
-    // mode 1, V 4, T 4, C 1, one section with code 17 (the first
-    // reserved one; 16 is `DISP`).
-    let b = forge(&[1, 4, 4, 1, 1, 17, 0], &[]);
+    // mode 1, V 4, T 4, C 1, one section with code 18 (the first
+    // reserved one; 17 is `ATTR`).
+    let b = forge(&[1, 4, 4, 1, 1, 18, 0], &[]);
     match parse(&b) {
         Err(Error::Unsupported(e)) => {
-            assert_eq!(e.feature, UnsupportedFeature::SectionCode(17));
-            assert!(e.to_string().contains("tag code 17"), "{e}");
+            assert_eq!(e.feature, UnsupportedFeature::SectionCode(18));
+            assert!(e.to_string().contains("tag code 18"), "{e}");
         }
         other => panic!("{other:?}"),
     }

@@ -52,3 +52,40 @@ impl CodingMethod for Lossless {
         }))
     }
 }
+
+/// [`crate::encode_attributed`]: the lossless method with the input's
+/// attribute streams kept (`ATTR`, format 1.2). Cleaning follows the
+/// streams' triples face by face (`clean_attributed`).
+pub(crate) fn encode_attributed(
+    mesh: &crate::AttributedMesh,
+    options: &crate::EncodeOptions,
+) -> Result<super::stats::Encoded, Error> {
+    use crate::options::EncodeMode;
+    let EncodeMode::Lossless { qp } = options.mode else {
+        return Err(ParameterError::NotApplicable {
+            name: "attributes",
+            mode: "a lossy mode (only the lossless mode keeps them)",
+        }
+        .into());
+    };
+    let method = Lossless::new(qp)?;
+    let (cleaned, streams) = crate::clean_attributed(mesh, &options.clean)?;
+    let (bytes, stats) = crate::lossless::encode_attributed(
+        &cleaned.table,
+        &cleaned.mesh,
+        &streams,
+        &options.attributes,
+        method.qp,
+        options.framing,
+    )?;
+    Ok(super::stats::Encoded {
+        bytes,
+        stats: super::stats::EncodeStats {
+            clean: cleaned.report,
+            method: MethodStats::Lossless(stats),
+            candidates: Vec::new(),
+            check: None,
+            origins: Vec::new(),
+        },
+    })
+}

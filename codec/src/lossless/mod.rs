@@ -25,6 +25,8 @@
 
 use crate::prelude::*;
 
+pub(crate) mod attributes;
+
 #[cfg(test)]
 use crate::container::parse_container;
 use crate::container::{check_count_fits, Container, Tag, KNOWN_CRITICAL};
@@ -60,6 +62,9 @@ pub struct LosslessStats {
     pub sections: Vec<([u8; 4], usize)>,
     /// Bytes of the whole file.
     pub file_bytes: usize,
+    /// The attribute streams of `ATTR` (format 1.2), in file order;
+    /// empty without one.
+    pub attributes: Vec<attributes::AttributeInfo>,
 }
 
 impl LosslessStats {
@@ -86,6 +91,7 @@ impl LosslessStats {
             clers,
             sections: sections.collect(),
             file_bytes,
+            attributes: Vec::new(),
         }
     }
 }
@@ -106,6 +112,37 @@ pub(crate) fn encode(
     let prepared = Prepared::new(table, mesh, framing)?;
     let (bytes, stats) = prepared.file(&mesh.positions, qp)?;
     Ok((bytes, stats, prepared.source))
+}
+
+#[cfg(feature = "encoder")]
+/// [`encode`] of a mesh with attribute streams (one triple per face of
+/// `mesh`, as `clean_attributed` gives them): the file also holds them,
+/// in `ATTR` (format 1.2), when there is at least one.
+pub(crate) fn encode_attributed(
+    table: &CornerTable,
+    mesh: &TriMesh,
+    streams: &[crate::AttributeStream],
+    quantization: &crate::options::AttributeQuantization,
+    qp: u8,
+    framing: Framing,
+) -> Result<(Vec<u8>, LosslessStats), Error> {
+    let prepared = Prepared::build(table, mesh, framing, !streams.is_empty())?;
+    prepared.file_with(&mesh.positions, qp, Some((streams, quantization)))
+}
+
+#[cfg(feature = "encoder")]
+/// What coding attributes needs of a prepared mesh beyond its
+/// positions: the decoder's table, its dummies, the traversal, and
+/// which input corner each table corner is.
+struct ForAttributes {
+    decoded: CornerTable,
+    excluded: Vec<bool>,
+    order: Vec<crate::VertexId>,
+    /// Decoded vertex `k` is input vertex `vertex_order[k]`.
+    vertex_order: Vec<u32>,
+    /// Per table corner: the input (cleaned) face and its corner 0..3,
+    /// or `None` on a dummy's face.
+    input_corner: Vec<Option<(u32, u8)>>,
 }
 
 #[cfg(feature = "encoder")]
@@ -134,6 +171,8 @@ pub(crate) struct Prepared {
     framing: Framing,
     vertices: u32,
     triangles: u32,
+    /// Kept only for a file with attributes.
+    attributes: Option<Box<ForAttributes>>,
 }
 
 #[cfg(feature = "encoder")]
@@ -143,6 +182,20 @@ impl Prepared {
         table: &CornerTable,
         mesh: &TriMesh,
         framing: Framing,
+    ) -> Result<Self, Error> {
+        Self::build(table, mesh, framing, false)
+    }
+
+    /// [`Self::new`], keeping for [`Self::file_with`] what coding
+    /// attributes needs when `for_attributes` ([`ForAttributes`]: the
+    /// decoder's table, the traversal and which input corner each table
+    /// corner is, from Edgebreaker's `tip_corners`: decoded triangle `t`
+    /// is the closed input's triangle of `tips[t]`, that corner first).
+    fn build(
+        table: &CornerTable,
+        mesh: &TriMesh,
+        framing: Framing,
+        for_attributes: bool,
     ) -> Result<Self, Error> {
         let closed = edgebreaker::close_holes(table).table;
         let eb = edgebreaker::encode(&closed)?;
@@ -175,6 +228,22 @@ impl Prepared {
             .iter()
             .map(|k| Some(eb.vertex_order[k.idx()].0).filter(|&v| v < real))
             .collect();
+        let attributes = for_attributes.then(|| {
+            let faces = mesh.face_count() as u32;
+            let input_corner = eb
+                .tip_corners
+                .iter()
+                .flat_map(|&tip| [tip, tip.next(), tip.prev()])
+                .map(|c| (c.0 / 3 < faces).then_some((c.0 / 3, (c.0 % 3) as u8)))
+                .collect();
+            Box::new(ForAttributes {
+                decoded,
+                excluded,
+                order: traversal.order,
+                vertex_order: eb.vertex_order.iter().map(|v| v.0).collect(),
+                input_corner,
+            })
+        });
         Ok(Prepared {
             conn,
             dummies,
@@ -186,6 +255,7 @@ impl Prepared {
             framing,
             vertices: real,
             triangles: mesh.face_count() as u32,
+            attributes,
         })
     }
 
@@ -195,6 +265,21 @@ impl Prepared {
         &self,
         positions: &[[f32; 3]],
         qp: u8,
+    ) -> Result<(Vec<u8>, LosslessStats), Error> {
+        self.file_with(positions, qp, None)
+    }
+
+    /// [`Self::file`], with `ATTR` for `attrs` when given (the streams
+    /// of the prepared mesh, built with `for_attributes`; none, or a
+    /// `Prepared` without them, writes the file without `ATTR`).
+    fn file_with(
+        &self,
+        positions: &[[f32; 3]],
+        qp: u8,
+        attrs: Option<(
+            &[crate::AttributeStream],
+            &crate::options::AttributeQuantization,
+        )>,
     ) -> Result<(Vec<u8>, LosslessStats), Error> {
         let quantizer = Quantizer::from_positions(positions, qp)?;
         let grid_top = quantizer
@@ -222,22 +307,57 @@ impl Prepared {
             })
             .collect();
         let (geom_tag, geom) = code_positions(&ordered, &self.predictions, qp, self.framing);
-        let header = Header::new(
+        let mut header = Header::new(
             Mode::Lossless,
             self.vertices,
             self.triangles,
             self.conn.components,
         )
         .with_framing(self.framing);
-        let sections: [(Tag, &[u8]); 4] = [
+        let mut sections: Vec<(Tag, &[u8])> = vec![
             (Tag::HEAD, &head),
             (Tag::TOPO, &self.topo),
             (self.clers.0, &self.clers.1),
             (geom_tag, &geom),
         ];
+        let (attr, infos) = match (attrs, &self.attributes) {
+            (Some((streams, q)), Some(kept)) => {
+                let grid = kept
+                    .vertex_order
+                    .iter()
+                    .map(|&v| match positions.get(v as usize) {
+                        Some(&p) => quantizer.quantize(p).map(i64::from),
+                        None => [0; 3],
+                    })
+                    .collect();
+                let frame =
+                    attributes::Frame::new(&kept.decoded, &kept.excluded, grid, &kept.order);
+                let index: Vec<Vec<u32>> = streams
+                    .iter()
+                    .map(|s| {
+                        kept.input_corner
+                            .iter()
+                            .map(|ic| match ic {
+                                Some((f, k)) => s.corners[*f as usize][*k as usize],
+                                None => attributes::NONE,
+                            })
+                            .collect()
+                    })
+                    .collect();
+                attributes::encode(&frame, streams, &index, q)?
+            }
+            _ => (Vec::new(), Vec::new()),
+        };
+        if !infos.is_empty() {
+            // ATTR is a 1.2 section; a file without it keeps its version.
+            header.minor = header.minor.max(2);
+            sections.push((Tag::ATTR, &attr));
+        }
         let bytes = write_container(&header, &sections)?;
         let tags = sections.iter().map(|(t, b)| (t.0, b.len()));
-        let stats = LosslessStats::new(&header, &self.conn, self.dummies.len(), tags, bytes.len());
+        let mut stats =
+            LosslessStats::new(&header, &self.conn, self.dummies.len(), tags, bytes.len());
+        stats.attributes = infos;
         Ok((bytes, stats))
     }
 }
@@ -306,8 +426,44 @@ fn positions_section<'a>(file: &Container<'a>) -> Result<(geo::Coding, &'a [u8])
     }
 }
 
-/// Decodes a lossless-mode file whose container was parsed.
+/// Decodes a lossless-mode file whose container was parsed: the mesh
+/// only (an `ATTR` section, which holds nothing the mesh depends on, is
+/// not read; [`decode_attributed`] reads it).
 pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Error> {
+    decode_parts(file, limits).map(|(mesh, _)| mesh)
+}
+
+/// Decodes a lossless-mode file with its attribute streams (none
+/// without `ATTR`).
+pub(crate) fn decode_attributed(
+    file: &Container<'_>,
+    limits: &Limits,
+) -> Result<crate::AttributedMesh, Error> {
+    let (mesh, parts) = decode_parts(file, limits)?;
+    let Some(attr) = file.find(Tag::ATTR) else {
+        return Ok(mesh.into());
+    };
+    let frame = attributes::Frame::new(
+        &parts.topo.table,
+        &parts.topo.excluded,
+        parts.grid,
+        &parts.order,
+    );
+    let streams = attributes::decode(attr.bytes, &frame, limits)?;
+    Ok(crate::AttributedMesh::new(mesh, streams))
+}
+
+/// What attribute decoding needs beyond the mesh: the connectivity, the
+/// traversal order and each table vertex's grid point.
+struct Parts {
+    topo: Topology,
+    order: Vec<crate::VertexId>,
+    grid: Vec<[i64; 3]>,
+}
+
+/// The mesh of a lossless file, and the parts its attributes are coded
+/// over.
+fn decode_parts(file: &Container<'_>, limits: &Limits) -> Result<(TriMesh, Parts), Error> {
     let (quantizer, conn, dummies, table) = read_connectivity(file, limits)?;
     let topo = decode_topology(file, &conn, &dummies, table)?;
     // What `geo::decode_mesh_positions` does, with each point dequantized
@@ -325,6 +481,10 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
     let quantized = pd.into_points();
     dec.finish()?;
     let mut positions = vec![[0f32; 3]; file.header.vertex_count as usize];
+    let mut grid = Vec::new();
+    if file.find(Tag::ATTR).is_some() {
+        grid = vec![[0i64; 3]; topo.table.vertex_count()];
+    }
     for (v, q) in order.iter().zip(&quantized) {
         // The traversal decodes exactly the vertices not excluded, so
         // every real vertex gets its point (and the error cannot happen).
@@ -334,11 +494,16 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
             .and_then(|&r| positions.get_mut(r as usize))
             .ok_or(bad("a dummy vertex has a position"))?;
         *slot = quantizer.dequantize(*q);
+        if let Some(g) = grid.get_mut(v.idx()) {
+            *g = q.map(i64::from);
+        }
     }
-    Ok(TriMesh {
+    let mut topo = topo;
+    let mesh = TriMesh {
         positions,
-        triangles: topo.triangles,
-    })
+        triangles: core::mem::take(&mut topo.triangles),
+    };
+    Ok((mesh, Parts { topo, order, grid }))
 }
 
 /// The decoded connectivity of a lossless file, its dummy vertices
@@ -443,13 +608,14 @@ pub(crate) type Read = (Quantizer, Connectivity, Vec<u32>, Option<CornerTable>);
 pub(crate) fn read_connectivity(file: &Container<'_>, limits: &Limits) -> Result<Read, Error> {
     // Critical sections of the SwingWrapper mode mean nothing here: every
     // known critical section but mode 0's own.
-    const OWN: [Tag; 6] = [
+    const OWN: [Tag; 7] = [
         Tag::HEAD,
         Tag::CLRS,
         Tag::TOPO,
         Tag::GEOM,
         Tag::GEOF,
         Tag::CLRD,
+        Tag::ATTR,
     ];
     if KNOWN_CRITICAL
         .iter()

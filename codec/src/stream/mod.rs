@@ -1,7 +1,9 @@
 //! Decoding a `.swm` file that arrives in pieces (a network download, a
 //! pipe): [`StreamDecoder`] takes the bytes as they come, rejects a file
 //! as soon as its frame says it cannot be decoded, and decodes once the
-//! last byte is in.
+//! last byte is in. It gives the mesh only, as `decode` does: a
+//! lossless file's attribute streams (`ATTR`, format 1.2) are read by
+//! `decode_attributed` on the whole file.
 //!
 //! The frame tells its own length: after the header and the section
 //! table, `total = table end + Σ section lengths + 4` (format-spec
