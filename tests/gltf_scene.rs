@@ -106,6 +106,7 @@ fn scene() -> (Value, Vec<u8>) {
         })
         .collect();
     let p0 = b.floats(&pos, "VEC3", Some(34962), true);
+    b.accessors[p0]["name"] = "ball positions".into();
     let n0 = b.floats(&pos, "VEC3", Some(34962), false);
     let t0 = b.floats(&uv, "VEC2", Some(34962), false);
     let i0 = b.indices(&sphere.triangles);
@@ -372,6 +373,8 @@ fn a_scene_round_trips_with_everything_but_its_geometry_identical() {
     // The ball: its own triangles (as many), positions within half a step
     // of 12 bits of its box, UVs within one step of 10 bits.
     let p = &pdoc["meshes"][0]["primitives"][0];
+    let (desc, _) = accessor(&pdoc, &pbin, &p["attributes"]["POSITION"]);
+    assert_eq!(desc["name"], "ball positions", "an accessor's name is kept");
     let pos = floats(&accessor(&pdoc, &pbin, &p["attributes"]["POSITION"]).1);
     let uv = floats(&accessor(&pdoc, &pbin, &p["attributes"]["TEXCOORD_0"]).1);
     let normal = floats(&accessor(&pdoc, &pbin, &p["attributes"]["NORMAL"]).1);

@@ -471,8 +471,22 @@ fn rewrite(
     data.push(ViewData::New(bytes));
 
     let fallback = options.fallback;
-    let mut add = |json: &mut Value, accessor: Value, payload: Vec<u8>, target: u32| {
+    // The original accessor of each role (a semantic, or "indices"),
+    // whose `name` and `extras` the new one keeps.
+    let original = json["meshes"][m]["primitives"][k].clone();
+    let mut add = |json: &mut Value, role: &str, accessor: Value, payload: Vec<u8>, target: u32| {
         let mut accessor = accessor;
+        let old = match role {
+            "indices" => &original["indices"],
+            _ => &original["attributes"][role],
+        };
+        if let Some(old) = old.as_u64().map(|a| json["accessors"][a as usize].clone()) {
+            for key in ["name", "extras"] {
+                if let Some(v) = old.get(key) {
+                    accessor[key] = v.clone();
+                }
+            }
+        }
         if fallback {
             let v = document::push(
                 json,
@@ -489,7 +503,7 @@ fn rewrite(
     let (position, bytes) = position_accessor(&decoded.mesh.positions);
     attributes.insert(
         "POSITION".into(),
-        add(json, position, bytes, ARRAY_BUFFER).into(),
+        add(json, "POSITION", position, bytes, ARRAY_BUFFER).into(),
     );
     let mut names = Vec::new();
     for (j, s) in decoded.streams.iter().enumerate() {
@@ -499,13 +513,13 @@ fn rewrite(
         let (accessor, bytes) = float_accessor(s);
         attributes.insert(
             name.clone(),
-            add(json, accessor, bytes, ARRAY_BUFFER).into(),
+            add(json, &name, accessor, bytes, ARRAY_BUFFER).into(),
         );
         ids.insert(name.clone(), j.into());
         names.push(name);
     }
     let (indices, bytes) = index_accessor(&decoded.mesh);
-    let indices = add(json, indices, bytes, ELEMENT_ARRAY_BUFFER);
+    let indices = add(json, "indices", indices, bytes, ELEMENT_ARRAY_BUFFER);
 
     let p = &mut json["meshes"][m]["primitives"][k];
     p["attributes"] = Value::Object(attributes);
