@@ -10,7 +10,9 @@ use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The .swm file to decode, or - for standard input.
+    /// The .swm file to decode, or - for standard input; or a glTF scene
+    /// (.glb, .gltf) whose SWM_mesh_compression primitives are expanded
+    /// into a plain .glb or .gltf.
     input: PathBuf,
     /// The mesh file to write; its extension picks the format: .obj, .ply,
     /// .off, .stl, or .glb (glTF 2.0 binary, with vertex normals). Or -
@@ -58,19 +60,27 @@ pub struct Args {
     json: bool,
 }
 
+/// The decoder's limits, as the arguments set them.
+fn limits(args: &Args) -> swm::Limits {
+    let default = swm::Limits::default();
+    swm::Limits {
+        max_vertices: args.max_vertices.unwrap_or(default.max_vertices),
+        max_faces: args.max_faces.unwrap_or(default.max_faces),
+        max_alloc_bytes: args.max_alloc.unwrap_or(default.max_alloc_bytes),
+        max_input_bytes: args.max_input.unwrap_or(default.max_input_bytes),
+    }
+}
+
 pub fn run(args: &Args) -> Result<(), CliError> {
+    if crate::scene::is_scene_input(&args.input) {
+        return crate::scene::decode(&args.input, &args.output, limits(args), args.json);
+    }
     crate::same_file::refuse_same_file(&args.input, &args.output)?;
     crate::pipe::data_on_stdout(&args.output);
     // Refuse an unknown or unwritable output format before doing any
     // work (bad usage).
     let format = crate::pipe::output_format(&args.output, args.format)?;
-    let default = swm::Limits::default();
-    let limits = swm::Limits {
-        max_vertices: args.max_vertices.unwrap_or(default.max_vertices),
-        max_faces: args.max_faces.unwrap_or(default.max_faces),
-        max_alloc_bytes: args.max_alloc.unwrap_or(default.max_alloc_bytes),
-        max_input_bytes: args.max_input.unwrap_or(default.max_input_bytes),
-    };
+    let limits = limits(args);
     // Mapped when large: the decoder reads the file once, front to back.
     let bytes: Box<dyn Deref<Target = [u8]>> = if crate::pipe::is_stdio(&args.input) {
         crate::pipe::read_stdin(limits.max_input_bytes).map(|b| Box::new(b) as Box<_>)

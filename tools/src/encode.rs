@@ -8,6 +8,7 @@
 //! terminal (see `progress`). What the report says goes to stdout (stderr
 //! with `-o -`); warnings, what cleaning changed and each component's
 //! fate go to stderr. IN and OUT may be `-` (standard input and output, see `pipe`).
+//! A glTF input to a `.glb` or `.gltf` output is a whole scene (`scene`).
 
 use crate::error::CliError;
 use std::path::PathBuf;
@@ -36,19 +37,19 @@ pub enum ModeArg {
 pub struct Args {
     /// The mesh to encode (.obj, .ply, .off, .stl, .gltf, .glb), or - for
     /// standard input (with --format).
-    input: PathBuf,
+    pub(crate) input: PathBuf,
     /// The .swm file to write, or - for standard output (reports then go
     /// to standard error).
     #[arg(short, long)]
-    output: PathBuf,
+    pub(crate) output: PathBuf,
     /// The input's format when its name does not say (standard input, no
     /// extension): obj, ply, off, stl, glb or gltf (a .gltf on standard
     /// input must embed its buffers).
     #[arg(long, value_parser = crate::pipe::parse_format)]
-    format: Option<swm::io::MeshFormat>,
+    pub(crate) format: Option<swm::io::MeshFormat>,
     /// The codec.
     #[arg(long, value_enum, default_value = "auto")]
-    mode: ModeArg,
+    pub(crate) mode: ModeArg,
     /// How hard the encoder works (as Draco's -cl and zstd's levels):
     /// `fast` simplifies with a short search (about a lossless encode's
     /// time plus one simplification); `default` measures the simplified
@@ -56,31 +57,31 @@ pub struct Args {
     /// `max` runs every method's whole search (minutes on large inputs at
     /// high rates).
     #[arg(long, value_enum, default_value_t = EffortArg::Default)]
-    effort: EffortArg,
+    pub(crate) effort: EffortArg,
     /// Target file size in bytes (met within 3%; lossless: simplify to fit).
     #[arg(long, conflicts_with_all = ["bpv", "edge_length", "max_error", "max_error_units"], value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
-    size: Option<u64>,
+    pub(crate) size: Option<u64>,
     /// Target bits per input vertex (auto and swing: default 2 when no
     /// target is given; lossless: simplify to fit).
     #[arg(long, conflicts_with_all = ["edge_length", "max_error", "max_error_units"], value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
-    bpv: Option<f64>,
+    pub(crate) bpv: Option<f64>,
     /// The smallest file whose L2 distance to the input is at most E,
     /// relative to the input's bounding-box diagonal as `swm distance`
     /// reports it (2e-4 is "2 x 1e-4 of the diagonal"); auto and lossless
     /// modes.
     #[arg(long, value_name = "E", conflicts_with_all = ["edge_length", "max_error_units"], value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
-    max_error: Option<f64>,
+    pub(crate) max_error: Option<f64>,
     /// The same bound in the mesh's units.
     #[arg(long, value_name = "D", conflicts_with = "edge_length", value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
-    max_error_units: Option<f64>,
+    pub(crate) max_error_units: Option<f64>,
     /// Swing: the edge length L itself, in the mesh's units (auto: the
     /// simplified candidate gets the retiled file's size).
     #[arg(long, value_parser = crate::args::positive_finite, allow_negative_numbers = true)]
-    edge_length: Option<f64>,
+    pub(crate) edge_length: Option<f64>,
     /// Swing: bits per dihedral angle [default: chosen by rate control, 6
     /// or 5 (or 7 when 6 falls short of the size); 8 with --edge-length].
     #[arg(long, value_parser = clap::value_parser!(u8).range(4..=12))]
-    angle_bits: Option<u8>,
+    pub(crate) angle_bits: Option<u8>,
     /// Swing: aim every new vertex at the input surface, as the thesis
     /// does, instead of off it by the offset that cancels the chord error,
     /// and send the angle nearest that aim instead of the one whose
@@ -88,94 +89,102 @@ pub struct Args {
     /// with --sharpen: EdgeSharpener fits the planes of flat regions
     /// through their vertices).
     #[arg(long)]
-    on_surface: bool,
+    pub(crate) on_surface: bool,
     /// Swing: shorter edges where the surface bends, is thin or creased,
     /// longer where it is flat, instead of one edge length everywhere
     /// (experimental; the file is then format 1.1).
     #[arg(long)]
-    adaptive: bool,
+    pub(crate) adaptive: bool,
     /// Swing: code the connectivity as format 1.0 does (`CLRS`, each
     /// symbol in the context of the previous one), for decoders older
     /// than 1.1, instead of with the shape of the front at each gate
     /// (`CLRF`), which takes about a fifth of the bits.
     #[arg(long)]
-    plain_clers: bool,
+    pub(crate) plain_clers: bool,
     /// Swing: start every retiling inside its component, as format 1.0
     /// does, even on an open surface, instead of on its longest boundary
     /// loop (`LOOP`, format 1.1), where the hole's patch costs one fan of
     /// connectivity rather than a retiling the decoder drops.
     #[arg(long)]
-    inside_start: bool,
+    pub(crate) inside_start: bool,
     /// Swing: do not measure EdgeSharpener and Bender on the file nor
     /// record their best use in it (the `post` hint that `swm decode`
     /// follows by default), and do not try tips on the surface where
     /// EdgeSharpener helps; saves three decodes and measures (and, on
     /// sharp-edged parts, a second rate control).
     #[arg(long)]
-    no_hint: bool,
+    pub(crate) no_hint: bool,
     /// Swing: do not try tips on the input's sharp edges (radius codes,
     /// format 1.1; tried where the creases total at least the bounding
     /// box's diagonal, and kept when that file decodes closer).
     #[arg(long)]
-    no_creases: bool,
+    pub(crate) no_creases: bool,
     /// How the file's header and section table are laid out: `compact`
     /// (format 1.1: varints and one-byte tags, about 30 bytes fewer) or
     /// `fixed` (format 1.0's layout, for decoders older than 1.1).
     #[arg(long, value_enum, default_value_t = FramingArg::Compact)]
-    framing: FramingArg,
+    pub(crate) framing: FramingArg,
     /// With --size or --bpv: when the request is below the smallest file
     /// that can hold the mesh, write that smallest file (and say so)
     /// instead of failing; never above --max-size.
     #[arg(long)]
-    or_smallest: bool,
+    pub(crate) or_smallest: bool,
     /// Never write more than this many bytes (lossless: with --size or --bpv).
     #[arg(long, value_parser = crate::args::positive_bytes, allow_negative_numbers = true)]
-    max_size: Option<u64>,
+    pub(crate) max_size: Option<u64>,
     /// Lossless without a size: bits per coordinate [default: 12].
     #[arg(long, value_parser = clap::value_parser!(u8).range(6..=24))]
-    qp: Option<u8>,
+    pub(crate) qp: Option<u8>,
     /// Lossless without a size: bits per texture coordinate, as Draco's
     /// -qt [default: 10].
     #[arg(long, value_parser = clap::value_parser!(u8).range(2..=24))]
-    qt: Option<u8>,
+    pub(crate) qt: Option<u8>,
     /// Lossless without a size: bits per octahedral coordinate of a
     /// normal, as Draco's -qn [default: 8].
     #[arg(long, value_parser = clap::value_parser!(u8).range(4..=16))]
-    qn: Option<u8>,
+    pub(crate) qn: Option<u8>,
     /// Lossless without a size: bits per colour or generic component, as
     /// Draco's -qg [default: 8].
     #[arg(long, value_parser = clap::value_parser!(u8).range(2..=24))]
-    qg: Option<u8>,
+    pub(crate) qg: Option<u8>,
     /// Swing: stop with an error after this many steps of retiling work
     /// (walks and searches on the surface, over every run of rate
     /// control; bunny at 1 b/v takes about 10^8). Default: no cap.
     #[arg(long, value_name = "STEPS", value_parser = clap::value_parser!(u64).range(1..))]
-    max_work: Option<u64>,
+    pub(crate) max_work: Option<u64>,
     /// Swing: stop with an error when the retiler's working meshes would
     /// hold more than this many bytes. Default: 8 GiB.
     #[arg(long, value_name = "BYTES", value_parser = clap::value_parser!(u64).range(1..))]
-    max_memory: Option<u64>,
+    pub(crate) max_memory: Option<u64>,
     /// Swing: stop with an error after this many seconds (checked between
     /// retiling steps; the bytes of a file that is written never depend
     /// on it). Default: no limit.
     #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
-    time_limit: Option<f64>,
+    pub(crate) time_limit: Option<f64>,
+    /// glTF scenes (IN .glb or .gltf, OUT .glb or .gltf): keep an
+    /// uncompressed copy of each coded primitive's decoded mesh, so that
+    /// viewers without swm still draw it (SWM_mesh_compression is then
+    /// only in extensionsUsed, not extensionsRequired).
+    #[arg(long)]
+    pub(crate) gltf_fallback: bool,
     /// Print statistics as JSON.
     #[arg(long)]
-    json: bool,
+    pub(crate) json: bool,
     /// Write OUT even when its extension names a mesh format (.obj, .ply,
-    /// .off, .stl, .glb, .gltf): the file is a .swm file whatever its name.
+    /// .off, .stl, .glb, .gltf): the file is a .swm file whatever its name
+    /// (without it, a .glb or .gltf input to a .glb or .gltf output is
+    /// compressed as a whole glTF scene).
     #[arg(long)]
-    force: bool,
+    pub(crate) force: bool,
     /// List every component in the text report (by default a long list is
     /// cut after its first lines and summed up by fate).
     #[arg(long)]
-    verbose: bool,
+    pub(crate) verbose: bool,
     /// No progress spinner. It is drawn on standard error only when that
     /// is a terminal and the run takes over a second (phases: reading,
     /// encoding, writing), never on standard output.
     #[arg(short, long)]
-    quiet: bool,
+    pub(crate) quiet: bool,
     /// Exit 1 and write nothing when the check of the decoded mesh fails
     /// (otherwise a warning on standard error). The check decodes the
     /// file and measures it against the input (60,000 of Metro's samples
@@ -183,7 +192,7 @@ pub struct Args {
     /// surface area is under 10% of the input's, or the Hausdorff
     /// distance is over 10% of the input's bounding-box diagonal.
     #[arg(long)]
-    strict: bool,
+    pub(crate) strict: bool,
 }
 
 /// Components listed one per line before the text report sums the rest
@@ -192,7 +201,7 @@ const LISTED_COMPONENTS: usize = 10;
 
 impl Args {
     /// The lossless mode's bits per coordinate.
-    fn qp(&self) -> u8 {
+    pub(crate) fn qp(&self) -> u8 {
         self.qp.unwrap_or(12)
     }
 
@@ -308,29 +317,11 @@ fn positive_seconds(s: &str) -> Result<f64, String> {
     }
 }
 
-pub fn run(args: &Args) -> Result<(), CliError> {
-    refuse_mesh_name(&args.output, args.force)?;
-    crate::refuse_same_file(&args.input, &args.output)?;
-    crate::pipe::data_on_stdout(&args.output);
-    let format = crate::pipe::input_format(&args.input, args.format)?;
-    let progress = crate::progress::Progress::spinner(args.quiet).prefix("swm encode");
-    progress.phase("reading");
+/// The codec options the arguments ask for (the mode, its target, the
+/// tuning and limits); a scene splits the target between its primitives
+/// (`scene`).
+pub(crate) fn encode_options(args: &Args) -> swm::EncodeOptions {
     let bounded = args.max_error.is_some() || args.max_error_units.is_some();
-    // The lossless mode at a given qp keeps the input's attributes
-    // (`ATTR`, format 1.2); every other mode drops them, with a warning.
-    let keeps_attributes =
-        args.mode == ModeArg::Lossless && args.size.is_none() && args.bpv.is_none() && !bounded;
-    let (mesh, attributed) = if keeps_attributes {
-        let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
-        let why = "not every face corner names them, or a value is malformed";
-        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
-        (m.mesh.clone(), Some(m))
-    } else {
-        let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
-        let why = "swm codes positions and triangles only";
-        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
-        (mesh, None)
-    };
     let target = match (args.size, args.bpv, args.edge_length) {
         (Some(b), _, _) => swm::SwingTarget::Bytes(b),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
@@ -384,6 +375,34 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         attributes: args.attributes(),
         ..Default::default()
     };
+    options
+}
+
+/// Encodes one mesh (a glTF scene in and out goes to `scene`, by `main`).
+pub fn run(args: &Args) -> Result<(), CliError> {
+    refuse_mesh_name(&args.output, args.force)?;
+    crate::refuse_same_file(&args.input, &args.output)?;
+    crate::pipe::data_on_stdout(&args.output);
+    let format = crate::pipe::input_format(&args.input, args.format)?;
+    let progress = crate::progress::Progress::spinner(args.quiet).prefix("swm encode");
+    progress.phase("reading");
+    let bounded = args.max_error.is_some() || args.max_error_units.is_some();
+    // The lossless mode at a given qp keeps the input's attributes
+    // (`ATTR`, format 1.2); every other mode drops them, with a warning.
+    let keeps_attributes =
+        args.mode == ModeArg::Lossless && args.size.is_none() && args.bpv.is_none() && !bounded;
+    let (mesh, attributed) = if keeps_attributes {
+        let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
+        let why = "not every face corner names them, or a value is malformed";
+        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
+        (m.mesh.clone(), Some(m))
+    } else {
+        let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
+        let why = "swm codes positions and triangles only";
+        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
+        (mesh, None)
+    };
+    let options = encode_options(args);
     progress.phase("encoding");
     let start = Instant::now();
     // No target given: the default rate is a convenience, not a request,
@@ -878,7 +897,7 @@ fn piece_json(p: &swm::PieceReport) -> serde_json::Value {
 
 /// `--framing`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum FramingArg {
+pub(crate) enum FramingArg {
     Compact,
     Fixed,
 }

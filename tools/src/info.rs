@@ -27,6 +27,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if is_swm {
         return run_swm(args);
     }
+    // A scene with swm-coded primitives lists them; one without is a mesh.
+    if crate::scene::is_scene_input(&args.file) && crate::scene::info(&args.file, args.json)? {
+        return Ok(());
+    }
     let mesh = swm::io::read_mesh(&args.file).map_err(err)?;
     let cleaned = swm::clean(&mesh, &swm::CleanOptions::default()).map_err(err)?;
     let stats = cleaned.table.stats(&cleaned.mesh);

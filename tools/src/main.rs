@@ -37,6 +37,7 @@ mod rd;
 mod render;
 mod report;
 mod same_file;
+mod scene;
 mod sharpen;
 mod signals;
 
@@ -100,7 +101,11 @@ fn main() -> ExitCode {
         }
     }
     let result = match cli.command {
-        Command::Encode(args) => encode::run(&args),
+        // A glTF input to a .glb or .gltf output is a whole scene.
+        Command::Encode(args) => match scene::scene_output(&args) {
+            Some(format) => scene::encode(&args, format),
+            None => encode::run(&args),
+        },
         Command::Decode(args) => decode::run(&args),
         Command::Info(args) => info::run(&args),
         Command::Distance(args) => distance::run(&args),

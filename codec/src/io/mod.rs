@@ -68,6 +68,14 @@ mod text;
 
 use crate::{AttributedMesh, Error, FormatError, Limits, Malformed, ParameterError, TriMesh};
 pub use attributes::{Attributes, ReadReport, WriteReport};
+pub use gltf::scene_codec::{
+    decode_scene, scene_info, SceneDecoded, SceneFormat, ScenePrimitive, SCENE_EXTENSION,
+};
+#[cfg(feature = "encoder")]
+pub use gltf::scene_codec::{
+    encode_scene, Coded, PrimitiveOutcome, PrimitiveReport, SceneEncoded, SceneOptions,
+    SceneReport, Uncoded,
+};
 pub use output::discard_unfinished;
 use output::write_atomic;
 use std::io::{BufWriter, Write};

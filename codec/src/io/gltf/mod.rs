@@ -51,6 +51,7 @@ mod buffers;
 mod container;
 mod read;
 mod scene;
+pub(super) mod scene_codec;
 mod write;
 
 pub(super) use read::read;

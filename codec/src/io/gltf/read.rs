@@ -53,7 +53,7 @@ pub(in crate::io) fn read(
         return Err(bad(Malformed::BadSyntax(invalid(&e))));
     }
     let doc = ::gltf::Document::from_json_without_validation(root);
-    let draws = scene::draws(&doc, format)?;
+    let draws = scene::draws(&doc, format, false)?;
 
     let mut needed = vec![false; doc.buffers().len()];
     let kinds = if keep { kinds(&draws) } else { Vec::new() };
@@ -274,7 +274,7 @@ fn add(out: &mut Builder, d: &Draw, cx: &Context) -> Result<(), Error> {
 /// The triangles of a primitive's index sequence; `None` for a list whose
 /// length is not a multiple of 3. Strips and fans with fewer than three
 /// indices draw nothing.
-fn triangles(mode: Mode, idx: &[u32]) -> Option<Vec<[u32; 3]>> {
+pub(super) fn triangles(mode: Mode, idx: &[u32]) -> Option<Vec<[u32; 3]>> {
     let n = idx.len();
     Some(match mode {
         Mode::TriangleStrip => (0..n.saturating_sub(2))
@@ -293,7 +293,7 @@ fn triangles(mode: Mode, idx: &[u32]) -> Option<Vec<[u32; 3]>> {
 }
 
 /// A JSON parse error: located by line (of the JSON chunk in a GLB).
-fn json_error(format: &'static str, e: &::gltf::json::Error) -> Error {
+pub(super) fn json_error(format: &'static str, e: &::gltf::json::Error) -> Error {
     let what = if e.is_eof() {
         Malformed::Truncated
     } else if e.is_data() {
@@ -310,7 +310,7 @@ fn json_error(format: &'static str, e: &::gltf::json::Error) -> Error {
 /// it, but for missing or malformed `min` and `max` of a POSITION
 /// accessor: the schema requires them, many writers leave them out, and
 /// nothing here needs them.
-fn validate(root: &::gltf::json::Root) -> Option<Invalid> {
+pub(super) fn validate(root: &::gltf::json::Root) -> Option<Invalid> {
     use ::gltf::json::validation::Validate;
     let mut first = None;
     root.validate(root, ::gltf::json::Path::new, &mut |path, e| {
@@ -324,7 +324,7 @@ fn validate(root: &::gltf::json::Root) -> Option<Invalid> {
 }
 
 /// What a validation error means, in words.
-fn invalid(e: &Invalid) -> &'static str {
+pub(super) fn invalid(e: &Invalid) -> &'static str {
     match e {
         Invalid::IndexOutOfBounds => "an index refers to an object the file does not have",
         Invalid::Invalid => "a property has a value the glTF 2.0 schema does not allow",

@@ -27,12 +27,21 @@ use glam::{DMat4, DQuat, DVec3};
 /// A primitive to draw and where.
 pub(super) struct Draw<'a> {
     pub primitive: Primitive<'a>,
+    /// The index of the primitive's mesh.
+    #[cfg_attr(not(feature = "encoder"), allow(dead_code))]
+    pub mesh: usize,
     pub world: DMat4,
 }
 
 /// The triangle primitives of the scene to read, in depth-first node
-/// order; an error for a primitive that is not made of triangles.
-pub(super) fn draws<'a>(doc: &'a Document, format: &'static str) -> Result<Vec<Draw<'a>>, Error> {
+/// order; an error for a primitive that is not made of triangles, or,
+/// with `skip_others`, that primitive left out (a scene that is kept
+/// whole, `scene_codec`, only weighs its triangles).
+pub(super) fn draws<'a>(
+    doc: &'a Document,
+    format: &'static str,
+    skip_others: bool,
+) -> Result<Vec<Draw<'a>>, Error> {
     let bad = |what| Error::from(FormatError::new(format, what));
     let roots: Vec<Node<'a>> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
@@ -65,10 +74,17 @@ pub(super) fn draws<'a>(doc: &'a Document, format: &'static str) -> Result<Vec<D
                     mode,
                     Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
                 ) {
+                    if skip_others {
+                        continue;
+                    }
                     let mode = mode.as_gl_enum();
                     return Err(bad(Malformed::UnsupportedPrimitive { mode }));
                 }
-                out.push(Draw { primitive, world });
+                out.push(Draw {
+                    primitive,
+                    mesh: mesh.index(),
+                    world,
+                });
             }
         }
         let children: Vec<Node<'a>> = node.children().collect();
