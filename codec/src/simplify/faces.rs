@@ -9,6 +9,7 @@
 //! the budget and the previous qp's answer (deterministic).
 
 use super::simplifier::{coded, Simplifier, MIN_FACES};
+use crate::lossless::LosslessStats;
 use crate::{Error, TriMesh};
 
 /// The search stops when fitting and non-fitting face counts are this
@@ -61,6 +62,10 @@ pub struct Fit {
     pub mesh: TriMesh,
     /// Its mode-0 file.
     pub bytes: Vec<u8>,
+    /// That file's figures, when it was coded from `mesh` (not for the
+    /// whole mesh's files, whose figures the simplifier keeps): the
+    /// method returns them without coding the winner again.
+    pub stats: Option<LosslessStats>,
     /// d log(size) / d log(faces) near the answer: the next qp's search
     /// extrapolates with it.
     pub(super) slope: f64,
@@ -184,6 +189,7 @@ pub(super) fn search_faces(
                     faces: full,
                     mesh: s.mesh.clone(),
                     bytes: full_bytes,
+                    stats: None,
                     slope: 1.0,
                 }));
             }
@@ -201,7 +207,7 @@ pub(super) fn search_faces(
         faces: full,
         size: full_size,
     };
-    let mut lo: Option<(Probe, TriMesh, Vec<u8>)> = None;
+    let mut lo: Option<(Probe, TriMesh, Vec<u8>, LosslessStats)> = None;
     // Simplified probes only: the unsimplified mesh is far cheaper per
     // face than any simplification, so slopes through it mislead.
     let mut probes: Vec<Probe> = Vec::new();
@@ -228,7 +234,7 @@ pub(super) fn search_faces(
                 (faces, s.simplify(faces))
             }
         };
-        let Some(bytes) = coded(&mesh, qp, s.framing)? else {
+        let Some((bytes, stats)) = coded(&mesh, qp, s.framing)? else {
             degenerate_below = degenerate_below.max(faces + 1).max(2 * faces);
             continue;
         };
@@ -241,7 +247,7 @@ pub(super) fn search_faces(
         last_fitted = Some(fits);
         probes.push(probe);
         if fits {
-            lo = Some((probe, mesh, bytes));
+            lo = Some((probe, mesh, bytes, stats));
         } else if faces <= MIN_FACES {
             return Ok(None);
         } else {
@@ -279,7 +285,7 @@ pub(super) fn search_faces(
             aim(*l, slope(*l, hi), band)
         };
     }
-    let Some((l, mesh, bytes)) = lo else {
+    let Some((l, mesh, bytes, stats)) = lo else {
         return Ok(None);
     };
     let fit = {
@@ -298,6 +304,7 @@ pub(super) fn search_faces(
             faces: l.faces,
             mesh,
             bytes,
+            stats: Some(stats),
             slope,
         }
     };
@@ -349,7 +356,12 @@ pub(super) fn refitted(s: &Simplifier<'_>, fit: Fit, budget: u64) -> Result<Fit,
     let mut mesh = fit.mesh.clone();
     s.refit(&mut mesh);
     Ok(match coded(&mesh, fit.qp, s.framing)? {
-        Some(bytes) if bytes.len() as u64 <= budget => Fit { mesh, bytes, ..fit },
+        Some((bytes, stats)) if bytes.len() as u64 <= budget => Fit {
+            mesh,
+            bytes,
+            stats: Some(stats),
+            ..fit
+        },
         _ => fit,
     })
 }

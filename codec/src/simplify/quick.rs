@@ -36,8 +36,9 @@
 //! quantization whose whole file still fits is found by bisection, then
 //! weighed against a simplified mesh two steps finer (a quarter of the
 //! whole file's rounding error, for about a quarter fewer faces), when
-//! the face-count rule for the whole mesh is at least that fine and the
-//! whole file's grid step is at least a sixteenth of the mean edge:
+//! the face-count rule for the whole mesh is at least that fine, the
+//! whole file's grid step is at least a sixteenth of the mean edge, and
+//! the input has at most `WHOLE_ALTERNATIVE_FACES` faces:
 //! at 8 b/v a whole scan at qp 10 had 1.6-4 times the error of a
 //! simplification at qp 12-13 (bunny, horse). The face-count rule's own
 //! grid (qp 14 on both) measured 1.20 and 0.58 against 0.94 and 0.57 at
@@ -55,6 +56,15 @@ use crate::Error;
 /// The least share of the first fit's modeled quantization error that
 /// its simplification error is taken to be (see the module docs).
 const MIN_SIMPLIFICATION_SHARE: f64 = 0.25;
+
+/// Inputs above this many faces keep their whole file when it fits: the
+/// simplification it would be weighed against costs a pass of
+/// meshoptimizer over the whole input (about 1 µs a face), which fits
+/// fast's 0.3 s floor below this count (bunny at 8 b/v: 278 ms, horse
+/// 286 ms) and not its 2x-Draco bar above it (bunny-1m at 4 b/v: 3.2 s
+/// against 2.4 s, and its whole file at qp 12 won: L2 0.34 against about
+/// 0.4 for meshoptimizer's 173k faces at qp 14).
+const WHOLE_ALTERNATIVE_FACES: u32 = 100_000;
 
 /// Bits per face each step of quantization adds: one bit for each of
 /// three coordinates of a vertex, two faces per vertex.
@@ -149,7 +159,12 @@ fn whole_first(
         let qp = lo.qp + (hi - lo.qp) / 2;
         let bytes = s.whole_bytes(qp)?;
         if bytes.len() as u64 <= budget {
-            lo = Fit { qp, bytes, ..lo };
+            lo = Fit {
+                qp,
+                bytes,
+                stats: None,
+                ..lo
+            };
         } else {
             hi = qp;
         }
@@ -158,7 +173,11 @@ fn whole_first(
     // Two steps finer than the whole file (see the module docs), where
     // the face-count rule is that fine and the grid shows on the edges.
     let qp = whole.qp + 2;
-    if predicted_qp(s.faces()) < qp || qp > *QPS.end() || !rounding_shows(s, whole.qp) {
+    if s.faces() > WHOLE_ALTERNATIVE_FACES
+        || predicted_qp(s.faces()) < qp
+        || qp > *QPS.end()
+        || !rounding_shows(s, whole.qp)
+    {
         return Ok(whole);
     }
     let vertices = s.mesh.positions.len() as u64;

@@ -361,18 +361,22 @@ pub fn smallest_bytes(s: &Simplifier<'_>) -> Result<u64, Error> {
     let mut faces = MIN_FACES;
     loop {
         match coded(&s.simplify(faces), *QPS.start(), s.framing)? {
-            Some(bytes) => return Ok(bytes.len() as u64),
+            Some((bytes, _)) => return Ok(bytes.len() as u64),
             None if faces >= s.faces() => return Err(TopologyError::NoTriangles.into()),
             None => faces = faces.saturating_mul(2).min(s.faces()),
         }
     }
 }
 
-/// [`lossless_bytes`], or `None` when the simplified mesh cleans to
-/// nothing (every face of zero area).
-pub(super) fn coded(mesh: &TriMesh, qp: u8, framing: Framing) -> Result<Option<Vec<u8>>, Error> {
-    match lossless_bytes(mesh, qp, framing) {
-        Ok(b) => Ok(Some(b)),
+/// [`lossless_bytes`] with the encode's figures, or `None` when the
+/// simplified mesh cleans to nothing (every face of zero area).
+pub(super) fn coded(
+    mesh: &TriMesh,
+    qp: u8,
+    framing: Framing,
+) -> Result<Option<(Vec<u8>, LosslessStats)>, Error> {
+    match lossless_file(mesh, qp, framing) {
+        Ok((b, stats, _)) => Ok(Some((b, stats))),
         Err(Error::Topology(TopologyError::NoTriangles)) => Ok(None),
         Err(e) => Err(e),
     }
