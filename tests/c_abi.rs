@@ -1,7 +1,8 @@
 //! The C interface as a C viewer sees it (issue 9): the example program
 //! `codec/ffi/examples/decode.c`, compiled against `include/swm.h` and the
-//! static library, decodes to the counts `swm decode` reports, and fails
-//! with a non-zero status and a message on a damaged buffer.
+//! static library, decodes to the counts `swm decode` reports (and, with
+//! `--attributes`, to the split mesh and streams of the Rust API), and
+//! fails with a non-zero status and a message on a damaged buffer.
 
 mod common;
 
@@ -134,4 +135,58 @@ fn c_example_reports_a_damaged_buffer() {
         "{stderr}"
     );
     assert!(out.stdout.is_empty());
+}
+
+/// `--attributes`: the example's `swm_decode_attributed` gives the split
+/// mesh and the streams of the Rust API's
+/// `decode_attributed(..).split_vertices()`: an icosphere whose texture
+/// coordinates follow the longitude, each corner with its own value (as
+/// a soup of UVs comes), so every vertex splits per face around it.
+#[test]
+fn c_example_decodes_attribute_streams() {
+    let mesh = swm_corpus::icosphere(1.0, 2);
+    let mut uv = Vec::new();
+    let mut corners = Vec::new();
+    for t in &mesh.triangles {
+        let mut c = [0u32; 3];
+        let west = t.iter().any(|&v| mesh.positions[v as usize][1] < 0.0);
+        for (k, &v) in t.iter().enumerate() {
+            let [x, y, z] = mesh.positions[v as usize];
+            let mut u = y.atan2(x) / std::f32::consts::TAU;
+            // A face across the cut takes the values on its own side.
+            if west && u < 0.0 || !west && u < -0.25 {
+                u += 1.0;
+            }
+            c[k] = (uv.len() / 2) as u32;
+            uv.extend([u, z * 0.5 + 0.5]);
+        }
+        corners.push(c);
+    }
+    let stream = swm::AttributeStream::new(swm::AttributeKind::TexCoord(0), 2, uv, corners);
+    let options = swm::EncodeOptions {
+        mode: swm::EncodeMode::Lossless { qp: 12 },
+        ..Default::default()
+    };
+    let bytes = swm::encode_attributed(&swm::AttributedMesh::new(mesh, vec![stream]), &options)
+        .unwrap()
+        .bytes;
+    let want = swm::decode_attributed(&bytes, &Default::default())
+        .unwrap()
+        .split_vertices();
+    let plain = swm::decode(&bytes, &Default::default()).unwrap();
+    let file = common::scratch("c_abi_attributes").join("uv.swm");
+    std::fs::write(&file, &bytes).unwrap();
+    let out = c_decode(&file, &["--attributes", "--normals"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && stderr.is_empty(), "{stderr}");
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout),
+        format!(
+            "vertices {} triangles {}\nsplit vertices {} streams 1\nstream 2 0 2\n",
+            plain.positions.len(),
+            plain.triangles.len(),
+            want.mesh.positions.len()
+        )
+    );
+    assert!(want.mesh.positions.len() > plain.positions.len());
 }

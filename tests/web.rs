@@ -199,9 +199,84 @@ fn cases() -> &'static Path {
         let manifest = serde_json::json!({
             "cases": entries,
             "corrupt": { "swm": "damaged.swm", "message": message },
+            "attributed": attributed_case(&dir),
         });
         std::fs::write(dir.join("manifest.json"), manifest.to_string()).unwrap();
         dir
+    })
+}
+
+/// A lossless file with texture coordinates (a seam: every corner its
+/// own value), normals and an RGBA colour set, and what the Rust API
+/// decodes it to in the split form (`decode_attributed(..)
+/// .split_vertices()`) as raw little-endian arrays, for the package to
+/// match bit for bit.
+fn attributed_case(dir: &Path) -> serde_json::Value {
+    let mesh = swm_corpus::icosphere(1.0, 2);
+    let tris = mesh.triangles.clone();
+    let uv: Vec<f32> = tris
+        .iter()
+        .flatten()
+        .flat_map(|&v| [mesh.positions[v as usize][0], mesh.positions[v as usize][2]])
+        .collect();
+    let uv_corners: Vec<[u32; 3]> = (0..tris.len() as u32)
+        .map(|f| [3 * f, 3 * f + 1, 3 * f + 2])
+        .collect();
+    let normals: Vec<f32> = mesh.positions.iter().flatten().copied().collect();
+    let colors: Vec<f32> = mesh
+        .positions
+        .iter()
+        .flat_map(|p| [p[0] * 0.5 + 0.5, p[1] * 0.5 + 0.5, p[2] * 0.5 + 0.5, 1.0])
+        .collect();
+    let streams = vec![
+        swm::AttributeStream::new(swm::AttributeKind::Normal, 3, normals, tris.clone()),
+        swm::AttributeStream::new(swm::AttributeKind::TexCoord(0), 2, uv, uv_corners),
+        swm::AttributeStream::new(swm::AttributeKind::Color(0), 4, colors, tris),
+    ];
+    let options = swm::EncodeOptions {
+        mode: swm::EncodeMode::Lossless { qp: 12 },
+        ..Default::default()
+    };
+    let bytes = swm::encode_attributed(&swm::AttributedMesh::new(mesh, streams), &options)
+        .unwrap()
+        .bytes;
+    std::fs::write(dir.join("attributed.swm"), &bytes).unwrap();
+    let want = swm::decode_attributed(&bytes, &Default::default())
+        .unwrap()
+        .split_vertices();
+    let raw = |name: &str, words: Vec<[u8; 4]>| {
+        std::fs::write(dir.join(name), words.concat()).unwrap();
+        name.to_string()
+    };
+    let floats = |v: &[f32]| v.iter().map(|x| x.to_le_bytes()).collect::<Vec<_>>();
+    let streams: Vec<serde_json::Value> = want
+        .streams
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let (kind, set) = match s.kind {
+                swm::AttributeKind::Normal => ("normal", 0),
+                swm::AttributeKind::TexCoord(n) => ("texcoord", n),
+                swm::AttributeKind::Color(n) => ("color", n),
+                other => panic!("unexpected stream {other:?}"),
+            };
+            serde_json::json!({
+                "kind": kind, "set": set, "dims": s.dims,
+                "values": raw(&format!("attributed.{k}.f32"), floats(&s.values)),
+            })
+        })
+        .collect();
+    let indices = want
+        .mesh
+        .triangles
+        .as_flattened()
+        .iter()
+        .map(|i| i.to_le_bytes());
+    serde_json::json!({
+        "swm": "attributed.swm",
+        "positions": raw("attributed.positions.f32", floats(want.mesh.positions.as_flattened())),
+        "indices": raw("attributed.indices.u32", indices.collect()),
+        "streams": streams,
     })
 }
 

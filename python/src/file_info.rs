@@ -31,6 +31,31 @@ fn clers<'py>(py: Python<'py>, clers: [u64; 5]) -> PyResult<Bound<'py, PyDict>> 
     Ok(d)
 }
 
+/// The `ATTR` streams (kind in words, as `swm info` names them; dims,
+/// bits, bytes).
+fn attributes<'py>(
+    py: Python<'py>,
+    streams: &[swm::AttributeInfo],
+) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for a in streams {
+        let kind = match a.kind {
+            swm::AttributeKind::Normal => "normals".into(),
+            swm::AttributeKind::TexCoord(n) => format!("texture coordinates {n}"),
+            swm::AttributeKind::Color(n) => format!("colours {n}"),
+            swm::AttributeKind::Generic(n) => format!("generic {n}"),
+            _ => "unknown".into(),
+        };
+        let d = PyDict::new(py);
+        d.set_item("kind", kind)?;
+        d.set_item("dims", a.dims)?;
+        d.set_item("bits", a.bits)?;
+        d.set_item("bytes", a.bytes)?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
 /// The figures of a file, as `swm info --json` prints them.
 pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
@@ -51,6 +76,7 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
             d.set_item("bits_per_vertex", 8.0 * s.file_bytes as f64 / v)?;
             d.set_item("clers", clers(py, s.clers)?)?;
             d.set_item("sections", sections(py, &s.sections, t)?)?;
+            d.set_item("attributes", attributes(py, &s.attributes)?)?;
             if info.mode == swm::Mode::Displaced {
                 d.set_item("mode", "displaced")?;
                 d.set_item("level_bytes", &info.levels)?;

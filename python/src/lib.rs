@@ -11,6 +11,7 @@
 //! and options give the same bytes as `swm encode`.
 
 mod arrays;
+mod attributes;
 mod errors;
 mod file_info;
 
@@ -290,7 +291,7 @@ fn encode_report<'py>(
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
                     mode="auto", max_size=None, angle_bits=None, qp=None, report=false,
-                    effort="default", max_error=None))]
+                    effort="default", max_error=None, attributes=None))]
 #[allow(clippy::too_many_arguments)]
 fn encode<'py>(
     py: Python<'py>,
@@ -306,6 +307,7 @@ fn encode<'py>(
     report: bool,
     effort: &str,
     max_error: Option<f64>,
+    attributes: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let effort = match effort {
         "fast" => swm::Effort::Fast,
@@ -328,14 +330,30 @@ fn encode<'py>(
         qp,
         max_error,
     )?;
+    // Only the lossless mode at a fixed qp codes attributes (the others
+    // make new triangles, which the input's values do not follow).
+    if attributes.is_some() && !matches!(mode, swm::EncodeMode::Lossless { .. }) {
+        return Err(PyValueError::new_err(
+            "attributes are coded by mode=\"lossless\" without size, bpv or max_error only",
+        ));
+    }
     let mesh = arrays::mesh(&vertices, &faces)?;
+    // `Some` even when empty: a dict asks for `encode_attributed`,
+    // which with no streams writes `encode`'s bytes.
+    let streams = match &attributes {
+        Some(dict) => Some(attributes::from_dict(dict, &mesh)?),
+        None => None,
+    };
     let options = swm::EncodeOptions {
         mode,
         effort,
         ..Default::default()
     };
     let encoded = py
-        .detach(|| swm::encode(&mesh, &options))
+        .detach(|| match streams {
+            Some(s) => swm::encode_attributed(&swm::AttributedMesh::new(mesh, s), &options),
+            None => swm::encode(&mesh, &options),
+        })
         .map_err(|e| {
             let e = with_value(e, "angle bits", angle_bits.unwrap_or(0));
             with_value(e, "qp", qp.unwrap_or(12))
@@ -353,12 +371,15 @@ fn encode<'py>(
 
 type Arrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
 
-/// Decodes `.swm` bytes: `(vertices, faces)` or, with `normals`,
-/// `(vertices, faces, normals)`. `max_level`: the most subdivision levels
-/// of a displaced (mode 2) file to decode, 0 its base mesh (default:
-/// every level; other modes ignore it).
+/// Decodes `.swm` bytes: `(vertices, faces)`, then `normals` with
+/// `normals`, then a dict of per-vertex attribute arrays with
+/// `attributes` (the split form; see `attributes.rs`). `max_level`: the
+/// most subdivision levels of a displaced (mode 2) file to decode, 0 its
+/// base mesh (default: every level; other modes ignore it).
 #[pyfunction]
-#[pyo3(signature = (data, *, sharpen=None, bend=None, normals=false, limits=None, max_level=None))]
+#[pyo3(signature = (data, *, sharpen=None, bend=None, normals=false, limits=None, max_level=None,
+                    attributes=false))]
+#[allow(clippy::too_many_arguments)]
 fn decode<'py>(
     py: Python<'py>,
     data: &[u8],
@@ -367,6 +388,7 @@ fn decode<'py>(
     normals: bool,
     limits: Option<PyRef<'py, Limits>>,
     max_level: Option<u8>,
+    attributes: bool,
 ) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
     let options = swm::DecodeOptions {
         limits: Limits::to_swm(limits.as_deref()),
@@ -375,19 +397,34 @@ fn decode<'py>(
         bend_steps: bend,
         max_level,
     };
-    let (mesh, n) = py
+    let (mesh, streams, n) = py
         .detach(|| {
-            let mesh = swm::decode(data, &options)?;
+            let (mesh, streams) = if attributes {
+                let decoded = swm::decode_attributed(data, &options)?;
+                // Without streams the split is the identity: skip its sort.
+                let decoded = match decoded.streams.is_empty() {
+                    true => decoded,
+                    false => decoded.split_vertices(),
+                };
+                (decoded.mesh, decoded.streams)
+            } else {
+                (swm::decode(data, &options)?, Vec::new())
+            };
             let n = normals.then(|| swm::vertex_normals(&mesh));
-            Ok::<_, swm::Error>((mesh, n))
+            Ok::<_, swm::Error>((mesh, streams, n))
         })
         .py_err(py)?;
-    let v = arrays::to_numpy(py, mesh.positions).into_any();
-    let f = arrays::to_numpy(py, mesh.triangles).into_any();
-    match n {
-        Some(n) => (v, f, arrays::to_numpy(py, n)).into_pyobject(py),
-        None => (v, f).into_pyobject(py),
+    let mut out = vec![
+        arrays::to_numpy(py, mesh.positions).into_any(),
+        arrays::to_numpy(py, mesh.triangles).into_any(),
+    ];
+    if let Some(n) = n {
+        out.push(arrays::to_numpy(py, n).into_any());
     }
+    if attributes {
+        out.push(attributes::to_dict(py, streams)?.into_any());
+    }
+    pyo3::types::PyTuple::new(py, out)
 }
 
 /// A `.swm` file's figures, the keys and values of `swm info --json`.

@@ -15,7 +15,7 @@ same ``.swm`` bytes as the command line, and :func:`decode` gives the mesh
 from __future__ import annotations
 
 import os
-from typing import Any, Literal, Optional, Tuple, Union, overload
+from typing import Any, Literal, Mapping, Optional, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -39,6 +39,10 @@ __version__: str = _swm.__version__
 Vertices = npt.NDArray[np.float32]
 Faces = npt.NDArray[np.uint32]
 Normals = npt.NDArray[np.float32]
+#: One attribute stream, ``(n, dims)`` float32, one row per vertex.
+Attribute = npt.NDArray[np.float32]
+#: Attribute streams by name (``"normals"``, ``"uv"``, ``"colors"``, ...).
+Attributes = Mapping[str, npt.ArrayLike]
 #: A mesh as ``(vertices, faces)``, or any object with ``vertices`` and
 #: ``faces`` attributes (a ``trimesh.Trimesh``, for one).
 MeshLike = Any
@@ -79,6 +83,21 @@ def _faces(array: Any, what: str = "faces") -> Faces:
     return np.ascontiguousarray(a, dtype=np.uint32)
 
 
+def _attributes(attributes: Any) -> "dict[str, Attribute]":
+    """A dict of attribute arrays as C-contiguous float32 ``(n, dims)``."""
+    if not isinstance(attributes, Mapping):
+        raise TypeError(f"attributes must be a dict of arrays, got {type(attributes).__name__}")
+    out = {}
+    for name, array in attributes.items():
+        a = np.asarray(array)
+        if a.dtype.kind not in "fiu":
+            raise TypeError(f"attribute {name!r} must be a float array, got dtype {a.dtype}")
+        if a.ndim != 2:
+            raise ValueError(f"attribute {name!r} must have shape (n, dims), got shape {a.shape}")
+        out[name] = np.ascontiguousarray(a, dtype=np.float32)
+    return out
+
+
 def _bytes(data: Any) -> bytes:
     if isinstance(data, bytes):
         return data
@@ -116,6 +135,7 @@ def encode(
     report: Literal[False] = False,
     effort: str = "default",
     max_error: Optional[float] = None,
+    attributes: Optional[Attributes] = None,
 ) -> bytes: ...
 
 
@@ -134,6 +154,7 @@ def encode(
     report: Literal[True],
     effort: str = "default",
     max_error: Optional[float] = None,
+    attributes: Optional[Attributes] = None,
 ) -> Tuple[bytes, "dict[str, Any]"]: ...
 
 
@@ -151,6 +172,7 @@ def encode(
     report: bool = False,
     effort: str = "default",
     max_error: Optional[float] = None,
+    attributes: Optional[Attributes] = None,
 ) -> Union[bytes, Tuple[bytes, "dict[str, Any]"]]:
     """Cleans and encodes a mesh into the bytes of a ``.swm`` file.
 
@@ -202,6 +224,16 @@ def encode(
     ``area_ratio``, ``l2_relative``, ``hausdorff_relative``,
     ``samples``), ``None`` in the lossless mode at a fixed ``qp``.
 
+    ``attributes`` (``mode="lossless"`` without a size only) is a dict
+    of per-vertex float arrays, one row per vertex, as
+    ``decode(..., attributes=True)`` returns them: ``"normals"`` (n, 3),
+    ``"uv"`` (n, 2) and further sets ``"uv1"``, ...; ``"colors"`` (n, 3)
+    or (n, 4) in 0..1 and ``"colors1"``, ...; ``"generic0"``, ... (n, 1
+    to 4). They are coded in the file's ``ATTR`` section (format 1.2) at
+    ``swm encode``'s default quantization (normals 8 bits per octahedral
+    coordinate, texture coordinates 10 bits, colours and generic streams
+    8); vertices that differ only by their values (a UV seam) stay apart.
+
     Deterministic: the same arrays and options give the same bytes.
     """
     return _swm.encode(
@@ -217,6 +249,7 @@ def encode(
         report=report,
         effort=effort,
         max_error=max_error,
+        attributes=None if attributes is None else _attributes(attributes),
     )
 
 
@@ -228,7 +261,8 @@ def decode(
     normals: bool = False,
     limits: Optional[Limits] = None,
     max_level: Optional[int] = None,
-) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, Normals]]:
+    attributes: bool = False,
+) -> Tuple[Any, ...]:
     """Decodes ``.swm`` bytes into ``(vertices, faces)``.
 
     ``sharpen=True`` restores the sharp edges and corners retiling
@@ -236,15 +270,31 @@ def decode(
     (Bender, four times the triangles per step). Left ``None``, each
     follows the file's post-processing hint (``info(data)["post"]``), the
     encoder's measured choice; a file without one decodes plain. ``normals=True`` adds a
-    third array of unit vertex normals. Every byte is treated as hostile:
-    a bad file raises :class:`FormatError` (or another :class:`SwmError`)
-    and nothing beyond ``limits`` is allocated. ``max_level=N`` decodes
-    only the first N subdivision levels of a displaced-subdivision file
-    (0: its base mesh), as ``swm decode --max-level N``; ``None`` decodes
-    every level, and other modes ignore it.
+    third array of unit vertex normals, computed from the surface.
+    ``attributes=True`` adds, last, a dict of the file's attribute
+    streams (a lossless file's texture coordinates, normals and colours;
+    empty for a file without them): ``"normals"`` (n, 3), ``"uv"`` (n, 2),
+    ``"colors"`` (n, 3) or (n, 4), further sets ``"uv1"``, ``"colors1"``,
+    ..., and ``"generic0"``, ..., all float32 with one row per vertex.
+    The mesh is then in the split form GPUs and trimesh use: a vertex per
+    distinct position and values, so a position on a UV seam comes once
+    per side (a file without streams decodes to the same arrays either
+    way). :func:`to_trimesh` takes the dict. Every byte is treated as
+    hostile: a bad file raises :class:`FormatError` (or another
+    :class:`SwmError`) and nothing beyond ``limits`` is allocated.
+    ``max_level=N`` decodes only the first N subdivision levels of a
+    displaced-subdivision file (0: its base mesh), as ``swm decode
+    --max-level N``; ``None`` decodes every level, and other modes
+    ignore it.
     """
     return _swm.decode(
-        _bytes(data), sharpen=sharpen, bend=bend, normals=normals, limits=limits, max_level=max_level
+        _bytes(data),
+        sharpen=sharpen,
+        bend=bend,
+        normals=normals,
+        limits=limits,
+        max_level=max_level,
+        attributes=attributes,
     )
 
 
@@ -299,14 +349,40 @@ def _trimesh() -> Any:
     return trimesh
 
 
-def to_trimesh(vertices: npt.ArrayLike, faces: npt.ArrayLike, normals: Any = None) -> Any:
+def to_trimesh(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    normals: Any = None,
+    attributes: Optional[Attributes] = None,
+) -> Any:
     """A ``trimesh.Trimesh`` of the arrays, as they are (``process=False``:
-    trimesh merges nothing and drops nothing)."""
+    trimesh merges nothing and drops nothing).
+
+    ``attributes``, the dict of ``decode(..., attributes=True)``, gives
+    ``vertex_normals`` its ``"normals"`` (unless ``normals`` is given) and
+    ``visual`` a ``TextureVisuals(uv=...)`` of its ``"uv"`` or, without
+    one, a ``ColorVisuals(vertex_colors=...)`` of its ``"colors"``
+    (trimesh's visual holds one of the two; the other streams are in
+    ``vertex_attributes`` under their names)."""
     trimesh = _trimesh()
+    attributes = {} if attributes is None else _attributes(attributes)
+    if normals is None:
+        normals = attributes.get("normals")
+    shown = "uv" if "uv" in attributes else "colors" if "colors" in attributes else None
+    visual = None
+    if shown == "uv":
+        visual = trimesh.visual.TextureVisuals(uv=attributes["uv"][:, :2])
+    elif shown == "colors":
+        # trimesh keeps colours as 8-bit RGBA; the file's are 0..1.
+        rgba = np.clip(np.rint(attributes["colors"] * 255.0), 0, 255).astype(np.uint8)
+        visual = trimesh.visual.ColorVisuals(vertex_colors=rgba)
+    rest = {k: v for k, v in attributes.items() if k not in ("normals", shown)}
     return trimesh.Trimesh(
         vertices=_vertices(vertices),
         faces=_faces(faces),
         vertex_normals=None if normals is None else _vertices(normals, "normals"),
+        visual=visual,
+        vertex_attributes=rest,
         process=False,
     )
 

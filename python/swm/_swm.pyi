@@ -44,6 +44,7 @@ def encode(
     report: Literal[False] = False,
     effort: str = "default",
     max_error: Optional[float] = None,
+    attributes: Optional[dict[str, _V]] = None,
 ) -> bytes: ...
 @overload
 def encode(
@@ -60,6 +61,7 @@ def encode(
     report: Literal[True],
     effort: str = "default",
     max_error: Optional[float] = None,
+    attributes: Optional[dict[str, _V]] = None,
 ) -> Tuple[bytes, dict[str, Any]]: ...
 def decode(
     data: bytes,
@@ -69,7 +71,8 @@ def decode(
     normals: bool = False,
     limits: Optional[Limits] = None,
     max_level: Optional[int] = None,
-) -> Union[Tuple[_V, _F], Tuple[_V, _F, _V]]: ...
+    attributes: bool = False,
+) -> Tuple[Any, ...]: ...
 def info(data: bytes, *, limits: Optional[Limits] = None) -> dict[str, Any]: ...
 def distance(
     a_vertices: _V,

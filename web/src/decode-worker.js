@@ -11,6 +11,7 @@ self.onmessage = async ({ data }) => {
     const result = decode(new Uint8Array(bytes), options);
     const transfer = [result.positions.buffer, result.indices.buffer];
     if (result.normals) transfer.push(result.normals.buffer);
+    for (const a of result.attributes ?? []) transfer.push(a.values.buffer);
     self.postMessage({ id, result }, transfer);
   } catch (e) {
     self.postMessage({ id, error: { message: e.message, code: e.code ?? 'internal' } });

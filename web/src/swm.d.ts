@@ -47,7 +47,25 @@ export interface DecodedMesh {
   indices: Uint32Array;
   /** Unit vertex normals, when `options.normals` was set. */
   normals?: Float32Array;
+  /**
+   * A lossless file's attribute streams (texture coordinates, normals,
+   * colours), absent when it has none. Per vertex: with streams the mesh
+   * is split at seams, a vertex per distinct position and values.
+   */
+  attributes?: DecodedAttribute[];
   info: DecodeInfo;
+}
+
+/** One attribute stream of a DecodedMesh. */
+export interface DecodedAttribute {
+  /** What the values are ('unknown': a kind this package does not name). */
+  kind: 'normal' | 'texcoord' | 'color' | 'generic' | 'unknown';
+  /** The set (TEXCOORD_n, COLOR_n) or the generic stream's number; 0 for normals. */
+  set: number;
+  /** Floats per vertex, 1 to 4 (texture coordinates 2 or 3, colours 3 or 4). */
+  dims: number;
+  /** `dims` floats per vertex. */
+  values: Float32Array;
 }
 
 export const DEFAULT_LIMITS: Readonly<Required<Limits>>;

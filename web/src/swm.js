@@ -6,7 +6,8 @@
 // The module's Output struct, 32-bit little-endian fields in this order
 // (web/wasm/src/lib.rs): status, message, message_len, positions,
 // vertex_count, indices, triangle_count, normals, mode, major, minor,
-// level.
+// level, attributes, attribute_count; each of the `attribute_count`
+// Attribute structs at `attributes`: kind, set, dims, values.
 
 const OUT_STATUS = 0;
 const OUT_MESSAGE = 4;
@@ -20,10 +21,15 @@ const OUT_MODE = 32;
 const OUT_MAJOR = 36;
 const OUT_MINOR = 40;
 const OUT_LEVEL = 44;
+const OUT_ATTRIBUTES = 48;
+const OUT_ATTRIBUTE_COUNT = 52;
+const ATTRIBUTE_BYTES = 16;
 
 /** Error codes by the module's status. */
 const CODES = ['ok', 'argument', 'format', 'limit', 'unsupported', 'internal', 'internal'];
 const MODES = ['lossless', 'swing', 'displaced'];
+/** Attribute kinds by the module's code (web/wasm/src/lib.rs, `Attribute`). */
+const KINDS = ['unknown', 'normal', 'texcoord', 'color', 'generic'];
 
 /**
  * The limits of `swm::Limits::default()`, but for allocations: 2 GiB
@@ -199,6 +205,17 @@ function readOutput(x, out, options, byteCount, start) {
   if (level >= 0) info.level = level;
   const result = { positions, indices, info };
   if (normals) result.normals = normals;
+  // A lossless file's texture coordinates, normals and colours: per
+  // vertex (the module split the mesh at seams), one array per stream.
+  const attributes = [];
+  const at = u32(OUT_ATTRIBUTES);
+  for (let s = 0; s < u32(OUT_ATTRIBUTE_COUNT); s++) {
+    const field = (k) => new DataView(buffer).getUint32(at + s * ATTRIBUTE_BYTES + 4 * k, true);
+    const dims = field(2);
+    const values = new Float32Array(buffer, field(3), dims * vertices).slice();
+    attributes.push({ kind: KINDS[field(0)] ?? 'unknown', set: field(1), dims, values });
+  }
+  if (attributes.length) result.attributes = attributes;
   info.decodeMs = performance.now() - start;
   return result;
 }

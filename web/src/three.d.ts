@@ -3,7 +3,11 @@ import { BufferGeometry, Loader, LoadingManager } from 'three';
 import type { DecodedMesh, DecodeOptions, WasmSource } from './swm.js';
 import type { SWMWorker } from './worker.js';
 
-/** A BufferGeometry (position, normal when decoded, index) from decode(). */
+/**
+ * A BufferGeometry from decode(): position, normal (the file's, else the
+ * decoded ones), uv / uv1 / ..., color / color1 / ..., generic0 / ...,
+ * and the index.
+ */
 export function toBufferGeometry(result: DecodedMesh): BufferGeometry;
 
 /** Loads .swm files as BufferGeometry, like DRACOLoader. */

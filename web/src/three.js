@@ -4,14 +4,36 @@ import { BufferAttribute, BufferGeometry, FileLoader, Loader } from 'three';
 import { decode, init, isReady } from './swm.js';
 
 /**
- * A BufferGeometry from a decode() result: `position`, `normal` (when
- * decoded), the index, a bounding sphere, and the decoder's figures in
- * `userData.swm`.
+ * The three.js attribute name of a decoded stream: `normal`, `uv` (then
+ * `uv1`, `uv2`, ..., three's names since r151), `color` (then `color1`,
+ * ...), `generic0`, ...; `null` for a kind this package does not know.
+ */
+function attributeName(stream) {
+  const n = stream.set;
+  switch (stream.kind) {
+    case 'normal': return 'normal';
+    case 'texcoord': return n === 0 ? 'uv' : `uv${n}`;
+    case 'color': return n === 0 ? 'color' : `color${n}`;
+    case 'generic': return `generic${n}`;
+    default: return null;
+  }
+}
+
+/**
+ * A BufferGeometry from a decode() result: `position`, `normal` (the
+ * file's own normals when it has them, else the decoded ones), `uv`,
+ * `color` and the other attribute streams, the index, a bounding sphere,
+ * and the decoder's figures in `userData.swm`. (A material shows the
+ * colours with `vertexColors: true`.)
  */
 export function toBufferGeometry(result) {
   const geometry = new BufferGeometry();
   geometry.setAttribute('position', new BufferAttribute(result.positions, 3));
   if (result.normals) geometry.setAttribute('normal', new BufferAttribute(result.normals, 3));
+  for (const stream of result.attributes ?? []) {
+    const name = attributeName(stream);
+    if (name) geometry.setAttribute(name, new BufferAttribute(stream.values, stream.dims));
+  }
   geometry.setIndex(new BufferAttribute(result.indices, 1));
   geometry.computeBoundingSphere();
   geometry.userData.swm = result.info;

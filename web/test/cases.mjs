@@ -1,7 +1,8 @@
 // The test files that tests/web.rs prepares (SWM_WEB_CASES, a folder):
 // manifest.json lists `.swm` files of every mode with what the `swm` CLI
-// decodes them to (binary PLY, and GLB for the normals), and a damaged
-// file with the CLI's error message. Parsers for those outputs, and
+// decodes them to (binary PLY, and GLB for the normals), a damaged
+// file with the CLI's error message, and a file with attribute streams
+// beside the Rust API's split mesh and streams (raw little-endian arrays). Parsers for those outputs, and
 // bit-for-bit comparison.
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
@@ -85,6 +86,19 @@ export function loadCases(dir) {
       normals: readGlbNormals(read(c.glb)),
     })),
     corrupt: { ...m.corrupt, bytes: new Uint8Array(read(m.corrupt.swm)) },
+    attributed: attributed(m.attributed, read),
+  };
+}
+
+/** The attributed case: its file and the split mesh and streams the Rust API decodes it to. */
+function attributed(a, read) {
+  const f32 = (f) => { const b = read(f); return new Float32Array(b.buffer, b.byteOffset, b.length / 4).slice(); };
+  const u32 = (f) => { const b = read(f); return new Uint32Array(b.buffer, b.byteOffset, b.length / 4).slice(); };
+  return {
+    bytes: new Uint8Array(read(a.swm)),
+    positions: f32(a.positions),
+    indices: u32(a.indices),
+    streams: a.streams.map((s) => ({ kind: s.kind, set: s.set, dims: s.dims, values: f32(s.values) })),
   };
 }
 

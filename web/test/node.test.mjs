@@ -10,7 +10,7 @@ import { DEFAULT_LIMITS, decode, decodeStream, init, isReady, StreamDecoder, SWM
 import { SWMLoader } from '../src/three.js';
 import { bitDiff, casesDir, loadCases } from './cases.mjs';
 
-const { cases, corrupt } = loadCases(casesDir());
+const { cases, corrupt, attributed } = loadCases(casesDir());
 
 test('decode() before init() throws', async () => {
   // A second copy of the module (another URL), never initialized.
@@ -153,4 +153,27 @@ test('SWMLoader.parse returns the decoded BufferGeometry', async () => {
   const g = await loader.setDecodeOptions({ sharpen: true, bendSteps: 1 }).parseAsync(cases[0].bytes);
   assert.equal(bitDiff(g.getIndex().array, cases[0].sharpened.indices, 'parseAsync, Sharpen&Bend'), '');
   await assert.rejects(loader.parseAsync(corrupt.bytes), { name: 'SWMError', message: corrupt.message });
+});
+
+test('attribute streams come per vertex, as the Rust API splits them, into three.js attributes', async () => {
+  await init();
+  const a = attributed;
+  const r = decode(a.bytes, { normals: true });
+  assert.equal(bitDiff(r.positions, a.positions, 'split positions'), '');
+  assert.equal(bitDiff(r.indices, a.indices, 'split indices'), '');
+  assert.equal(r.normals.length, r.positions.length);
+  assert.deepEqual(r.attributes.map((s) => [s.kind, s.set, s.dims]), a.streams.map((s) => [s.kind, s.set, s.dims]));
+  r.attributes.forEach((s, k) => assert.equal(bitDiff(s.values, a.streams[k].values, `stream ${s.kind}`), ''));
+  // Every file without streams decodes without the key.
+  for (const c of cases) assert.equal(decode(c.bytes).attributes, undefined, c.name);
+
+  const g = new SWMLoader();
+  await g.init();
+  const geometry = g.parse(a.bytes);
+  const byKind = Object.fromEntries(a.streams.map((s) => [s.kind, s]));
+  // The file's normals, not the computed ones; uv; RGBA colours.
+  assert.equal(bitDiff(geometry.getAttribute('normal').array, byKind.normal.values, 'normal'), '');
+  assert.equal(bitDiff(geometry.getAttribute('uv').array, byKind.texcoord.values, 'uv'), '');
+  assert.equal(geometry.getAttribute('color').itemSize, 4);
+  assert.equal(bitDiff(geometry.getAttribute('color').array, byKind.color.values, 'color'), '');
 });

@@ -2,13 +2,16 @@
  * both ways (library-owned arrays, then caller-owned buffers sized by
  * swm_decoded_len), and print the counts.
  *
- *     decode FILE.swm [--sharpen | --no-sharpen] [--bend N] [--normals]
+ *     decode FILE.swm [--sharpen | --no-sharpen] [--bend N] [--normals] [--attributes]
  *
  * Without --sharpen, --no-sharpen or --bend, the file's post-processing
  * hint decides (the options' default, -1).
  *
  * Prints "vertices V triangles T" and exits 0, or prints
- * "decode: error N: MESSAGE" and exits 1. */
+ * "decode: error N: MESSAGE" and exits 1. With --attributes it also
+ * decodes the attribute streams (swm_decode_attributed: per vertex, the
+ * mesh split at seams) and prints "split vertices V streams S", then
+ * "stream KIND SET DIMS" for each. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,14 +46,16 @@ static int fail(int code) {
 
 int main(int argc, char **argv) {
     if (argc < 2) {
-        fprintf(stderr, "usage: decode FILE.swm [--sharpen | --no-sharpen] [--bend N] [--normals]\n");
+        fprintf(stderr, "usage: decode FILE.swm [--sharpen | --no-sharpen] [--bend N] [--normals] [--attributes]\n");
         return 2;
     }
     swm_decode_options opts = swm_decode_options_default();
+    bool attributes = false;
     for (int i = 2; i < argc; i++) {
         if (!strcmp(argv[i], "--sharpen")) opts.sharpen = 1;
         else if (!strcmp(argv[i], "--no-sharpen")) opts.sharpen = 0;
         else if (!strcmp(argv[i], "--normals")) opts.normals = true;
+        else if (!strcmp(argv[i], "--attributes")) attributes = true;
         else if (!strcmp(argv[i], "--bend") && i + 1 < argc) opts.bend_steps = (int32_t)atoi(argv[++i]);
     }
     size_t len = 0;
@@ -69,10 +74,24 @@ int main(int argc, char **argv) {
         }
     }
 
+    /* With the attribute streams: one vertex per distinct position and
+     * values, so every stream is a vertex buffer beside the positions. */
+    swm_attributed_mesh split;
+    memset(&split, 0, sizeof split); /* zeroed: freeing it is harmless */
+    if (attributes) {
+        rc = swm_decode_attributed(data, len, &opts, &split);
+        if (rc != SWM_OK) { swm_mesh_free(&mesh); free(data); return fail(rc); }
+        for (size_t s = 0; s < split.attribute_count; s++) {
+            const swm_attribute *a = &split.attributes[s];
+            if (a->dims < 1 || a->dims > 4 || (split.mesh.vertex_count && !a->values))
+                fprintf(stderr, "decode: stream %zu is malformed\n", s);
+        }
+    }
+
     /* 2. The caller allocates, from the bounds. */
     swm_decoded_size bound, got;
     rc = swm_decoded_len(data, len, &opts, &bound);
-    if (rc != SWM_OK) { swm_mesh_free(&mesh); free(data); return fail(rc); }
+    if (rc != SWM_OK) { swm_attributed_mesh_free(&split); swm_mesh_free(&mesh); free(data); return fail(rc); }
     float *positions = malloc(3 * bound.vertex_count * sizeof(float) + 1);
     uint32_t *indices = malloc(3 * bound.triangle_count * sizeof(uint32_t) + 1);
     rc = swm_decode_into(data, len, &opts, positions, 3 * bound.vertex_count,
@@ -84,10 +103,23 @@ int main(int argc, char **argv) {
     free(positions);
     free(indices);
     free(data);
-    if (rc != SWM_OK) { swm_mesh_free(&mesh); return fail(rc); }
-    if (!same) { fprintf(stderr, "decode: the two decodes differ\n"); swm_mesh_free(&mesh); return 1; }
+    if (rc != SWM_OK) { swm_attributed_mesh_free(&split); swm_mesh_free(&mesh); return fail(rc); }
+    if (!same) {
+        fprintf(stderr, "decode: the two decodes differ\n");
+        swm_attributed_mesh_free(&split);
+        swm_mesh_free(&mesh);
+        return 1;
+    }
 
     printf("vertices %zu triangles %zu\n", mesh.vertex_count, mesh.triangle_count);
+    if (attributes) {
+        printf("split vertices %zu streams %zu\n", split.mesh.vertex_count, split.attribute_count);
+        for (size_t s = 0; s < split.attribute_count; s++) {
+            const swm_attribute *a = &split.attributes[s];
+            printf("stream %u %u %u\n", (unsigned)a->kind, (unsigned)a->set, (unsigned)a->dims);
+        }
+    }
+    swm_attributed_mesh_free(&split);
     swm_mesh_free(&mesh);
     swm_mesh_free(&mesh); /* freeing twice is harmless: the first call zeroed it */
     return 0;

@@ -11,6 +11,9 @@
  *     }
  *
  * or size buffers with swm_decoded_len and fill them with swm_decode_into.
+ * swm_decode_attributed adds the texture coordinates, normals and colours
+ * of a lossless file, one array per stream, per vertex (swm_attributed_mesh,
+ * freed by swm_attributed_mesh_free).
  * Link with -lswm_ffi (static: also -lpthread -ldl -lm on Linux). */
 
 #ifndef SWM_H
@@ -56,6 +59,27 @@
  * A bug in the decoder (a caught panic) or an error of no other kind.
  */
 #define SWM_ERROR_INTERNAL 6
+
+/**
+ * `swm_attribute.kind`: shading normals, 3 floats per vertex.
+ */
+#define SWM_ATTRIBUTE_NORMAL 1
+
+/**
+ * `swm_attribute.kind`: texture coordinate set `set`, 2 (or 3) floats.
+ */
+#define SWM_ATTRIBUTE_TEXCOORD 2
+
+/**
+ * `swm_attribute.kind`: vertex colour set `set`, RGB or RGBA in 0..1.
+ */
+#define SWM_ATTRIBUTE_COLOR 3
+
+/**
+ * `swm_attribute.kind`: application-defined stream number `set`, 1 to 4
+ * floats.
+ */
+#define SWM_ATTRIBUTE_GENERIC 4
 
 /**
  * How to decode; start from [`swm_decode_options_default`].
@@ -146,6 +170,52 @@ typedef struct {
   bool exact;
 } swm_decoded_size;
 
+/**
+ * One attribute stream of a [`swm_attributed_mesh`], per vertex.
+ */
+typedef struct {
+  /**
+   * What the values are: one of the `SWM_ATTRIBUTE_*` constants; a
+   * newer library may add kinds, which a viewer should skip.
+   */
+  uint32_t kind;
+  /**
+   * The set number (glTF `TEXCOORD_n`, `COLOR_n`; the generic stream's
+   * number); 0 for normals.
+   */
+  uint32_t set;
+  /**
+   * Floats per vertex, 1 to 4.
+   */
+  uint32_t dims;
+  /**
+   * `dims * vertex_count` floats, vertex by vertex.
+   */
+  float *values;
+} swm_attribute;
+
+/**
+ * A decoded mesh with its attribute streams; everything belongs to the
+ * library until [`swm_attributed_mesh_free`].
+ */
+typedef struct {
+  /**
+   * Positions, indices and (with `swm_decode_options.normals`)
+   * computed normals, as `swm_decode_with` gives them, but in the split
+   * form: a position on a seam comes once per side.
+   */
+  swm_mesh mesh;
+  /**
+   * `attribute_count` streams in the file's order; NULL when there are
+   * none (a file without attributes decodes as `swm_decode_with`).
+   */
+  swm_attribute *attributes;
+  /**
+   * Number of streams.
+   */
+  size_t attribute_count;
+} swm_attributed_mesh;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -225,6 +295,34 @@ const char *swm_last_error(void);
  * The library's version, e.g. "0.1.0".
  */
 const char *swm_version(void);
+
+/**
+ * Decodes with `*opts` (NULL: the defaults) into `*out`, attribute
+ * streams included (those of a lossless file's `ATTR` section; none
+ * otherwise). A file with streams is not post-processed (Sharpen&Bend
+ * would change the triangles the values belong to). Returns `SWM_OK`
+ * or an error code (message: `swm_last_error`); on failure `*out` is
+ * zeroed, so freeing it is always safe.
+ *
+ * # Safety
+ * `data` points to `len` readable bytes (anything when `len` is 0);
+ * `opts` is NULL or valid; `out` points to a writable
+ * `swm_attributed_mesh`.
+ */
+int swm_decode_attributed(const uint8_t *data,
+                          size_t len,
+                          const swm_decode_options *opts,
+                          swm_attributed_mesh *out);
+
+/**
+ * Releases everything a [`swm_decode_attributed`] handed over and zeroes
+ * `*m`. NULL, a zeroed mesh and a mesh already freed are accepted.
+ *
+ * # Safety
+ * `m` is NULL or points to a `swm_attributed_mesh` that is zeroed or was
+ * filled by this library and not modified since.
+ */
+void swm_attributed_mesh_free(swm_attributed_mesh *m);
 
 #ifdef __cplusplus
 }  // extern "C"

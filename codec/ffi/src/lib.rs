@@ -7,6 +7,9 @@
 //!   hand them over in a [`swm_mesh`]; only [`swm_mesh_free`] may release
 //!   them (it also accepts a zeroed or already freed mesh). On failure the
 //!   mesh is left zeroed, so freeing it is always safe.
+//! - [`swm_decode_attributed`] does the same with the file's attribute
+//!   streams (normals, texture coordinates, colours), per vertex, in a
+//!   [`swm_attributed_mesh`] that [`swm_attributed_mesh_free`] releases.
 //! - [`swm_decode_into`] writes into caller-owned arrays sized with
 //!   [`swm_decoded_len`] and allocates nothing the caller must free.
 //! - Every function is reentrant; the error message of the last failed
@@ -28,6 +31,12 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::ptr;
 
 use swm::{DecodeOptions, Error, Limits};
+
+mod attributes;
+pub use attributes::{
+    swm_attribute, swm_attributed_mesh, swm_attributed_mesh_free, swm_decode_attributed,
+    SWM_ATTRIBUTE_COLOR, SWM_ATTRIBUTE_GENERIC, SWM_ATTRIBUTE_NORMAL, SWM_ATTRIBUTE_TEXCOORD,
+};
 
 /// Success.
 pub const SWM_OK: c_int = 0;

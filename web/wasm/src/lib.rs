@@ -91,6 +91,28 @@ pub struct Output {
     /// The subdivision level of a displaced file's mesh handed out by
     /// [`swm_stream_push`]; -1 for a whole file's decode.
     pub level: i32,
+    /// `attribute_count` stream descriptors (a lossless file's `ATTR`;
+    /// NULL when there are none). With streams the mesh is split at
+    /// seams (`AttributedMesh::split_vertices`), so each stream has a
+    /// value per vertex, as a vertex buffer wants.
+    pub attributes: *const Attribute,
+    /// Number of streams.
+    pub attribute_count: usize,
+}
+
+/// One attribute stream of an [`Output`]: 32-bit fields, in this order.
+#[repr(C)]
+#[derive(Debug)]
+pub struct Attribute {
+    /// 1 normals, 2 texture coordinates, 3 colours, 4 generic (the C
+    /// ABI's `SWM_ATTRIBUTE_*`); 0 a kind this module does not name.
+    pub kind: u32,
+    /// The set (`TEXCOORD_n`, `COLOR_n`) or the generic stream's number.
+    pub set: u32,
+    /// Floats per vertex, 1 to 4.
+    pub dims: u32,
+    /// `dims * vertex_count` floats.
+    pub values: *const f32,
 }
 
 /// The `Output` and what its pointers point into. `repr(C)` with `out`
@@ -100,6 +122,8 @@ struct Owned {
     out: Output,
     _mesh: TriMesh,
     _normals: Vec<[f32; 3]>,
+    _streams: Vec<swm::AttributeStream>,
+    _attributes: Vec<Attribute>,
     _message: String,
 }
 
@@ -336,16 +360,55 @@ fn limits(vertices: f64, faces: f64, alloc_bytes: f64) -> Option<Limits> {
 }
 
 fn decode(bytes: &[u8], options: &DecodeOptions, with_normals: bool) -> Owned {
-    let result = swm::decode(bytes, options).and_then(|mesh| {
-        // The file was parsed and checked by `decode`; this second parse
-        // (one CRC pass over the file) only reads the header's version
-        // and mode, through the public container API.
+    let result = swm::decode_attributed(bytes, options).and_then(|decoded| {
+        // The file was parsed and checked by `decode_attributed`; this
+        // second parse (one CRC pass over the file) only reads the
+        // header's version and mode, through the public container API.
         let header = swm::container::parse_container(bytes, &options.limits)?.header;
-        Ok((mesh, header))
+        Ok((decoded, header))
     });
     match result {
-        Ok((mesh, header)) => owned(mesh, &header, with_normals, -1),
+        Ok((decoded, header)) => {
+            // Without streams the split is the identity: skip its sort.
+            let decoded = match decoded.streams.is_empty() {
+                true => decoded,
+                false => decoded.split_vertices(),
+            };
+            let mut o = owned(decoded.mesh, &header, with_normals, -1);
+            o.attach(decoded.streams);
+            o
+        }
         Err(e) => failure(status_of(&e), message(&e)),
+    }
+}
+
+impl Owned {
+    /// Hands the streams out through `out.attributes`.
+    fn attach(&mut self, streams: Vec<swm::AttributeStream>) {
+        self._attributes = streams
+            .iter()
+            .map(|s| {
+                let (kind, set) = match s.kind {
+                    swm::AttributeKind::Normal => (1, 0),
+                    swm::AttributeKind::TexCoord(n) => (2, n.into()),
+                    swm::AttributeKind::Color(n) => (3, n.into()),
+                    swm::AttributeKind::Generic(n) => (4, n.into()),
+                    _ => (0, 0),
+                };
+                Attribute {
+                    kind,
+                    set,
+                    dims: s.dims.into(),
+                    values: s.values.as_ptr(),
+                }
+            })
+            .collect();
+        // As in `owned`: moving the vectors keeps their heap buffers.
+        self._streams = streams;
+        if !self._attributes.is_empty() {
+            self.out.attributes = self._attributes.as_ptr();
+            self.out.attribute_count = self._attributes.len();
+        }
     }
 }
 
@@ -373,6 +436,8 @@ fn owned(mesh: TriMesh, header: &swm::container::Header, with_normals: bool, lev
         major: header.major.into(),
         minor: header.minor.into(),
         level,
+        attributes: ptr::null(),
+        attribute_count: 0,
     };
     // Moving the vectors into `Owned` moves their headers, not their heap
     // buffers, so the pointers above stay valid.
@@ -380,6 +445,8 @@ fn owned(mesh: TriMesh, header: &swm::container::Header, with_normals: bool, lev
         out,
         _mesh: mesh,
         _normals: normals,
+        _streams: Vec::new(),
+        _attributes: Vec::new(),
         _message: String::new(),
     }
 }
@@ -399,9 +466,13 @@ fn failure(status: u32, message: String) -> Owned {
             major: 0,
             minor: 0,
             level: -1,
+            attributes: ptr::null(),
+            attribute_count: 0,
         },
         _mesh: TriMesh::default(),
         _normals: Vec::new(),
+        _streams: Vec::new(),
+        _attributes: Vec::new(),
         _message: message,
     }
 }

@@ -295,3 +295,44 @@ fn null_and_empty_blocks_are_accepted() {
         swm_output_free(ptr::null_mut());
     }
 }
+
+/// The golden attribute file (format 1.2's `ATTR`): the mesh split at
+/// seams and each stream per vertex, as the library's
+/// `decode_attributed(..).split_vertices()` gives them; a file without
+/// streams hands out none; every truncation is an error, not a trap.
+#[test]
+fn attribute_streams_come_split_per_vertex() {
+    let bytes = golden("lossless-attr-v1.2.swm");
+    let want = swm::decode_attributed(&bytes, &DecodeOptions::default())
+        .unwrap()
+        .split_vertices();
+    assert!(!want.streams.is_empty());
+    let out = call(&bytes, -1, -1, false, DEFAULT);
+    // SAFETY: a live Output from `swm_decode`; its descriptors hold
+    // `attribute_count` entries, each `dims * vertex_count` floats.
+    unsafe {
+        let o = &*out;
+        assert_eq!(o.status, STATUS_OK, "{}", message(o));
+        let (p, t, _) = arrays(o);
+        assert_eq!(p, want.mesh.positions.as_flattened());
+        assert_eq!(t, want.mesh.triangles.as_flattened());
+        let descs = core::slice::from_raw_parts(o.attributes, o.attribute_count);
+        assert_eq!(descs.len(), want.streams.len());
+        for (d, s) in descs.iter().zip(&want.streams) {
+            assert!((1..=4).contains(&d.kind), "{:?}", s.kind);
+            assert_eq!(d.dims, u32::from(s.dims));
+            let values = core::slice::from_raw_parts(d.values, s.values.len());
+            assert_eq!(values, &s.values[..], "{:?}", s.kind);
+        }
+        swm_output_free(out);
+        let plain = call(&golden("lossless-v1.0.swm"), -1, -1, false, DEFAULT);
+        assert!((*plain).attributes.is_null() && (*plain).attribute_count == 0);
+        swm_output_free(plain);
+        for cut in 0..bytes.len() {
+            let out = call(&bytes[..cut], -1, -1, false, DEFAULT);
+            assert_ne!((*out).status, STATUS_OK, "cut {cut}");
+            assert!((*out).attributes.is_null());
+            swm_output_free(out);
+        }
+    }
+}
