@@ -221,7 +221,10 @@ fn rounding_shows(s: &Simplifier<'_>, qp: u8) -> bool {
     let (mut sum, mut n) = (0.0f64, 0u64);
     for t in &m.triangles {
         for k in 0..3 {
-            let (a, b) = (m.positions[t[k] as usize], m.positions[t[(k + 1) % 3] as usize]);
+            let (a, b) = (
+                m.positions[t[k] as usize],
+                m.positions[t[(k + 1) % 3] as usize],
+            );
             let d: f64 = (0..3).map(|i| (a[i] as f64 - b[i] as f64).powi(2)).sum();
             sum += d.sqrt();
             n += 1;
