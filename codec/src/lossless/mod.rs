@@ -38,13 +38,11 @@ use crate::container::parse_container;
 use crate::container::{check_count_fits, Container, Tag, KNOWN_CRITICAL};
 #[cfg(feature = "encoder")]
 use crate::container::{write_container, Framing, Header, Mode};
-use crate::edgebreaker::{self, Connectivity, Side, SplitEvent, Symbol};
+use crate::edgebreaker::{self, Connectivity, Side, SplitEvent};
+use crate::entropy::Decoder;
 #[cfg(feature = "encoder")]
 use crate::entropy::Encoder;
-use crate::entropy::{ContextModel, Decoder};
 use crate::geometry::{lossless as geo, Quantizer};
-#[cfg(feature = "encoder")]
-use crate::varint;
 use crate::varint::Reader;
 use crate::CornerTable;
 use crate::{Error, FormatError, Limits, Malformed, TriMesh};
@@ -100,10 +98,6 @@ impl LosslessStats {
             attributes: Vec::new(),
         }
     }
-}
-
-fn bad(why: &'static str) -> Error {
-    Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
 }
 
 #[cfg(feature = "encoder")]

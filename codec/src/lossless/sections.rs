@@ -5,7 +5,26 @@
 //! in the decoder's own contexts). The SwingWrapper mode writes and reads
 //! its `TOPO` and `CLRS` with the same functions.
 
-use super::*;
+use crate::prelude::*;
+
+#[cfg(feature = "encoder")]
+use crate::edgebreaker::Side;
+use crate::edgebreaker::{self, Connectivity, Symbol};
+#[cfg(feature = "encoder")]
+use crate::entropy::Encoder;
+use crate::entropy::{ContextModel, Decoder};
+use crate::geometry::Quantizer;
+#[cfg(feature = "encoder")]
+use crate::varint;
+use crate::varint::Reader;
+use crate::CornerTable;
+use crate::{Error, FormatError, Malformed};
+
+/// A malformed lossless file (here so that `super` and this module share
+/// it without importing each other).
+pub(super) fn bad(why: &'static str) -> Error {
+    Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
+}
 
 // --- HEAD: written and read side by side; must match exactly. ---
 

@@ -2,6 +2,7 @@
 //! corpus meshes, hostile input.
 
 use super::*;
+use crate::varint;
 use crate::CleanOptions;
 
 use crate::io::shared_corpus_mesh as corpus;
