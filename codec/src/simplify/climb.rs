@@ -8,7 +8,7 @@
 //! only on the mesh and the budget (the distance's samples are seeded and
 //! summed in a fixed order), never on the thread count.
 
-use super::faces::{fit_faces, whole_estimate, Fit, Probing, Whole};
+use super::faces::{fit_faces, predicted_qp, Fit, Probing, Whole};
 
 /// The climb's probing.
 fn probing(lean: bool) -> Probing {
@@ -47,11 +47,6 @@ pub enum Climb {
 /// samples to rank neighbouring quantizations), and saved about 2% of
 /// the time.
 pub const LEAN_SAMPLES: u64 = 30_000;
-
-/// A whole-mesh file estimated at this much over the budget is taken as
-/// over it: the estimate is a lower bound below the qp it starts from
-/// and within a few percent above it.
-pub(super) const WHOLE_MARGIN: f64 = 1.05;
 
 /// The fit of lowest measured L2 against `reference` over [`QPS`], and
 /// that L2 relative to the reference's diagonal; `None` when no qp fits
@@ -97,8 +92,7 @@ pub fn best_fit<'r>(
         .iter()
         .find_map(|t| t.fit.as_ref().map(|f| f.faces))
         .unwrap_or(MIN_FACES);
-    let predicted = ((faces.max(1) as f64).log2() - 2.5).round() as i64;
-    let mut qp = predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8;
+    let mut qp = predicted_qp(faces);
     // The start is measured even where the climb does not come back to
     // it: error is not always unimodal in qp on CAD parts (the generated
     // fandisk at 1 b/v: best at qp 10, worse at 9 than at 8).
@@ -294,7 +288,7 @@ impl Climbed {
 
     /// The lean climb's knowledge of the whole mesh's file at `qp`: over
     /// the budget when the estimate from the nearest qp whose file this
-    /// climb made says so by [`WHOLE_MARGIN`]. Only this climb's own
+    /// climb made says so ([`Whole::estimated`]). Only this climb's own
     /// files count, so the bytes never depend on what another search
     /// sharing the simplifier made first.
     fn whole(&self, s: &Simplifier<'_>, qp: u8, budget: u64) -> Whole {
@@ -305,12 +299,7 @@ impl Climbed {
         let Some(&(from, size)) = nearest else {
             return Whole::Encode;
         };
-        let estimate = whole_estimate(size, from, qp, s.mesh.positions.len() as u64);
-        if estimate as f64 > WHOLE_MARGIN * budget as f64 {
-            Whole::Over(estimate)
-        } else {
-            Whole::Encode
-        }
+        Whole::estimated(size, from, qp, s.mesh.positions.len() as u64, budget)
     }
 
     /// The L2 of the fit at `qp` (made before), measured once; `None`

@@ -8,7 +8,7 @@
 //! returns fits the budget; its probes depend only on the mesh, the qp,
 //! the budget and the previous qp's answer (deterministic).
 
-use super::simplifier::{coded, Simplifier, MIN_FACES};
+use super::simplifier::{coded, Simplifier, MIN_FACES, QPS};
 use crate::lossless::LosslessStats;
 use crate::{Error, TriMesh};
 
@@ -376,6 +376,34 @@ pub enum Whole {
     /// starts there without coding it (the lean climb, from a coarser
     /// qp's whole file; [`whole_estimate`]).
     Over(u64),
+}
+
+/// A whole-mesh file estimated at this much over the budget is taken as
+/// over it: the estimate is a lower bound below the qp it starts from
+/// and within a few percent above it.
+const WHOLE_MARGIN: f64 = 1.05;
+
+impl Whole {
+    /// What a search at `qp` knows of the whole mesh's file from its
+    /// `size` at `from` ([`whole_estimate`] over `vertices`): over the
+    /// budget when the estimate says so by [`WHOLE_MARGIN`], else to be
+    /// made.
+    pub(super) fn estimated(size: u64, from: u8, qp: u8, vertices: u64, budget: u64) -> Whole {
+        let estimate = whole_estimate(size, from, qp, vertices);
+        if estimate as f64 > WHOLE_MARGIN * budget as f64 {
+            Whole::Over(estimate)
+        } else {
+            Whole::Encode
+        }
+    }
+}
+
+/// The quantization the bits-per-face model predicts for a
+/// simplification of `faces` faces, log2 F − 2.5, within [`QPS`]: where
+/// the climb starts, and `fast`'s rule where its error model stays.
+pub(super) fn predicted_qp(faces: u32) -> u8 {
+    let predicted = ((faces.max(1) as f64).log2() - 2.5).round() as i64;
+    predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8
 }
 
 /// The whole mesh's file size at `qp` estimated from its `size` at `from`:

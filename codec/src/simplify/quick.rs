@@ -47,8 +47,9 @@
 //! Invariants: every file returned fits the budget; the result depends
 //! only on the mesh and the budget, never on the thread count.
 
-use super::climb::WHOLE_MARGIN;
-use super::faces::{fit_faces, refitted, search_faces, whole_estimate, Fit, Probing, Whole};
+use super::faces::{
+    fit_faces, predicted_qp, refitted, search_faces, whole_estimate, Fit, Probing, Whole,
+};
 use super::simplifier::{file_distance, Simplifier, QPS, QUICK_SAMPLES, START_QP};
 use crate::metrics::Surface;
 use crate::Error;
@@ -124,24 +125,13 @@ pub fn quick_fit<'r>(
     }))
 }
 
-/// The quantization the bits-per-face rule predicts for a mesh of `faces`
-/// faces (as the climb starts, [`super::best_fit`]): log2 F − 2.5.
-fn predicted_qp(faces: u32) -> u8 {
-    let predicted = ((faces.max(1) as f64).log2() - 2.5).round() as i64;
-    predicted.clamp(*QPS.start() as i64, *QPS.end() as i64) as u8
-}
-
 /// What the second size search knows of the whole mesh's file at `qp`:
 /// over the budget without coding it when the first fit's whole file
 /// shows it so (a million triangles take half a second to code).
 fn second_whole(s: &Simplifier<'_>, first: &Fit, qp: u8, budget: u64) -> Result<Whole, Error> {
     let whole = s.whole_bytes(first.qp)?.len() as u64;
-    let estimate = whole_estimate(whole, first.qp, qp, s.mesh.positions.len() as u64);
-    Ok(if estimate as f64 > WHOLE_MARGIN * budget as f64 {
-        Whole::Over(estimate)
-    } else {
-        Whole::Encode
-    })
+    let vertices = s.mesh.positions.len() as u64;
+    Ok(Whole::estimated(whole, first.qp, qp, vertices, budget))
 }
 
 /// The whole mesh fits at `first.qp`: the finest quantization whose
@@ -214,10 +204,7 @@ struct Figures {
 /// that took its encode from 2.1 to 7.5 s of work.
 fn rounding_shows(s: &Simplifier<'_>, qp: u8) -> bool {
     let m = s.mesh;
-    let Some((lo, hi)) = m.bbox() else {
-        return false;
-    };
-    let step = (hi - lo).max_element() / ((1u64 << qp) - 1) as f64;
+    let step = grid_step(grid_side(m), qp);
     let (mut sum, mut n) = (0.0f64, 0u64);
     for t in &m.triangles {
         for k in 0..3 {
@@ -231,6 +218,18 @@ fn rounding_shows(s: &Simplifier<'_>, qp: u8) -> bool {
         }
     }
     n > 0 && step * 16.0 * n as f64 >= sum
+}
+
+/// The side of the cube the lossless mode quantizes `mesh` on: its
+/// bounding box's largest side (0 for an empty mesh).
+fn grid_side(mesh: &crate::TriMesh) -> f64 {
+    mesh.bbox().map_or(0.0, |(lo, hi)| (hi - lo).max_element())
+}
+
+/// One step of the grid of side `side` at `qp` bits, as
+/// `geometry::Quantizer::step` takes it.
+fn grid_step(side: f64, qp: u8) -> f64 {
+    side / ((1u64 << qp) - 1) as f64
 }
 
 /// The error model of the module's docs, calibrated on the first fit.
@@ -251,10 +250,7 @@ struct Model {
 
 impl Model {
     fn new(s: &Simplifier<'_>, first: &Fit, l2: f64, budget: u64) -> Model {
-        let range = s
-            .mesh
-            .bbox()
-            .map_or(0.0, |(lo, hi)| (hi - lo).max_element());
+        let range = grid_side(s.mesh);
         let figures = Figures {
             qp: first.qp,
             faces: first.faces.max(1) as f64,
@@ -286,8 +282,7 @@ impl Model {
 
     /// The modeled quantization error at `qp`.
     fn quantization(&self, qp: u8) -> f64 {
-        let step = self.range / ((1u64 << qp) - 1) as f64;
-        step / 24f64.sqrt()
+        grid_step(self.range, qp) / 24f64.sqrt()
     }
 
     /// The modeled squared L2 of the fit at `qp`, or `None` where the
