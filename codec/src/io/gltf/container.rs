@@ -12,7 +12,7 @@
 //! Invariant: every length is checked against the bytes that remain
 //! before it is used, so no length field can make a slice out of range.
 
-use crate::{Error, FormatError, Location, Malformed};
+use crate::{Error, FormatError, Location, Malformed, ParameterError};
 
 pub(super) const MAGIC: &[u8; 4] = b"glTF";
 pub(super) const VERSION: u32 = 2;
@@ -24,6 +24,24 @@ pub(super) const HEADER_LEN: u64 = 12;
 pub(super) const CHUNK_HEADER_LEN: u64 = 8;
 
 pub(super) const FORMAT: &str = "GLB";
+
+/// The length of a GLB file whose JSON chunk holds `json` bytes and
+/// whose BIN chunk, if any, `bin` (each padded to 4 here); an error when
+/// it does not fit the header's u32 length field (4 GiB). What both GLB
+/// writers put in the header, checked the same way.
+pub(super) fn glb_length(json: u64, bin: Option<u64>) -> Result<u32, Error> {
+    let chunk = |n: u64| CHUNK_HEADER_LEN.saturating_add(n.div_ceil(4).saturating_mul(4));
+    let total = HEADER_LEN
+        .saturating_add(chunk(json))
+        .saturating_add(bin.map_or(0, chunk));
+    u32::try_from(total).map_err(|_| {
+        Error::Parameter(ParameterError::FileTooLarge {
+            format: FORMAT,
+            bytes: total,
+            max: u32::MAX.into(),
+        })
+    })
+}
 
 /// The chunks of a GLB file.
 pub(super) struct Chunks<'a> {

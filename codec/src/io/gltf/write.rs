@@ -36,15 +36,12 @@
 use crate::io::Attributes;
 use crate::mesh::vertex_normals;
 use crate::{
-    AttributeKind, AttributeStream, AttributedMesh, Error, FormatError, Malformed, ParameterError,
-    TriMesh,
+    AttributeKind, AttributeStream, AttributedMesh, Error, FormatError, Malformed, TriMesh,
 };
 use core::fmt::Write as _;
 use std::io::Write;
 
-use super::container::{
-    CHUNK_BIN, CHUNK_HEADER_LEN, CHUNK_JSON, FORMAT, HEADER_LEN, MAGIC, VERSION,
-};
+use super::container::{glb_length, CHUNK_BIN, CHUNK_JSON, MAGIC, VERSION};
 
 /// bufferView targets (the WebGL buffer binding points).
 const ARRAY_BUFFER: u32 = 34962;
@@ -229,22 +226,14 @@ struct Lengths {
 /// `floats` attribute floats per vertex; an error if the file would not
 /// fit the u32 length fields of GLB.
 fn lengths(json: u64, vertices: u64, triangles: u64, floats: u64) -> Result<Lengths, Error> {
-    let mut total = HEADER_LEN + CHUNK_HEADER_LEN + padded(json);
-    let mut bin = 0;
-    if triangles > 0 {
-        // The attributes, then the indices.
-        bin = (4 * floats)
+    // The attributes, then the indices; no BIN chunk without triangles.
+    let bin = match triangles {
+        0 => 0,
+        _ => (4 * floats)
             .saturating_mul(vertices)
-            .saturating_add(12 * triangles);
-        total = total.saturating_add(CHUNK_HEADER_LEN + padded(bin));
-    }
-    let total = u32::try_from(total).map_err(|_| {
-        Error::Parameter(ParameterError::FileTooLarge {
-            format: FORMAT,
-            bytes: total,
-            max: u32::MAX.into(),
-        })
-    })?;
+            .saturating_add(12 * triangles),
+    };
+    let total = glb_length(json, (triangles > 0).then_some(bin))?;
     Ok(Lengths { json, bin, total })
 }
 
@@ -370,6 +359,7 @@ fn json_vec3(v: [f32; 3]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ParameterError;
     use serde_json::Value;
 
     fn glb(mesh: &TriMesh) -> Vec<u8> {

@@ -355,20 +355,21 @@ pub(super) fn write(
     let text = serde_json::to_vec(&json).map_err(|e| Error::Io(e.into()))?;
     Ok(match format {
         SceneFormat::Gltf => text,
-        SceneFormat::Glb => glb(text, bin),
+        SceneFormat::Glb => glb(text, bin)?,
     })
 }
 
-/// A GLB file of a JSON text and a BIN chunk (none when empty).
-fn glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Vec<u8> {
+/// A GLB file of a JSON text and a BIN chunk (none when empty); an
+/// error when it would not fit GLB's u32 length ([`container::glb_length`]).
+fn glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, Error> {
     json.resize(json.len().next_multiple_of(4), b' ');
     bin.resize(bin.len().next_multiple_of(4), 0);
-    let chunk = |len: usize| 8 + len;
-    let total = 12 + chunk(json.len()) + if bin.is_empty() { 0 } else { chunk(bin.len()) };
-    let mut out = Vec::with_capacity(total);
+    let bin_len = (!bin.is_empty()).then_some(bin.len() as u64);
+    let total = container::glb_length(json.len() as u64, bin_len)?;
+    let mut out = Vec::with_capacity(total as usize);
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&total.to_le_bytes());
     out.extend_from_slice(&(json.len() as u32).to_le_bytes());
     out.extend_from_slice(CHUNK_JSON);
     out.extend_from_slice(&json);
@@ -377,7 +378,7 @@ fn glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Vec<u8> {
         out.extend_from_slice(CHUNK_BIN);
         out.extend_from_slice(&bin);
     }
-    out
+    Ok(out)
 }
 
 /// Standard base64 with padding (RFC 4648 §4), for `data:` URIs.
@@ -455,12 +456,12 @@ mod tests {
 
     #[test]
     fn glb_chunks_are_padded_and_split_back() {
-        let bytes = glb(b"{}".to_vec(), vec![1, 2, 3]);
+        let bytes = glb(b"{}".to_vec(), vec![1, 2, 3]).unwrap();
         assert_eq!(bytes.len() % 4, 0);
         let c = container::split(&bytes).unwrap();
         assert_eq!(c.json, b"{}  ");
         assert_eq!(c.bin, Some(&[1u8, 2, 3, 0][..]));
-        let json_only = glb(b"{}".to_vec(), Vec::new());
+        let json_only = glb(b"{}".to_vec(), Vec::new()).unwrap();
         assert_eq!(container::split(&json_only).unwrap().bin, None);
     }
 }
