@@ -40,6 +40,7 @@
 //! collapse keeps the mesh a manifold. The input must be welded
 //! (`clean`): split vertices along seams would be holes to the quadrics.
 
+mod chunked;
 mod climb;
 mod faces;
 mod heap;

@@ -172,7 +172,8 @@ impl<'a> Simplifier<'a> {
     /// (effort `fast`): about a tenth of the time of the quadric collapse
     /// sequence, which it does not make, for a coarser placement (each
     /// vertex stays at one of its ends' positions before the refit;
-    /// BENCHMARKS.md, "Effort levels").
+    /// BENCHMARKS.md, "Effort levels"); a large input in spatial pieces
+    /// on all cores (`chunked`).
     pub fn quick(mesh: &'a TriMesh, framing: Framing) -> Simplifier<'a> {
         Simplifier {
             quick: true,
@@ -315,19 +316,9 @@ fn lossless_file(
 /// above where a collapse would break the topology). No error bound: the
 /// count decides.
 fn meshopt_simplified(mesh: &TriMesh, target: u32) -> TriMesh {
-    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
-    let bytes = meshopt::typed_to_bytes(&mesh.positions);
-    let Ok(vertices) = meshopt::VertexDataAdapter::new(bytes, 12, 0) else {
+    let Some(kept) = super::chunked::simplified_indices(mesh, target) else {
         return mesh.clone();
     };
-    let kept = meshopt::simplify(
-        &indices,
-        &vertices,
-        3 * target as usize,
-        1.0,
-        meshopt::SimplifyOptions::None,
-        None,
-    );
     let triangles: Vec<[u32; 3]> = kept.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     compact(&mesh.positions, &triangles)
 }
