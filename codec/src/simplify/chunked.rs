@@ -55,14 +55,7 @@ pub(super) fn simplified_indices(mesh: &TriMesh, target: u32) -> Option<Vec<u32>
     let vertices = meshopt::VertexDataAdapter::new(bytes, 12, 0).ok()?;
     let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
     let plain = |indices: &[u32], options: meshopt::SimplifyOptions| {
-        meshopt::simplify(
-            indices,
-            &vertices,
-            3 * target as usize,
-            1.0,
-            options,
-            None,
-        )
+        meshopt::simplify(indices, &vertices, 3 * target as usize, 1.0, options, None)
     };
     let faces = mesh.triangles.len();
     if faces < CHUNKED_FACES || (target as usize) >= faces {
@@ -197,7 +190,10 @@ mod tests {
         let target = 5_000u32;
         let indices = simplified_indices(&mesh, target).unwrap();
         let faces = indices.len() / 3;
-        assert!(faces <= target as usize && faces * 10 >= 9 * target as usize, "{faces}");
+        assert!(
+            faces <= target as usize && faces * 10 >= 9 * target as usize,
+            "{faces}"
+        );
         // Closed: every directed edge has its twin.
         let mut edges: Vec<(u32, u32)> = indices
             .chunks_exact(3)
