@@ -95,7 +95,7 @@ pub(super) fn simplified_indices(mesh: &TriMesh, target: u32) -> Option<Vec<u32>
 /// The faces of `mesh` in [`CHUNKS`] pieces of about equal count, each
 /// piece's faces in increasing order: halves at the median face centre
 /// along the longest side of the faces' box, recursively.
-fn pieces(mesh: &TriMesh) -> Vec<Vec<u32>> {
+pub(super) fn pieces(mesh: &TriMesh) -> Vec<Vec<u32>> {
     // Three times the centre: the order is what matters.
     let centres: Vec<[f32; 3]> = mesh
         .triangles
@@ -141,7 +141,7 @@ fn longest_axis(points: impl Iterator<Item = [f32; 3]>) -> usize {
 }
 
 /// Per vertex of `mesh`: used by faces of more than one piece.
-fn cut_vertices(mesh: &TriMesh, pieces: &[Vec<u32>]) -> Vec<bool> {
+pub(super) fn cut_vertices(mesh: &TriMesh, pieces: &[Vec<u32>]) -> Vec<bool> {
     const UNSEEN: u32 = u32::MAX;
     let mut owner = vec![UNSEEN; mesh.positions.len()];
     let mut cut = vec![false; mesh.positions.len()];

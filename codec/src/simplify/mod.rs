@@ -42,6 +42,7 @@
 
 mod chunked;
 mod climb;
+mod collapse_pieces;
 mod faces;
 mod heap;
 pub mod qem;

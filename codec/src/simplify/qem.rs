@@ -159,19 +159,61 @@ fn normal(p: [[f64; 3]; 3]) -> [f64; 3] {
 
 /// One collapse: `gone` merged into `keep`, which moves to `pos`.
 #[derive(Clone, Copy, Debug)]
-struct Step {
-    keep: u32,
-    gone: u32,
-    pos: [f32; 3],
+pub(super) struct Step {
+    pub keep: u32,
+    pub gone: u32,
+    pub pos: [f32; 3],
     /// Faces left after this collapse.
-    faces_after: u32,
+    pub faces_after: u32,
 }
 
 /// The greedy collapse sequence of one mesh.
 #[derive(Clone, Debug)]
 pub struct Collapses {
-    faces: u32,
-    steps: Vec<Step>,
+    pub(super) faces: u32,
+    pub(super) steps: Vec<Step>,
+}
+
+/// The normalised frame collapses are computed in: `(p − centre) ·
+/// scale`, of unit diagonal for the whole mesh.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Frame {
+    centre: [f64; 3],
+    scale: f64,
+}
+
+impl Frame {
+    /// The frame of unit diagonal around `mesh`'s box centre.
+    pub(super) fn of(mesh: &TriMesh) -> Frame {
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for p in &mesh.positions {
+            for i in 0..3 {
+                lo[i] = lo[i].min(p[i] as f64);
+                hi[i] = hi[i].max(p[i] as f64);
+            }
+        }
+        if mesh.positions.is_empty() {
+            return Frame {
+                centre: [0.0; 3],
+                scale: 1.0,
+            };
+        }
+        let d = sub(hi, lo);
+        let diag = dot(d, d).sqrt();
+        let scale = if diag > 0.0 && diag.is_finite() {
+            1.0 / diag
+        } else {
+            1.0
+        };
+        Frame {
+            centre: [
+                0.5 * (lo[0] + hi[0]),
+                0.5 * (lo[1] + hi[1]),
+                0.5 * (lo[2] + hi[2]),
+            ],
+            scale,
+        }
+    }
 }
 
 /// A heap entry: the edge (`a`, `b`) as it was when both ends had these
@@ -189,7 +231,7 @@ struct Entry {
     sb: u32,
 }
 
-struct State {
+pub(super) struct State {
     pos: Vec<[f64; 3]>,
     quadric: Vec<Quadric>,
     tris: Vec<[u32; 3]>,
@@ -206,49 +248,17 @@ struct State {
     /// Maps the normalised frame back to the input's.
     centre: [f64; 3],
     scale: f64,
+    /// Vertices never collapsed nor moved (empty: none).
+    locked: Vec<bool>,
 }
 
 impl Collapses {
     /// Collapses `mesh` (an oriented manifold) greedily until `floor`
     /// faces are left or no collapse is allowed.
     pub fn run(mesh: &TriMesh, floor: u32) -> Collapses {
-        let mut s = State::new(mesh);
+        let mut s = State::new(mesh, Frame::of(mesh), None);
         let mut steps = Vec::new();
-        let mut ring = Vec::new();
-        let mut scratch = Vec::new();
-        while s.faces > floor {
-            let Some(e) = s.heap.pop() else {
-                break;
-            };
-            if !s.current(&e) {
-                continue;
-            }
-            let (a, b) = (e.a as usize, e.b as usize);
-            let (_, v) = s.candidate(a, b);
-            if !s.allowed(a, b, v, &mut ring, &mut scratch) {
-                s.retry[a] = true;
-                s.retry[b] = true;
-                continue;
-            }
-            s.collapse(a, b, v, &mut ring);
-            steps.push(Step {
-                keep: a as u32,
-                gone: b as u32,
-                pos: s.output(v),
-                faces_after: s.faces,
-            });
-            // Stale entries past half the live edges (about 3/2 per
-            // face): drop them. Stale is for good (vertices never come
-            // back, stamps only grow), so the current entries, and the
-            // order they pop in, stay as they were; the queue stays
-            // short and most pops find a current entry (on bunny-1m 1.2
-            // million pops instead of 5.6 million, 10 s to 5.4 s).
-            if 2 * s.heap.len() > 3 * (3 * s.faces as usize / 2 + 64) {
-                let mut heap = core::mem::replace(&mut s.heap, Heap::with_capacity(0));
-                heap.retain(|e| s.current(e));
-                s.heap = heap;
-            }
-        }
+        greedy(&mut s, floor, |step, _| steps.push(step));
         Collapses {
             faces: mesh.face_count() as u32,
             steps,
@@ -293,37 +303,55 @@ impl Collapses {
     }
 }
 
+/// Collapses greedily until `floor` faces are left or no collapse is
+/// allowed, handing each collapse and its cost to `record` in order.
+pub(super) fn greedy(s: &mut State, floor: u32, mut record: impl FnMut(Step, f64)) {
+    let mut ring = Vec::new();
+    let mut scratch = Vec::new();
+    while s.faces > floor {
+        let Some(e) = s.heap.pop() else {
+            break;
+        };
+        if !s.current(&e) {
+            continue;
+        }
+        let (a, b) = (e.a as usize, e.b as usize);
+        let (_, v) = s.candidate(a, b);
+        if !s.allowed(a, b, v, &mut ring, &mut scratch) {
+            s.retry[a] = true;
+            s.retry[b] = true;
+            continue;
+        }
+        s.collapse(a, b, v, &mut ring);
+        let step = Step {
+            keep: a as u32,
+            gone: b as u32,
+            pos: s.output(v),
+            faces_after: s.faces,
+        };
+        record(step, f64::from_bits(e.cost));
+        // Stale entries past half the live edges (about 3/2 per
+        // face): drop them. Stale is for good (vertices never come
+        // back, stamps only grow), so the current entries, and the
+        // order they pop in, stay as they were; the queue stays
+        // short and most pops find a current entry (on bunny-1m 1.2
+        // million pops instead of 5.6 million, 10 s to 5.4 s).
+        if 2 * s.heap.len() > 3 * (3 * s.faces as usize / 2 + 64) {
+            let mut heap = core::mem::replace(&mut s.heap, Heap::with_capacity(0));
+            heap.retain(|e| s.current(e));
+            s.heap = heap;
+        }
+    }
+}
+
 impl State {
-    fn new(mesh: &TriMesh) -> State {
+    /// The state of `mesh` in `frame`; the vertices `locked` marks
+    /// (when given) are never collapsed nor moved.
+    pub(super) fn new(mesh: &TriMesh, frame: Frame, locked: Option<Vec<bool>>) -> State {
         let n = mesh.vertex_count();
         // A frame of unit diagonal around the box centre: costs compare
         // across meshes and the regularisation's scale is the mesh's.
-        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-        for p in &mesh.positions {
-            for i in 0..3 {
-                lo[i] = lo[i].min(p[i] as f64);
-                hi[i] = hi[i].max(p[i] as f64);
-            }
-        }
-        let (centre, scale) = if n == 0 {
-            ([0.0; 3], 1.0)
-        } else {
-            let d = sub(hi, lo);
-            let diag = dot(d, d).sqrt();
-            let scale = if diag > 0.0 && diag.is_finite() {
-                1.0 / diag
-            } else {
-                1.0
-            };
-            (
-                [
-                    0.5 * (lo[0] + hi[0]),
-                    0.5 * (lo[1] + hi[1]),
-                    0.5 * (lo[2] + hi[2]),
-                ],
-                scale,
-            )
-        };
+        let Frame { centre, scale } = frame;
         let pos: Vec<[f64; 3]> = mesh
             .positions
             .iter()
@@ -394,6 +422,7 @@ impl State {
             faces: mesh.face_count() as u32,
             centre,
             scale,
+            locked: locked.unwrap_or_default(),
         };
         let mut ring = Vec::new();
         for v in 0..n {
@@ -466,6 +495,9 @@ impl State {
     }
 
     fn push(&mut self, a: usize, b: usize) {
+        if !self.locked.is_empty() && (self.locked[a] || self.locked[b]) {
+            return;
+        }
         let (cost, _) = self.candidate(a, b);
         self.heap.push(Entry {
             cost: cost.to_bits(),

@@ -9,7 +9,7 @@
 //! (`Simplifier::whole_file`): a search over quantizations of the whole
 //! mesh pays for its connectivity once, not once per quantization.
 
-use super::{qem, refit};
+use super::{collapse_pieces, qem, refit};
 use crate::container::Framing;
 use crate::metrics::{DistanceOptions, Surface, SurfaceDistance};
 use crate::swing::retile::valence::{max_valence, MAX_VALENCE};
@@ -216,7 +216,7 @@ impl<'a> Simplifier<'a> {
         }
         let c = self
             .collapses
-            .get_or_init(|| qem::Collapses::run(&self.work, MIN_FACES));
+            .get_or_init(|| collapse_pieces::collapses(&self.work, MIN_FACES));
         let r = c.replay(&self.work, target);
         compact(&r.positions, &r.triangles)
     }
@@ -234,7 +234,7 @@ impl<'a> Simplifier<'a> {
         if target < self.faces() && !self.quick {
             let c = self
                 .collapses
-                .get_or_init(|| qem::Collapses::run(&self.work, MIN_FACES));
+                .get_or_init(|| collapse_pieces::collapses(&self.work, MIN_FACES));
             let r = c.replay(&self.work, target);
             // The order `compact` numbers them in: first use.
             let mut seen = vec![false; r.positions.len()];
