@@ -17,6 +17,26 @@ export class SWMWorker {
     options?: DecodeOptions,
     how?: { transfer?: boolean },
   ): Promise<DecodedMesh>;
+  /** Calls sent to this worker that have not come back yet. */
+  readonly queued: number;
+  terminate(): void;
+}
+
+export interface SWMWorkerPoolOptions extends SWMWorkerOptions {
+  /** Most workers (default: the cores less one, at most four). */
+  size?: number;
+}
+
+/** Up to `size` SWMWorkers, started as needed; each call goes to the least busy. */
+export class SWMWorkerPool {
+  constructor(options?: SWMWorkerPoolOptions);
+  readonly size: number;
+  decode(
+    bytes: ArrayBuffer | ArrayBufferView,
+    options?: DecodeOptions,
+    how?: { transfer?: boolean },
+  ): Promise<DecodedMesh>;
+  /** Stops every worker; calls still waiting fail. */
   terminate(): void;
 }
 
