@@ -121,7 +121,7 @@ export class SWMMeshCompressionExtension {
         );
       }
       return files.get(view).catch((e) => {
-        throw new SWMError(`${where(c)}: ${e.message}`, e.code ?? 'format');
+        throw new SWMError(`${where(c)}: ${e.message}`, e.code ?? 'load');
       });
     });
     // Every decode settles before the first error is thrown, so that no

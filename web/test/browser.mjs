@@ -8,7 +8,7 @@
 // glTF plugin (src/gltf.js) with a pool of workers loads the coded scene
 // of tests/web.rs as `swm decode` expands it, its PNG texture decoded,
 // and rejects damage; the viewer opens the .glb and draws the same
-// pixels as for the expanded scene.
+// pixels as for the expanded scene, and opens its sample scene.
 //
 //   SWM_WEB_CASES=DIR node test/browser.mjs --chromium /usr/bin/chromium
 //     [--bench FILE.swm [--runs N]] [--screenshot OUT.png FILE.swm]
@@ -95,6 +95,7 @@ async function main() {
       await checkDecodes(page, data);
       await checkViewer(page, data);
       await checkGltf(page, data, problems);
+      await checkSample(page, origin);
       await checkStreaming(page, origin, data);
       assert.deepEqual(problems, [], 'the page logged errors');
       console.log(`browser: ${data.cases.length} files, ${await browser.version()}: ok`);
@@ -411,6 +412,22 @@ async function checkGltf(page, data, problems) {
   assert.ok(differ <= total / 1000, `${differ} of ${total} pixels differ between the coded and the expanded scene`);
   const mode = await page.$eval('#mode', (e) => e.textContent);
   assert.equal(mode, 'glTF, 0 of 3 primitives swm');
+}
+
+/** The sample scene the viewer offers (demo/sample-scene.glb) opens and is drawn. */
+async function checkSample(page, origin) {
+  await page.goto(`${origin}/demo/`);
+  await waitState(page, 'ready');
+  await Promise.all([page.waitForNavigation(), page.click('a[href="?file=sample-scene.glb"]')]);
+  await page.waitForFunction(() => ['shown', 'error'].includes(document.body.dataset.state));
+  const got = await page.evaluate(() => ({
+    state: document.body.dataset.state,
+    mode: document.getElementById('mode').textContent,
+    error: document.getElementById('error').textContent,
+  }));
+  assert.deepEqual(got, { state: 'shown', mode: 'glTF, 3 of 3 primitives swm', error: '' });
+  const { drawn, total } = await drawnPixels(page);
+  assert.ok(drawn > total / 50, `the sample scene covers ${drawn} of ${total} pixels`);
 }
 
 /**
