@@ -79,7 +79,8 @@ export class SWMMeshCompressionExtension {
     this.name = EXTENSION_NAME;
     this.parser = parser;
     this.decoder = decoder ?? new PageThreadDecoder(options.wasm);
-    this.limits = { ...DEFAULT_LIMITS, ...options.limits };
+    // Each limit left out (or undefined) is DEFAULT_LIMITS'.
+    this.limits = Object.fromEntries(Object.entries(DEFAULT_LIMITS).map(([k, v]) => [k, options.limits?.[k] ?? v]));
     /** Bytes of the bufferViews this plugin appended, by index. */
     this.views = new Map();
     /** What was decoded, one entry per coded primitive (also in gltf.userData.swm after the load). */
@@ -90,9 +91,10 @@ export class SWMMeshCompressionExtension {
   beforeRoot() {
     const json = this.parser.json;
     const coded = [];
-    (json.meshes ?? []).forEach((mesh, m) => {
-      (mesh.primitives ?? []).forEach((primitive, k) => {
-        const ext = primitive.extensions?.[EXTENSION_NAME];
+    const list = (x) => (Array.isArray(x) ? x : []);
+    list(json.meshes).forEach((mesh, m) => {
+      list(mesh?.primitives).forEach((primitive, k) => {
+        const ext = primitive?.extensions?.[EXTENSION_NAME];
         if (ext !== undefined) coded.push({ m, k, primitive, ext });
       });
     });
@@ -142,7 +144,13 @@ export class SWMMeshCompressionExtension {
           'limit',
         );
       }
-      this.fill(c, mesh, filled);
+      try {
+        this.fill(c, mesh, filled);
+      } catch (e) {
+        // What the checks did not foresee in a hostile document (a null
+        // where an object belongs) is malformed too, and says where.
+        throw e instanceof SWMError ? e : malformed(c, e.message);
+      }
       this.primitives.push({ mesh: c.m, primitive: c.k, ...mesh.info, bytes, decodeMs: ms });
     });
   }
@@ -157,9 +165,14 @@ export class SWMMeshCompressionExtension {
     const p = c.primitive;
     const count = mesh.info.vertices;
     if (p.mode !== undefined && p.mode !== TRIANGLES) throw malformed(c, `its mode is ${p.mode}, not TRIANGLES`);
-    const attributes = p.attributes ?? {};
+    const attributes = p.attributes;
+    if (typeof attributes !== 'object' || attributes === null || Array.isArray(attributes)) {
+      throw malformed(c, 'its attributes are not an object');
+    }
     const accessor = (name, index) => {
-      if (!isIndex(index) || index >= (json.accessors?.length ?? 0)) throw malformed(c, `${name} names no accessor`);
+      if (!isIndex(index) || typeof json.accessors?.[index] !== 'object' || json.accessors[index] === null) {
+        throw malformed(c, `${name} names no accessor`);
+      }
       if (filled.has(index)) throw malformed(c, `accessor ${index} (${name}) is filled by two coded primitives`);
       filled.add(index);
       return index;
@@ -205,7 +218,7 @@ export class SWMMeshCompressionExtension {
 
     // The streams the extension maps.
     const ids = c.ext.attributes ?? {};
-    if (typeof ids !== 'object' || Array.isArray(ids)) throw malformed(c, 'its attributes are not an object');
+    if (typeof ids !== 'object' || ids === null || Array.isArray(ids)) throw malformed(c, 'its extension\'s attributes are not an object');
     for (const [name, id] of Object.entries(ids)) {
       const stream = isIndex(id) ? mesh.attributes?.[id] : undefined;
       if (!stream || semantic(stream) !== name) {

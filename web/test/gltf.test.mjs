@@ -263,6 +263,12 @@ test('lies and damage in the coded document reject the load, naming the primitiv
   await rejects(edited((json) => { p(json, 2).attributes.POSITION = p(json, 0).attributes.POSITION; }), 'format', 'filled by two');
   // An attribute the file does not carry, of another count.
   await rejects(edited((json) => { p(json, 2).attributes.TEXCOORD_0 = p(json, 0).attributes.TEXCOORD_0; }), 'format', `${where(2)}: malformed: TEXCOORD_0`);
+  // JSON of the wrong shapes.
+  await rejects(edited((json) => { p(json, 0).extensions[EXTENSION_NAME] = null; }), 'format', `${where(0)}: malformed`);
+  await rejects(edited((json) => { ext(json, 0).attributes = [0]; }), 'format', `${where(0)}: malformed`);
+  await rejects(edited((json) => { p(json, 0).attributes = 'POSITION'; }), 'format', `${where(0)}: malformed`);
+  await rejects(edited((json) => { json.accessors[p(json, 0).attributes.NORMAL] = null; }), 'format', `${where(0)}: malformed: NORMAL`);
+  await rejects(edited((json) => { json.accessors[p(json, 0).indices] = 7; }), 'format', `${where(0)}: malformed: indices`);
   // Limits, per file and over the document.
   await rejects(coded, 'limit', where(1), { limits: { maxVertices: 100 } });
   await rejects(coded, 'limit', 'over the limits', { limits: { maxFaces: 1400 } });
