@@ -290,7 +290,11 @@ fn checker_png() -> Vec<u8> {
         raw.push(0); // filter: none
         for x in 0..SIDE {
             let light = (x / 4 + y / 4) % 2 == 0;
-            raw.extend(if light { [230, 200, 120] } else { [40, 90, 160] });
+            raw.extend(if light {
+                [230, 200, 120]
+            } else {
+                [40, 90, 160]
+            });
         }
     }
     let crc32 = |bytes: &[u8]| {
@@ -298,7 +302,11 @@ fn checker_png() -> Vec<u8> {
         for &b in bytes {
             c ^= u32::from(b);
             for _ in 0..8 {
-                c = if c & 1 == 1 { (c >> 1) ^ 0xedb8_8320 } else { c >> 1 };
+                c = if c & 1 == 1 {
+                    (c >> 1) ^ 0xedb8_8320
+                } else {
+                    c >> 1
+                };
             }
         }
         !c
@@ -481,7 +489,12 @@ fn scene_case(dir: &Path) -> serde_json::Value {
     });
     let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
     std::fs::write(path("scene.glb"), common::glb(&doc, &b.bin)).unwrap();
-    common::ok(&common::swm(&["encode", &path("scene.glb"), "-o", &path("scene.swm.glb")]));
+    common::ok(&common::swm(&[
+        "encode",
+        &path("scene.glb"),
+        "-o",
+        &path("scene.swm.glb"),
+    ]));
     common::ok(&common::swm(&[
         "encode",
         &path("scene.glb"),
@@ -489,7 +502,12 @@ fn scene_case(dir: &Path) -> serde_json::Value {
         &path("scene.fallback.glb"),
         "--gltf-fallback",
     ]));
-    common::ok(&common::swm(&["decode", &path("scene.swm.glb"), "-o", &path("scene.decoded.glb")]));
+    common::ok(&common::swm(&[
+        "decode",
+        &path("scene.swm.glb"),
+        "-o",
+        &path("scene.decoded.glb"),
+    ]));
     json!({
         "plain": "scene.glb",
         "coded": "scene.swm.glb",
