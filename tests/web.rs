@@ -459,6 +459,8 @@ fn scene_case(dir: &Path) -> serde_json::Value {
     let i = b.indices(&ring.triangles);
     primitives.push(json!({ "attributes": { "POSITION": p }, "indices": i, "material": 1 }));
     let image = b.view(&checker_png(), None);
+    // A quarter turn about x.
+    let h = std::f32::consts::FRAC_1_SQRT_2;
     let doc = json!({
         "asset": { "version": "2.0", "generator": "swm tests/web.rs" },
         "scene": 0,
@@ -467,7 +469,7 @@ fn scene_case(dir: &Path) -> serde_json::Value {
             { "name": "world", "children": [1, 2, 3, 5] },
             { "name": "crate", "mesh": 0, "translation": [-1.6, 0.0, 0.0], "rotation": [0.0, 0.258819, 0.0, 0.9659258] },
             { "name": "arm", "translation": [1.6, 0.0, 0.0], "scale": [0.75, 0.75, 0.75], "children": [4] },
-            { "name": "ring", "mesh": 2, "translation": [0.0, -1.1, 0.0], "rotation": [0.7071068, 0.0, 0.0, 0.7071068] },
+            { "name": "ring", "mesh": 2, "translation": [0.0, -1.1, 0.0], "rotation": [h, 0.0, 0.0, h] },
             { "name": "ball", "mesh": 1, "translation": [0.0, 0.5, 0.0] },
             { "name": "small crate", "mesh": 0, "translation": [0.0, 1.1, 0.0], "scale": [0.5, 0.5, 0.5] }
         ],
