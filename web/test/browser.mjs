@@ -11,7 +11,7 @@
 // pixels as for the expanded scene, and opens its sample scene.
 //
 //   SWM_WEB_CASES=DIR node test/browser.mjs --chromium /usr/bin/chromium
-//     [--bench FILE.swm [--runs N]] [--screenshot OUT.png FILE.swm]
+//     [--bench FILE.swm [--runs N]] [--screenshot OUT.png FILE.swm|FILE.glb [--viewport WxH]]
 //
 // --bench times decode() of FILE on the page's thread (after warm-up) and
 // prints the figures as JSON; --screenshot writes the viewer showing
@@ -67,7 +67,7 @@ async function main() {
     executablePath,
     headless: true,
     args: [...FLAGS, `--user-data-dir=${profile}`],
-    defaultViewport: { width: 800, height: 600 },
+    defaultViewport: viewport(option('--viewport') ?? '800x600'),
     timeout: TIMEOUT,
   });
   try {
@@ -105,6 +105,13 @@ async function main() {
     server.close();
     rmSync(profile, { recursive: true, force: true });
   }
+}
+
+/** Puppeteer's viewport of a "WxH" option. */
+function viewport(size) {
+  const [width, height] = size.split('x').map(Number);
+  if (!(width > 0 && height > 0)) fail(`--viewport wants WxH, not ${size}`);
+  return { width, height };
 }
 
 function fail(message) {
