@@ -1,5 +1,5 @@
 // Types of worker.js, kept by hand beside it.
-import type { DecodedMesh, DecodeOptions, WasmSource } from './swm.js';
+import type { DecodedMesh, DecodeOptions, SWMError, WasmSource } from './swm.js';
 
 export interface SWMWorkerOptions {
   /** Where swm.wasm is (default: beside the package). */
@@ -19,6 +19,8 @@ export class SWMWorker {
   ): Promise<DecodedMesh>;
   /** Calls sent to this worker that have not come back yet. */
   readonly queued: number;
+  /** Once the worker failed to start or was terminated, the error every call rejects with; else null. */
+  readonly failed: SWMError | null;
   terminate(): void;
 }
 

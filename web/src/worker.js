@@ -20,6 +20,8 @@ export class SWMWorker {
       : new URL(String(wasm), globalThis.location?.href).href;
     this.pending = new Map();
     this.next = 0;
+    /** The SWMError every call gets once the worker failed to start or was terminated; null while it works. */
+    this.failed = null;
     this.worker.onmessage = ({ data }) => {
       const p = this.pending.get(data.id);
       if (!p) return;
@@ -29,10 +31,9 @@ export class SWMWorker {
     };
     this.worker.onerror = (event) => {
       // The worker could not start (script or module not found): every
-      // waiting call fails with the browser's reason.
-      const error = new SWMError(`swm worker failed: ${event.message ?? 'cannot load the worker'}`, 'load');
-      for (const p of this.pending.values()) p.reject(error);
-      this.pending.clear();
+      // waiting call fails with the browser's reason, and so does every
+      // later one, which the dead worker would never answer.
+      this.fail(new SWMError(`swm worker failed: ${event.message ?? 'cannot load the worker'}`, 'load'));
     };
   }
 
@@ -46,6 +47,7 @@ export class SWMWorker {
     if (bytes instanceof ArrayBuffer) buffer = transfer ? bytes : bytes.slice(0);
     else if (ArrayBuffer.isView(bytes)) buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
     else return Promise.reject(new SWMError('decode: bytes must be an ArrayBuffer or a typed array', 'argument'));
+    if (this.failed) return Promise.reject(this.failed);
     const id = this.next++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject });
@@ -58,10 +60,15 @@ export class SWMWorker {
     return this.pending.size;
   }
 
-  /** Stops the worker; calls still waiting fail. */
+  /** Stops the worker; calls still waiting fail, and so do later ones. */
   terminate() {
     this.worker.terminate();
-    const error = new SWMError('swm worker terminated', 'terminated');
+    this.fail(new SWMError('swm worker terminated', 'terminated'));
+  }
+
+  /** Fails every waiting call and every later one with `error`. */
+  fail(error) {
+    this.failed ??= error;
     for (const p of this.pending.values()) p.reject(error);
     this.pending.clear();
   }
@@ -98,6 +105,8 @@ export class SWMWorkerPool {
 
   /** Decodes like SWMWorker's decode(), in the least busy worker. */
   decode(bytes, options = {}, how = {}) {
+    // A worker that failed to start answers nothing: a new one takes its place.
+    this.workers = this.workers.filter((w) => !w.failed);
     let worker = this.workers.find((w) => w.queued === 0);
     if (!worker && this.workers.length < this.size) {
       worker = new SWMWorker(this.options);

@@ -386,18 +386,30 @@ async function checkGltf(page, data, problems) {
     const { GLTFLoader } = await import('three/addons/loaders/GLTFLoader.js');
     const { SWMMeshCompressionExtension } = await import('/src/gltf.js');
     const { SWMWorkerPool } = await import('/src/worker.js');
+    const { SWMWorker } = await import('/src/worker.js');
     const pool = new SWMWorkerPool({ workerUrl: '/no-such-worker.js' });
     const loader = new GLTFLoader().register((parser) => new SWMMeshCompressionExtension(parser, pool));
-    try {
-      await loader.loadAsync(url);
-      return null;
-    } catch (e) {
-      return e.message;
-    } finally {
-      pool.terminate();
+    const messages = [];
+    // Twice: the second load must not wait on the dead workers of the first.
+    for (let i = 0; i < 2; i++) {
+      try {
+        await loader.loadAsync(url);
+        messages.push(null);
+      } catch (e) {
+        messages.push(e.message);
+      }
     }
+    pool.terminate();
+    // A terminated worker refuses work instead of leaving it waiting.
+    const worker = new SWMWorker();
+    worker.terminate();
+    const late = await worker.decode(new Uint8Array(4)).then(() => null, (e) => e.code);
+    return { messages, late };
   }, `/cases/${scene.coded}`);
-  assert.match(stuck ?? '', /^SWM_mesh_compression: mesh \d primitive 0: swm worker failed/);
+  for (const message of stuck.messages) {
+    assert.match(message ?? '', /^SWM_mesh_compression: mesh \d primitive 0: swm worker failed/);
+  }
+  assert.equal(stuck.late, 'terminated');
   // Its 404 is expected, not a problem of the page.
   problems.splice(before, problems.length - before, ...problems.slice(before).filter((p) => !p.includes('no-such-worker')));
 
