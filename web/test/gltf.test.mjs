@@ -8,13 +8,16 @@
 // names the primitive (each prefix of a .swm file included).
 // Run by tests/web.rs with the other Node test (SWM_WEB_CASES=DIR).
 // Node has no image decoding, so a stand-in plugin gives each texture
-// its image index here; the browser test loads the real PNG.
+// its image index here; the browser test loads the real PNG. Nor has it
+// Web Workers: the pool's dispatch is tested here with a stand-in Worker
+// that decodes on this thread, the real workers in the browser test.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { Texture } from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { EXTENSION_NAME, SWMMeshCompressionExtension } from '../src/gltf.js';
-import { DEFAULT_LIMITS } from '../src/swm.js';
+import { DEFAULT_LIMITS, decode, init } from '../src/swm.js';
+import { SWMWorkerPool } from '../src/worker.js';
 import { bitDiff, casesDir, manifest } from './cases.mjs';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -287,4 +290,69 @@ test('every prefix of a .swm file rejects the load', { timeout: 120_000 }, async
 test('a decoder that fails rejects the load', async () => {
   const failing = { decode: () => Promise.reject(new Error('worker gone')) };
   await assert.rejects(load(coded, { decoder: failing }), /SWM_mesh_compression: mesh 0 primitive 0: worker gone/);
+});
+
+/**
+ * A stand-in for the browser's Worker: answers decode-worker.js's
+ * messages from this thread, a few milliseconds later; a script URL with
+ * "missing" in it fails to start, as a 404 would.
+ */
+class StandInWorker {
+  static made = [];
+
+  constructor(url) {
+    this.url = String(url);
+    this.received = 0;
+    StandInWorker.made.push(this);
+    if (this.url.includes('missing')) setTimeout(() => this.onerror?.({ message: 'no such script' }), 1);
+  }
+
+  postMessage({ id, bytes, options }) {
+    this.received++;
+    if (this.url.includes('missing')) return; // a dead worker answers nothing
+    setTimeout(async () => {
+      await init();
+      try {
+        this.onmessage({ data: { id, result: decode(new Uint8Array(bytes), options) } });
+      } catch (e) {
+        this.onmessage({ data: { id, error: { message: e.message, code: e.code } } });
+      }
+    }, 5);
+  }
+
+  terminate() {}
+}
+
+test('a worker pool spreads the files over its workers, and a dead one fails the load', { timeout: 60_000 }, async () => {
+  globalThis.Worker = StandInWorker;
+  try {
+    assert.throws(() => new SWMWorkerPool({ size: 0 }), { name: 'SWMError', code: 'argument' });
+    assert.throws(() => new SWMWorkerPool({ size: 1.5 }), { name: 'SWMError', code: 'argument' });
+    const pool = new SWMWorkerPool({ size: 2 });
+    const got = meshes(await load(coded, { decoder: pool }));
+    const want = meshes(await load(coded));
+    got.forEach((mesh, i) => {
+      for (const name of ATTRIBUTES) {
+        const w = want[i].geometry.attributes[name];
+        if (w) assert.equal(bitDiff(mesh.geometry.attributes[name].array, w.array, `${mesh.name} ${name}`), '');
+      }
+    });
+    // Three files at once: two workers started, the third call queued on one.
+    assert.equal(StandInWorker.made.length, 2);
+    assert.deepEqual(StandInWorker.made.map((w) => w.received).sort(), [1, 2]);
+    // Idle again: the next load starts no new worker.
+    await load(coded, { decoder: pool });
+    assert.equal(StandInWorker.made.length, 2);
+    pool.terminate();
+    // Workers that cannot start: each load rejects, the second too (the
+    // pool replaces the dead workers instead of waiting on them).
+    const dead = new SWMWorkerPool({ size: 2, workerUrl: 'https://example.com/missing.js' });
+    for (let i = 0; i < 2; i++) {
+      await assert.rejects(load(coded, { decoder: dead }), /SWM_mesh_compression: mesh \d primitive 0: swm worker failed: no such script/);
+    }
+    dead.terminate();
+  } finally {
+    delete globalThis.Worker;
+    StandInWorker.made = [];
+  }
 });
