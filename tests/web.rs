@@ -200,6 +200,7 @@ fn cases() -> &'static Path {
             "cases": entries,
             "corrupt": { "swm": "damaged.swm", "message": message },
             "attributed": attributed_case(&dir),
+            "scene": scene_case(&dir),
         });
         std::fs::write(dir.join("manifest.json"), manifest.to_string()).unwrap();
         dir
@@ -280,6 +281,243 @@ fn attributed_case(dir: &Path) -> serde_json::Value {
     })
 }
 
+/// A 16×16 RGB checker of 4-pixel cells as a PNG: zlib's stored
+/// blocks (no compression), so that no image crate is needed.
+fn checker_png() -> Vec<u8> {
+    const SIDE: usize = 16;
+    let mut raw = Vec::new();
+    for y in 0..SIDE {
+        raw.push(0); // filter: none
+        for x in 0..SIDE {
+            let light = (x / 4 + y / 4) % 2 == 0;
+            raw.extend(if light {
+                [230, 200, 120]
+            } else {
+                [40, 90, 160]
+            });
+        }
+    }
+    let crc32 = |bytes: &[u8]| {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 == 1 {
+                    (c >> 1) ^ 0xedb8_8320
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
+    };
+    let (mut a, mut b) = (1u32, 0u32);
+    for &x in &raw {
+        a = (a + u32::from(x)) % 65_521;
+        b = (b + a) % 65_521;
+    }
+    // One stored block: the image is under 65,535 bytes.
+    let len = raw.len() as u16;
+    let mut zlib = vec![0x78, 0x01, 1];
+    zlib.extend(len.to_le_bytes());
+    zlib.extend((!len).to_le_bytes());
+    zlib.extend(&raw);
+    zlib.extend(((b << 16) | a).to_be_bytes());
+    let mut ihdr = Vec::new();
+    ihdr.extend((SIDE as u32).to_be_bytes());
+    ihdr.extend((SIDE as u32).to_be_bytes());
+    ihdr.extend([8, 2, 0, 0, 0]); // 8-bit RGB
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    for (kind, data) in [(b"IHDR", ihdr), (b"IDAT", zlib), (b"IEND", Vec::new())] {
+        png.extend((data.len() as u32).to_be_bytes());
+        let body = [&kind[..], &data].concat();
+        png.extend(&body);
+        png.extend(crc32(&body).to_be_bytes());
+    }
+    png
+}
+
+/// The BIN chunk and the bufferViews and accessors of a GLB being built:
+/// one tightly packed bufferView per accessor.
+#[derive(Default)]
+struct SceneBuilder {
+    bin: Vec<u8>,
+    views: Vec<serde_json::Value>,
+    accessors: Vec<serde_json::Value>,
+}
+
+impl SceneBuilder {
+    fn view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
+        self.bin.resize(self.bin.len().div_ceil(4) * 4, 0);
+        let mut v = serde_json::json!({ "buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len() });
+        if let Some(t) = target {
+            v["target"] = t.into();
+        }
+        self.bin.extend_from_slice(bytes);
+        self.views.push(v);
+        self.views.len() - 1
+    }
+
+    /// A float accessor of `dims` components (VEC3s with their bounds).
+    fn floats(&mut self, values: &[f32], dims: usize) -> usize {
+        let bytes: Vec<u8> = values.iter().flat_map(|x| x.to_le_bytes()).collect();
+        let v = self.view(&bytes, Some(34962));
+        let ty = ["SCALAR", "VEC2", "VEC3", "VEC4"][dims - 1];
+        let mut a = serde_json::json!({ "bufferView": v, "componentType": 5126, "count": values.len() / dims, "type": ty });
+        if dims == 3 {
+            let bound = |f: fn(f32, f32) -> f32, start: f32| {
+                (0..3)
+                    .map(|k| values.iter().skip(k).step_by(3).copied().fold(start, f))
+                    .collect::<Vec<_>>()
+            };
+            a["min"] = bound(f32::min, f32::INFINITY).into();
+            a["max"] = bound(f32::max, f32::NEG_INFINITY).into();
+        }
+        self.accessors.push(a);
+        self.accessors.len() - 1
+    }
+
+    /// An unsigned-short index accessor.
+    fn indices(&mut self, triangles: &[[u32; 3]]) -> usize {
+        let bytes: Vec<u8> = triangles
+            .iter()
+            .flatten()
+            .flat_map(|&i| u16::try_from(i).unwrap().to_le_bytes())
+            .collect();
+        let v = self.view(&bytes, Some(34963));
+        self.accessors.push(serde_json::json!({ "bufferView": v, "componentType": 5123, "count": triangles.len() * 3, "type": "SCALAR" }));
+        self.accessors.len() - 1
+    }
+}
+
+/// A textured glTF scene (issue 47, item 5: the glTF plugin of `web/`)
+/// and what the CLI makes of it: `scene.glb`, plain; `scene.swm.glb`,
+/// `swm encode` with `SWM_mesh_compression` required;
+/// `scene.fallback.glb`, the same with `--gltf-fallback`;
+/// `scene.decoded.glb`, `swm decode` of the coded scene. The scene: a box
+/// with per-face normals and UVs (24 vertices, seams) and a checker PNG
+/// as its material's base colour texture, drawn by two nodes; a sphere
+/// with normals, two UV sets and RGBA vertex colours under a transformed
+/// parent; a torus of positions only (coded lossy, the others
+/// losslessly).
+fn scene_case(dir: &Path) -> serde_json::Value {
+    use serde_json::json;
+    let mut b = SceneBuilder::default();
+    let mut primitives = Vec::new();
+    // The box: per face, four corners n + s·u + t·v with u × v = n.
+    let mut box_pos = Vec::new();
+    let mut box_nrm = Vec::new();
+    let mut box_uv = Vec::new();
+    let mut box_tris: Vec<[u32; 3]> = Vec::new();
+    let axes: [([f32; 3], [f32; 3], [f32; 3]); 6] = [
+        ([1., 0., 0.], [0., 1., 0.], [0., 0., 1.]),
+        ([-1., 0., 0.], [0., 0., 1.], [0., 1., 0.]),
+        ([0., 1., 0.], [0., 0., 1.], [1., 0., 0.]),
+        ([0., -1., 0.], [1., 0., 0.], [0., 0., 1.]),
+        ([0., 0., 1.], [1., 0., 0.], [0., 1., 0.]),
+        ([0., 0., -1.], [0., 1., 0.], [1., 0., 0.]),
+    ];
+    for (f, (n, u, v)) in axes.iter().enumerate() {
+        for (s, t) in [(-1., -1.), (1., -1.), (1., 1.), (-1., 1.)] {
+            box_pos.extend((0..3).map(|k| 0.5 * (n[k] + s * u[k] + t * v[k])));
+            box_nrm.extend(n);
+            box_uv.extend([(s + 1.) / 2., (t + 1.) / 2.]);
+        }
+        let o = 4 * f as u32;
+        box_tris.extend([[o, o + 1, o + 2], [o, o + 2, o + 3]]);
+    }
+    // The sphere and the torus, from the project's generated meshes.
+    let ball = swm_corpus::icosphere(0.8, 3);
+    let ball_pos: Vec<f32> = ball.positions.iter().flatten().copied().collect();
+    let ball_nrm: Vec<f32> = ball_pos.iter().map(|x| x / 0.8).collect();
+    let planar = |a: usize, b: usize| -> Vec<f32> {
+        ball.positions
+            .iter()
+            .flat_map(|p| [0.5 + 0.6 * p[a], 0.5 + 0.6 * p[b]])
+            .collect()
+    };
+    let ball_color: Vec<f32> = ball
+        .positions
+        .iter()
+        .flat_map(|p| [0.6 + 0.4 * p[0], 0.6 + 0.4 * p[1], 0.6 + 0.4 * p[2], 1.0])
+        .collect();
+    let ring = swm_corpus::torus(1.0, 0.25, 48, 16);
+    let ring_pos: Vec<f32> = ring.positions.iter().flatten().copied().collect();
+    let p = b.floats(&box_pos, 3);
+    let n = b.floats(&box_nrm, 3);
+    let t = b.floats(&box_uv, 2);
+    let i = b.indices(&box_tris);
+    primitives.push(json!({ "attributes": { "POSITION": p, "NORMAL": n, "TEXCOORD_0": t }, "indices": i, "material": 0 }));
+    let p = b.floats(&ball_pos, 3);
+    let n = b.floats(&ball_nrm, 3);
+    let t0 = b.floats(&planar(0, 1), 2);
+    let t1 = b.floats(&planar(2, 1), 2);
+    let c = b.floats(&ball_color, 4);
+    let i = b.indices(&ball.triangles);
+    primitives.push(json!({ "attributes": { "POSITION": p, "NORMAL": n, "TEXCOORD_0": t0, "TEXCOORD_1": t1, "COLOR_0": c }, "indices": i, "material": 0 }));
+    let p = b.floats(&ring_pos, 3);
+    let i = b.indices(&ring.triangles);
+    primitives.push(json!({ "attributes": { "POSITION": p }, "indices": i, "material": 1 }));
+    let image = b.view(&checker_png(), None);
+    // A quarter turn about x.
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    let doc = json!({
+        "asset": { "version": "2.0", "generator": "swm tests/web.rs" },
+        "scene": 0,
+        "scenes": [{ "name": "table", "nodes": [0] }],
+        "nodes": [
+            { "name": "world", "children": [1, 2, 3, 5] },
+            { "name": "crate", "mesh": 0, "translation": [-1.6, 0.0, 0.0], "rotation": [0.0, 0.258819, 0.0, 0.9659258] },
+            { "name": "arm", "translation": [1.6, 0.0, 0.0], "scale": [0.75, 0.75, 0.75], "children": [4] },
+            { "name": "ring", "mesh": 2, "translation": [0.0, -1.1, 0.0], "rotation": [h, 0.0, 0.0, h] },
+            { "name": "ball", "mesh": 1, "translation": [0.0, 0.5, 0.0] },
+            { "name": "small crate", "mesh": 0, "translation": [0.0, 1.1, 0.0], "scale": [0.5, 0.5, 0.5] }
+        ],
+        "meshes": [
+            { "name": "crate", "primitives": [primitives[0]] },
+            { "name": "ball", "primitives": [primitives[1]] },
+            { "name": "ring", "primitives": [primitives[2]] }
+        ],
+        "materials": [
+            { "name": "checker", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0, "roughnessFactor": 0.7 } },
+            { "name": "red", "pbrMetallicRoughness": { "baseColorFactor": [0.9, 0.2, 0.15, 1.0], "metallicFactor": 0.0 } }
+        ],
+        "textures": [{ "sampler": 0, "source": 0 }],
+        "samplers": [{ "magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497 }],
+        "images": [{ "bufferView": image, "mimeType": "image/png", "name": "checker" }],
+        "accessors": b.accessors,
+        "bufferViews": b.views,
+        "buffers": [{ "byteLength": b.bin.len().div_ceil(4) * 4 }]
+    });
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    std::fs::write(path("scene.glb"), common::glb(&doc, &b.bin)).unwrap();
+    common::ok(&common::swm(&[
+        "encode",
+        &path("scene.glb"),
+        "-o",
+        &path("scene.swm.glb"),
+    ]));
+    common::ok(&common::swm(&[
+        "encode",
+        &path("scene.glb"),
+        "-o",
+        &path("scene.fallback.glb"),
+        "--gltf-fallback",
+    ]));
+    common::ok(&common::swm(&[
+        "decode",
+        &path("scene.swm.glb"),
+        "-o",
+        &path("scene.decoded.glb"),
+    ]));
+    json!({
+        "plain": "scene.glb",
+        "coded": "scene.swm.glb",
+        "fallback": "scene.fallback.glb",
+        "decoded": "scene.decoded.glb",
+    })
+}
+
 /// The test files are made, each named in the manifest and present (no
 /// Node needed); `npm test` in `web/` runs this test to make its files.
 #[test]
@@ -313,7 +551,12 @@ fn node_package_decodes_as_the_cli() {
     build();
     let out = run_in_web(
         "node",
-        &["--test", "--test-reporter=spec", "test/node.test.mjs"],
+        &[
+            "--test",
+            "--test-reporter=spec",
+            "test/node.test.mjs",
+            "test/gltf.test.mjs",
+        ],
         Some(cases()),
     );
     println!("{out}");

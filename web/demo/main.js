@@ -1,5 +1,9 @@
 // The viewer page: decodes a .swm file in a Web Worker (the page stays
-// responsive), shows it lit and orbitable, with its figures. With "slow
+// responsive), shows it lit and orbitable, with its figures. A .glb or
+// .gltf (one file: its buffers and images embedded) is loaded by
+// GLTFLoader with the SWM_mesh_compression plugin, its .swm files
+// decoded by a pool of workers, and shown with its own materials,
+// textures and node tree. With "slow
 // connection" on, the file's bytes arrive at a set rate instead and are
 // decoded as they come (StreamDecoder): a displaced-subdivision file shows
 // its base mesh first and each finer level once its bytes are in. State
@@ -11,14 +15,18 @@
 // `&rate=N` streams it at N bytes a second.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { SWMMeshCompressionExtension } from '../src/gltf.js';
 import { toBufferGeometry } from '../src/three.js';
-import { SWMWorker } from '../src/worker.js';
+import { SWMWorker, SWMWorkerPool } from '../src/worker.js';
 import { decodeStream, init } from '../src/swm.js';
 
 const $ = (id) => document.getElementById(id);
 const canvas = $('view');
 const body = document.body;
 const decoder = new SWMWorker();
+const pool = new SWMWorkerPool(); // the .swm files of a glTF scene
+const gltfLoader = new GLTFLoader().register((parser) => new SWMMeshCompressionExtension(parser, pool));
 let current = null; // { name, bytes } of the file shown
 let shown = 0;
 
@@ -35,7 +43,7 @@ camera.position.set(0, 0, 3);
 const controls = new OrbitControls(camera, canvas);
 controls.addEventListener('change', render);
 const material = new THREE.MeshStandardMaterial({ color: 0xd8c8a8, roughness: 0.6, metalness: 0.0, flatShading: false });
-let mesh = null;
+let mesh = null; // the object shown: a Mesh of a .swm file, or a glTF scene
 
 function render() {
   renderer.render(scene, camera);
@@ -52,18 +60,29 @@ resize();
 
 /** Shows `geometry`; `frame`: move the camera to it (not for a finer level of the mesh shown). */
 function show(geometry, frame = true) {
+  display(new THREE.Mesh(geometry, material), frame);
+}
+
+/** Shows `object` instead of the one shown, which is released. */
+function display(object, frame = true) {
   if (mesh) {
     scene.remove(mesh);
-    mesh.geometry.dispose();
+    mesh.traverse((o) => {
+      o.geometry?.dispose();
+      if (o.material && o.material !== material) {
+        for (const value of Object.values(o.material)) if (value?.isTexture) value.dispose();
+        o.material.dispose();
+      }
+    });
   }
-  mesh = new THREE.Mesh(geometry, material);
+  mesh = object;
   scene.add(mesh);
   if (!frame) {
     render();
     return;
   }
   // Frame the bounding sphere.
-  const { center, radius } = geometry.boundingSphere;
+  const { center, radius } = new THREE.Box3().setFromObject(object).getBoundingSphere(new THREE.Sphere());
   const r = radius > 0 && Number.isFinite(radius) ? radius : 1;
   controls.target.copy(center);
   const distance = r / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2));
@@ -77,11 +96,14 @@ function show(geometry, frame = true) {
 
 function figures(info) {
   const fmt = (n) => n.toLocaleString('en-US');
-  $('mode').textContent = `${info.mode} (v${info.version})`;
+  $('mode').textContent = info.version ? `${info.mode} (v${info.version})` : info.mode;
   $('vertices').textContent = fmt(info.vertices);
   $('triangles').textContent = fmt(info.triangles);
-  $('bytes').textContent = fmt(info.bytes);
-  $('bpt').textContent = info.triangles ? ((8 * info.bytes) / info.triangles).toFixed(2) : '–';
+  // A scene's bytes: the whole file, then its .swm files'.
+  $('bytes').textContent = info.swmBytes === undefined ? fmt(info.bytes) : `${fmt(info.bytes)} (swm ${fmt(info.swmBytes)})`;
+  // Bits per triangle of the swm data: of a scene, its coded primitives'.
+  const [bits, tris] = info.swmBytes === undefined ? [8 * info.bytes, info.triangles] : [8 * info.swmBytes, info.codedTriangles];
+  $('bpt').textContent = tris ? (bits / tris).toFixed(2) : '–';
   $('ms').textContent = `${info.decodeMs.toFixed(1)} ms`;
 }
 
@@ -118,6 +140,45 @@ async function stream(name, bytes, rate) {
   return result;
 }
 
+/** Whether `bytes` are a glTF document: a GLB, or JSON (a .gltf) by its name. */
+function isGltf(name, bytes) {
+  const magic = String.fromCharCode(...bytes.subarray(0, 4));
+  return magic === 'glTF' || /\.gltf$/i.test(name);
+}
+
+/**
+ * Loads a glTF scene through GLTFLoader and the plugin; its figures are
+ * those of its coded primitives (their .swm bytes and decoded counts)
+ * and the time of the whole load.
+ */
+async function openScene(bytes) {
+  const started = performance.now();
+  const gltf = await gltfLoader.parseAsync(bytes.slice().buffer, '');
+  const coded = gltf.userData.swm?.primitives ?? [];
+  let vertices = 0;
+  let triangles = 0;
+  const counted = new Set();
+  gltf.scene.traverse((o) => {
+    if (!o.isMesh || counted.has(o.geometry)) return;
+    counted.add(o.geometry);
+    vertices += o.geometry.attributes.position.count;
+    triangles += (o.geometry.index?.count ?? o.geometry.attributes.position.count) / 3;
+  });
+  return {
+    object: gltf.scene,
+    info: {
+      mode: `glTF, ${coded.length} of ${counted.size} primitives swm`,
+      version: '',
+      vertices,
+      triangles,
+      bytes: bytes.length,
+      swmBytes: coded.reduce((n, p) => n + p.bytes, 0),
+      codedTriangles: coded.reduce((n, p) => n + p.triangles, 0),
+      decodeMs: performance.now() - started,
+    },
+  };
+}
+
 async function open(name, bytes) {
   current = { name, bytes };
   $('name').textContent = name;
@@ -127,6 +188,15 @@ async function open(name, bytes) {
   const sharpen = $('sharpen').checked;
   const rate = $('slow').checked ? Number($('rate').value) : 0;
   try {
+    if (isGltf(name, bytes)) {
+      const { object, info } = await openScene(bytes);
+      if (current.bytes !== bytes) return;
+      display(object);
+      figures(info);
+      body.dataset.shown = String(++shown);
+      body.dataset.state = 'shown';
+      return;
+    }
     const result = rate > 0
       ? await stream(name, bytes, rate)
       : await decoder.decode(bytes, { normals: true, sharpen, bendSteps: sharpen ? 1 : 0 });

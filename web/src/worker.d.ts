@@ -1,5 +1,5 @@
 // Types of worker.js, kept by hand beside it.
-import type { DecodedMesh, DecodeOptions, WasmSource } from './swm.js';
+import type { DecodedMesh, DecodeOptions, SWMError, WasmSource } from './swm.js';
 
 export interface SWMWorkerOptions {
   /** Where swm.wasm is (default: beside the package). */
@@ -17,6 +17,28 @@ export class SWMWorker {
     options?: DecodeOptions,
     how?: { transfer?: boolean },
   ): Promise<DecodedMesh>;
+  /** Calls sent to this worker that have not come back yet. */
+  readonly queued: number;
+  /** Once the worker failed to start or was terminated, the error every call rejects with; else null. */
+  readonly failed: SWMError | null;
+  terminate(): void;
+}
+
+export interface SWMWorkerPoolOptions extends SWMWorkerOptions {
+  /** Most workers (default: the cores less one, at most four). */
+  size?: number;
+}
+
+/** Up to `size` SWMWorkers, started as needed; each call goes to the least busy. */
+export class SWMWorkerPool {
+  constructor(options?: SWMWorkerPoolOptions);
+  readonly size: number;
+  decode(
+    bytes: ArrayBuffer | ArrayBufferView,
+    options?: DecodeOptions,
+    how?: { transfer?: boolean },
+  ): Promise<DecodedMesh>;
+  /** Stops every worker; calls still waiting fail. */
   terminate(): void;
 }
 

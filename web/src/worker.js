@@ -1,5 +1,6 @@
 // Decoding in a Web Worker: the same decode() as swm.js, off the page's
-// thread. One worker decodes one file at a time, in the order asked.
+// thread. One worker decodes one file at a time, in the order asked; a
+// pool (SWMWorkerPool) spreads the files of a scene over several.
 import { SWMError } from './swm.js';
 
 /**
@@ -19,6 +20,8 @@ export class SWMWorker {
       : new URL(String(wasm), globalThis.location?.href).href;
     this.pending = new Map();
     this.next = 0;
+    /** The SWMError every call gets once the worker failed to start or was terminated; null while it works. */
+    this.failed = null;
     this.worker.onmessage = ({ data }) => {
       const p = this.pending.get(data.id);
       if (!p) return;
@@ -28,10 +31,9 @@ export class SWMWorker {
     };
     this.worker.onerror = (event) => {
       // The worker could not start (script or module not found): every
-      // waiting call fails with the browser's reason.
-      const error = new SWMError(`swm worker failed: ${event.message ?? 'cannot load the worker'}`, 'load');
-      for (const p of this.pending.values()) p.reject(error);
-      this.pending.clear();
+      // waiting call fails with the browser's reason, and so does every
+      // later one, which the dead worker would never answer.
+      this.fail(new SWMError(`swm worker failed: ${event.message ?? 'cannot load the worker'}`, 'load'));
     };
   }
 
@@ -45,6 +47,7 @@ export class SWMWorker {
     if (bytes instanceof ArrayBuffer) buffer = transfer ? bytes : bytes.slice(0);
     else if (ArrayBuffer.isView(bytes)) buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
     else return Promise.reject(new SWMError('decode: bytes must be an ArrayBuffer or a typed array', 'argument'));
+    if (this.failed) return Promise.reject(this.failed);
     const id = this.next++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject });
@@ -52,11 +55,70 @@ export class SWMWorker {
     });
   }
 
-  /** Stops the worker; calls still waiting fail. */
+  /** Calls sent to this worker that have not come back yet. */
+  get queued() {
+    return this.pending.size;
+  }
+
+  /** Stops the worker; calls still waiting fail, and so do later ones. */
   terminate() {
     this.worker.terminate();
-    const error = new SWMError('swm worker terminated', 'terminated');
+    this.fail(new SWMError('swm worker terminated', 'terminated'));
+  }
+
+  /** Fails every waiting call and every later one with `error`. */
+  fail(error) {
+    this.failed ??= error;
     for (const p of this.pending.values()) p.reject(error);
     this.pending.clear();
+  }
+}
+
+/**
+ * The default pool size: one worker per core the page's thread leaves,
+ * at most four (a scene's files are small; more workers mostly cost
+ * start-up time, each instantiating its own module).
+ */
+function defaultPoolSize() {
+  const cores = globalThis.navigator?.hardwareConcurrency ?? 2;
+  return Math.max(1, Math.min(4, cores - 1));
+}
+
+/**
+ * Up to `options.size` SWMWorkers (default: the cores less one, at most
+ * four), started as the calls need them: each decode() goes to an idle
+ * worker, a new one while the pool is below its size, else the one with
+ * the fewest calls waiting. `options.wasm` and `options.workerUrl` as
+ * SWMWorker's. The same decode() as SWMWorker, so either may be given to
+ * the glTF plugin (swm-decoder/gltf).
+ */
+export class SWMWorkerPool {
+  constructor(options = {}) {
+    const size = options.size ?? defaultPoolSize();
+    if (!Number.isInteger(size) || size < 1) {
+      throw new SWMError(`SWMWorkerPool: size must be a positive integer, not ${size}`, 'argument');
+    }
+    this.size = size;
+    this.options = { wasm: options.wasm, workerUrl: options.workerUrl };
+    this.workers = [];
+  }
+
+  /** Decodes like SWMWorker's decode(), in the least busy worker. */
+  decode(bytes, options = {}, how = {}) {
+    // A worker that failed to start answers nothing: a new one takes its place.
+    this.workers = this.workers.filter((w) => !w.failed);
+    let worker = this.workers.find((w) => w.queued === 0);
+    if (!worker && this.workers.length < this.size) {
+      worker = new SWMWorker(this.options);
+      this.workers.push(worker);
+    }
+    worker ??= this.workers.reduce((a, b) => (b.queued < a.queued ? b : a));
+    return worker.decode(bytes, options, how);
+  }
+
+  /** Stops every worker; calls still waiting fail. The pool may be used again. */
+  terminate() {
+    for (const w of this.workers) w.terminate();
+    this.workers = [];
   }
 }

@@ -4,10 +4,14 @@
 // on the page's thread and in the Web Worker; opened in the viewer, each
 // shows its counts and draws the model (non-background pixels); the
 // Sharpen&Bend toggle shows the `--sharpen --bend 1` mesh; a damaged file
-// shows the decoder's message and the page still opens the next file.
+// shows the decoder's message and the page still opens the next file. The
+// glTF plugin (src/gltf.js) with a pool of workers loads the coded scene
+// of tests/web.rs as `swm decode` expands it, its PNG texture decoded,
+// and rejects damage; the viewer opens the .glb and draws the same
+// pixels as for the expanded scene, and opens its sample scene.
 //
 //   SWM_WEB_CASES=DIR node test/browser.mjs --chromium /usr/bin/chromium
-//     [--bench FILE.swm [--runs N]] [--screenshot OUT.png FILE.swm]
+//     [--bench FILE.swm [--runs N]] [--screenshot OUT.png FILE.swm|FILE.glb [--viewport WxH]]
 //
 // --bench times decode() of FILE on the page's thread (after warm-up) and
 // prints the figures as JSON; --screenshot writes the viewer showing
@@ -63,7 +67,7 @@ async function main() {
     executablePath,
     headless: true,
     args: [...FLAGS, `--user-data-dir=${profile}`],
-    defaultViewport: { width: 800, height: 600 },
+    defaultViewport: viewport(option('--viewport') ?? '800x600'),
     timeout: TIMEOUT,
   });
   try {
@@ -90,6 +94,8 @@ async function main() {
       await waitState(page, 'ready');
       await checkDecodes(page, data);
       await checkViewer(page, data);
+      await checkGltf(page, data, problems);
+      await checkSample(page, origin);
       await checkStreaming(page, origin, data);
       assert.deepEqual(problems, [], 'the page logged errors');
       console.log(`browser: ${data.cases.length} files, ${await browser.version()}: ok`);
@@ -99,6 +105,13 @@ async function main() {
     server.close();
     rmSync(profile, { recursive: true, force: true });
   }
+}
+
+/** Puppeteer's viewport of a "WxH" option. */
+function viewport(size) {
+  const [width, height] = size.split('x').map(Number);
+  if (!(width > 0 && height > 0)) fail(`--viewport wants WxH, not ${size}`);
+  return { width, height };
 }
 
 function fail(message) {
@@ -280,6 +293,160 @@ async function checkViewer(page, data) {
   assert.equal(good.error, '', 'the error message stays after a good file');
   const { drawn } = await drawnPixels(page);
   assert.ok(drawn > 0, 'nothing drawn after the damaged file');
+}
+
+/**
+ * In the page: each mesh of the glTF at `url` (or of `bytes`, base64)
+ * loaded by GLTFLoader, with the swm plugin and a pool of two workers
+ * when `plugin`: its name, attributes (an FNV-1a hash of each one's
+ * bytes), counts, material and texture image size.
+ */
+async function loadGltfInPage(url, plugin, bytes) {
+  const { GLTFLoader } = await import('three/addons/loaders/GLTFLoader.js');
+  const { SWMMeshCompressionExtension } = await import('/src/gltf.js');
+  const { SWMWorkerPool } = await import('/src/worker.js');
+  const pool = new SWMWorkerPool({ size: 2 });
+  const loader = new GLTFLoader();
+  if (plugin) loader.register((parser) => new SWMMeshCompressionExtension(parser, pool));
+  const hash = (a) => {
+    const b = new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
+    let h = 0x811c9dc5;
+    for (const x of b) h = Math.imul(h ^ x, 0x01000193) >>> 0;
+    return `${a.constructor.name}:${a.length}:${h}`;
+  };
+  try {
+    const gltf = bytes
+      ? await loader.parseAsync(Uint8Array.from(atob(bytes), (c) => c.charCodeAt(0)).buffer, '')
+      : await loader.loadAsync(url);
+    const meshes = [];
+    gltf.scene.traverse((o) => {
+      if (!o.isMesh) return;
+      const attributes = Object.fromEntries(Object.entries(o.geometry.attributes).map(([k, v]) => [k, hash(v.array)]));
+      meshes.push({
+        name: o.name,
+        parent: o.parent.name,
+        attributes,
+        index: hash(o.geometry.index.array),
+        material: o.material.name,
+        map: o.material.map ? [o.material.map.image.width, o.material.map.image.height] : null,
+      });
+    });
+    return { meshes, coded: gltf.userData.swm?.primitives.length ?? 0, workers: pool.workers.length };
+  } catch (e) {
+    return { error: { name: e.name, code: e.code, message: e.message } };
+  } finally {
+    pool.terminate();
+  }
+}
+
+/** A hash of the viewer's canvas, and its non-background pixels. */
+function canvasPixels(page) {
+  return page.evaluate(() => {
+    const canvas = document.getElementById('view');
+    const copy = document.createElement('canvas');
+    copy.width = canvas.width;
+    copy.height = canvas.height;
+    const ctx = copy.getContext('2d');
+    ctx.drawImage(canvas, 0, 0);
+    return Array.from(ctx.getImageData(0, 0, copy.width, copy.height).data);
+  });
+}
+
+/** The glTF plugin in the browser, and the viewer opening a coded scene. */
+async function checkGltf(page, data, problems) {
+  const { scene } = data;
+  const got = await page.evaluate(loadGltfInPage, `/cases/${scene.coded}`, true);
+  const want = await page.evaluate(loadGltfInPage, `/cases/${scene.decoded}`, false);
+  assert.equal(got.error, undefined, JSON.stringify(got.error));
+  assert.deepEqual(got.meshes, want.meshes, 'the plugin loads what `swm decode` expands');
+  assert.equal(got.coded, 3);
+  assert.equal(got.workers, 2, 'the three files went to both workers of the pool');
+  const names = got.meshes.map((m) => m.name);
+  assert.deepEqual(names, ['crate', 'ball', 'ring', 'small_crate']);
+  const [crate, ball] = got.meshes;
+  assert.deepEqual(crate.map, [16, 16], 'the checker texture is decoded and kept');
+  assert.deepEqual(ball.map, [16, 16]);
+  assert.deepEqual(Object.keys(ball.attributes).sort(), ['color', 'normal', 'position', 'uv', 'uv1']);
+  assert.equal(ball.parent, 'arm');
+
+  // A flipped bit in the ball's .swm file: the worker's error, naming it.
+  const damaged = Buffer.from(scene.bytes.coded);
+  const jsonLength = damaged.readUInt32LE(12);
+  const json = JSON.parse(damaged.subarray(20, 20 + jsonLength).toString('utf8'));
+  const view = json.bufferViews[json.meshes[1].primitives[0].extensions.SWM_mesh_compression.bufferView];
+  damaged[28 + jsonLength + view.byteOffset + (view.byteLength >> 1)] ^= 0x10;
+  const bad = await page.evaluate(loadGltfInPage, '', true, damaged.toString('base64'));
+  assert.equal(bad.error?.name, 'SWMError', JSON.stringify(bad));
+  assert.equal(bad.error.code, 'format');
+  assert.match(bad.error.message, /^SWM_mesh_compression: mesh 1 primitive 0: /);
+
+  // A worker that cannot start fails the load instead of leaving it waiting.
+  const before = problems.length;
+  const stuck = await page.evaluate(async (url) => {
+    const { GLTFLoader } = await import('three/addons/loaders/GLTFLoader.js');
+    const { SWMMeshCompressionExtension } = await import('/src/gltf.js');
+    const { SWMWorkerPool } = await import('/src/worker.js');
+    const { SWMWorker } = await import('/src/worker.js');
+    const pool = new SWMWorkerPool({ workerUrl: '/no-such-worker.js' });
+    const loader = new GLTFLoader().register((parser) => new SWMMeshCompressionExtension(parser, pool));
+    const messages = [];
+    // Twice: the second load must not wait on the dead workers of the first.
+    for (let i = 0; i < 2; i++) {
+      try {
+        await loader.loadAsync(url);
+        messages.push(null);
+      } catch (e) {
+        messages.push(e.message);
+      }
+    }
+    pool.terminate();
+    // A terminated worker refuses work instead of leaving it waiting.
+    const worker = new SWMWorker();
+    worker.terminate();
+    const late = await worker.decode(new Uint8Array(4)).then(() => null, (e) => e.code);
+    return { messages, late };
+  }, `/cases/${scene.coded}`);
+  for (const message of stuck.messages) {
+    assert.match(message ?? '', /^SWM_mesh_compression: mesh \d primitive 0: swm worker failed/);
+  }
+  assert.equal(stuck.late, 'terminated');
+  // Its 404 is expected, not a problem of the page.
+  problems.splice(before, problems.length - before, ...problems.slice(before).filter((p) => !p.includes('no-such-worker')));
+
+  // The viewer: the coded scene and the expanded one draw the same pixels.
+  const dir = process.env.SWM_WEB_CASES;
+  const shown = await openInViewer(page, join(dir, scene.coded));
+  assert.equal(shown.state, 'shown', shown.error);
+  const coded = await canvasPixels(page);
+  const { drawn, total } = await drawnPixels(page);
+  assert.ok(drawn > total / 50, `the scene covers ${drawn} of ${total} pixels`);
+  const expanded = await openInViewer(page, join(dir, scene.decoded));
+  assert.equal(expanded.state, 'shown', expanded.error);
+  assert.equal(expanded.triangles, shown.triangles);
+  const plain = await canvasPixels(page);
+  let differ = 0;
+  for (let i = 0; i < plain.length; i += 4) {
+    if (plain[i] !== coded[i] || plain[i + 1] !== coded[i + 1] || plain[i + 2] !== coded[i + 2]) differ++;
+  }
+  assert.ok(differ <= total / 1000, `${differ} of ${total} pixels differ between the coded and the expanded scene`);
+  const mode = await page.$eval('#mode', (e) => e.textContent);
+  assert.equal(mode, 'glTF, 0 of 3 primitives swm');
+}
+
+/** The sample scene the viewer offers (demo/sample-scene.glb) opens and is drawn. */
+async function checkSample(page, origin) {
+  await page.goto(`${origin}/demo/`);
+  await waitState(page, 'ready');
+  await Promise.all([page.waitForNavigation(), page.click('a[href="?file=sample-scene.glb"]')]);
+  await page.waitForFunction(() => ['shown', 'error'].includes(document.body.dataset.state));
+  const got = await page.evaluate(() => ({
+    state: document.body.dataset.state,
+    mode: document.getElementById('mode').textContent,
+    error: document.getElementById('error').textContent,
+  }));
+  assert.deepEqual(got, { state: 'shown', mode: 'glTF, 3 of 3 primitives swm', error: '' });
+  const { drawn, total } = await drawnPixels(page);
+  assert.ok(drawn > total / 50, `the sample scene covers ${drawn} of ${total} pixels`);
 }
 
 /**

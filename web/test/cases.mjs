@@ -2,8 +2,9 @@
 // manifest.json lists `.swm` files of every mode with what the `swm` CLI
 // decodes them to (binary PLY, and GLB for the normals), a damaged
 // file with the CLI's error message, and a file with attribute streams
-// beside the Rust API's split mesh and streams (raw little-endian arrays). Parsers for those outputs, and
-// bit-for-bit comparison.
+// beside the Rust API's split mesh and streams (raw little-endian arrays), and a
+// textured glTF scene coded with SWM_mesh_compression beside what `swm decode`
+// expands it to. Parsers for those outputs, and bit-for-bit comparison.
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
@@ -87,6 +88,7 @@ export function loadCases(dir) {
     })),
     corrupt: { ...m.corrupt, bytes: new Uint8Array(read(m.corrupt.swm)) },
     attributed: attributed(m.attributed, read),
+    scene: { ...m.scene, bytes: { coded: read(m.scene.coded) } },
   };
 }
 

@@ -4,7 +4,9 @@
 import * as THREE from 'three';
 import { decode, decodeStream, DEFAULT_LIMITS, init, isReady, StreamDecoder, SWMError, type DecodedMesh } from 'swm-decoder';
 import { SWMLoader, toBufferGeometry } from 'swm-decoder/three';
-import { SWMWorker } from 'swm-decoder/worker';
+import { SWMWorker, SWMWorkerPool } from 'swm-decoder/worker';
+import { EXTENSION_NAME, SWMMeshCompressionExtension, type SWMDecodedPrimitive } from 'swm-decoder/gltf';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 export async function readme(scene: THREE.Scene): Promise<void> {
   const loader = new SWMLoader().setDecodeOptions({ sharpen: true, bendSteps: 1 });
@@ -50,4 +52,20 @@ export async function progressive(response: Response, chunk: Uint8Array): Promis
   // @ts-expect-error: push() returns a mesh or null, not a promise
   await s.push(chunk).then(() => 0);
   return n + whole.info.triangles;
+}
+
+export async function gltfScene(scene: THREE.Scene, bytes: ArrayBuffer): Promise<number> {
+  const pool = new SWMWorkerPool({ size: 2 });
+  const loader = new GLTFLoader();
+  loader.register((parser) => new SWMMeshCompressionExtension(parser, pool));
+  const gltf = await loader.loadAsync('scene.glb');
+  scene.add(gltf.scene);
+  // On the page's thread, with limits.
+  const onPage = new GLTFLoader().register((parser) => new SWMMeshCompressionExtension(parser, null, { limits: { maxVertices: 1e6 } }));
+  const again = await onPage.parseAsync(bytes, '');
+  const coded: SWMDecodedPrimitive[] = again.userData.swm?.primitives ?? [];
+  pool.terminate();
+  // @ts-expect-error: a decoder has a decode() method
+  new SWMMeshCompressionExtension(again.parser, { size: 2 });
+  return coded.length + (EXTENSION_NAME === 'SWM_mesh_compression' ? 1 : 0);
 }
