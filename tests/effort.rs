@@ -36,7 +36,10 @@ fn every_level_answers_the_request_and_says_what_it_weighed() {
     let budget = (bpv * mesh.vertex_count() as f64 / 8.0).round();
     for (effort, methods) in [
         (Effort::Fast, &[Method::Simplified][..]),
-        (Effort::Default, &[Method::Swing, Method::Simplified][..]),
+        (
+            Effort::Default,
+            &[Method::Swing, Method::Simplified, Method::Displaced][..],
+        ),
         (
             Effort::Max,
             &[Method::Mixed, Method::Swing, Method::Simplified][..],
@@ -76,11 +79,36 @@ fn default_leaves_a_large_retiling_to_max_and_says_so() {
     assert!(
         matches!(
             swing.outcome,
-            Err(swm::CandidateFailure::OverBudget { predicted, budget }) if predicted > budget
+            Err(swm::CandidateFailure::OverBudget { predicted, budget, .. }) if predicted > budget
         ),
         "{swing:?}"
     );
     assert_eq!(e.stats.chosen(), Method::Simplified);
+}
+
+#[test]
+fn default_runs_displaced_subdivision_at_low_rates_only_and_says_so() {
+    // A smooth sphere of 20,480 faces: its budget for the displaced
+    // method is 1,706 bytes (one per twelve faces).
+    let mesh = swm_corpus::icosphere(1.0, 5);
+    let low = encode(&mesh, SwingTarget::BitsPerVertex(1.0), Effort::Default);
+    let displaced = low.stats.candidate(Method::Displaced).unwrap();
+    assert!(displaced.outcome.is_ok(), "{displaced:?}");
+    let high = encode(&mesh, SwingTarget::BitsPerVertex(4.0), Effort::Default);
+    let displaced = high.stats.candidate(Method::Displaced).unwrap();
+    match &displaced.outcome {
+        Err(
+            failure @ swm::CandidateFailure::OverBudget {
+                predicted, budget, ..
+            },
+        ) => {
+            assert!(predicted > budget);
+            let said = failure.to_string();
+            assert!(said.contains("bytes of file"), "{said}");
+            assert!(said.contains("--mode displaced"), "{said}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]

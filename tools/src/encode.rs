@@ -909,7 +909,9 @@ pub enum EffortArg {
     Fast,
     /// The simplified method's lean search (every promising quantization
     /// measured, each size search started where the last one predicts),
-    /// and SwingWrapper where its retiling fits the level's work budget.
+    /// SwingWrapper where its retiling fits the level's work budget, and
+    /// displaced subdivision for files of at most one byte per twelve
+    /// input triangles.
     Default,
     /// Every method's whole search.
     Max,

@@ -95,6 +95,8 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
                         let failure = CandidateFailure::OverBudget {
                             predicted: p,
                             budget: b,
+                            unit: e.method.work_unit(),
+                            instead: e.method.run_anyway(),
                         };
                         states[i] = Some(State::Failed(failure));
                     }
@@ -238,12 +240,12 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
 
 /// One entry's file for `ask`, under its work budget.
 fn run(job: &Job<'_, '_>, ask: Ask, entry: &Entry) -> Result<Option<Made>, Error> {
-    match entry.work {
+    match entry.work.and_then(|work| entry.method.work_limit(work)) {
         None => entry.method.encode(job, ask),
-        Some(work) => {
+        Some(limit) => {
             let options = EncodeOptions {
                 limits: crate::EncodeLimits {
-                    max_work: job.options.limits.max_work.min(super::effort::cut(work)),
+                    max_work: job.options.limits.max_work.min(limit),
                     ..job.options.limits
                 },
                 ..job.options.clone()

@@ -84,6 +84,20 @@ impl CodingMethod for Displaced {
         Method::Displaced
     }
 
+    /// Its work grows with its files' size (one line query per new
+    /// vertex, 4.2 files a cell), so the budget is counted in bytes.
+    fn predicted_work(&self, _job: &Job<'_, '_>, _ask: Ask, bytes: u64) -> Option<u64> {
+        Some(bytes)
+    }
+
+    fn work_unit(&self) -> &'static str {
+        "bytes of file"
+    }
+
+    fn run_anyway(&self) -> &'static str {
+        "--mode displaced forces it"
+    }
+
     fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
         let budget =
             super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "displaced")?;

@@ -6,7 +6,7 @@
 //! | level     | methods (first wins a tie)                         | work                       |
 //! |-----------|----------------------------------------------------|----------------------------|
 //! | `fast`    | simplified, quick search                           | one collapse sequence, two size searches |
-//! | `default` | SwingWrapper (within [`swing_budget`]), simplified's lean climb | + a retiling of small outputs |
+//! | `default` | SwingWrapper (within [`swing_budget`]), simplified's lean climb, displaced subdivision (within [`displaced_budget`]) | + a retiling of small outputs, displaced files of low rates |
 //! | `max`     | mixed, SwingWrapper, simplified: every search      | unbounded by the level     |
 //!
 //! Invariants: `max` is the automatic mode as it was before levels
@@ -14,10 +14,13 @@
 //! at most linearly with the input's triangles and the output's bytes
 //! (the simplified method's collapse sequence is made once and its size
 //! searches replay it; a retiling under the level's budget is bounded by
-//! `cut` of it, counted in deterministic steps, so the bytes never
-//! depend on the machine). The budgets and the predicted work are
+//! one and a half times it (`Swing::work_limit`), counted in
+//! deterministic steps, so the bytes never depend on the machine; the
+//! displaced method runs only for files of at most one byte per twelve
+//! input triangles). The budgets and the predicted work are
 //! measured figures (BENCHMARKS.md, "Effort levels").
 
+use super::displaced::Displaced;
 use super::method::CodingMethod;
 use super::mixed::Mixed;
 use super::simplified::Simplified;
@@ -44,26 +47,25 @@ const SWING_STEPS_FLOOR: u64 = 2_500_000;
 /// simplified method already takes most of it (about 10 µs per input
 /// triangle of the 15 the bar allows).
 const SWING_STEPS_PER_FACE: u64 = 20;
-/// A budgeted retiling is cut at `CUT / 2` of its budget. It was twice
-/// the budget (the prediction is within a factor of two on the corpus's
-/// usual cells), but rate control's retries run far past any prediction
-/// on some shapes (spot at 0.5 b/v: 4.9 M steps for 292 triangles; teapot
-/// at 2 b/v: 56 M over 48 retilings), and a run cut at twice the budget
-/// had already spent 0.4 s for no file: the small meshes' cells over the
-/// level's half-second bar. At the budget itself the icosphere at 2 b/v
-/// (generated table) lost its retiled file and doubled its error; one
-/// and a half keeps it.
-const CUT: u64 = 3;
+/// Input triangles per byte of file up to which the `default` level runs
+/// the displaced method (its files then cost at most one byte per twelve
+/// input triangles: bunny and horse at up to 1 b/v). Measured on one
+/// core (BENCHMARKS.md, "Displaced subdivision joins `default`"): below
+/// that it adds 0.1-0.2 s to the level's encode and wins on scans by
+/// 12-15% of L2; at 2-8 b/v it adds 0.5-1.3 s, which the level's time
+/// bar does not leave, and on CAD parts and small meshes it never wins.
+const DISPLACED_FACES_PER_BYTE: u64 = 12;
+
+/// The `default` level's budget for the displaced method, in bytes of
+/// file, on an input of `faces` triangles.
+pub(crate) fn displaced_budget(faces: usize) -> u64 {
+    faces as u64 / DISPLACED_FACES_PER_BYTE
+}
 
 /// The `default` level's budget for SwingWrapper on an input of `faces`
 /// triangles.
 pub(crate) fn swing_budget(faces: usize) -> u64 {
     SWING_STEPS_FLOOR.saturating_add(SWING_STEPS_PER_FACE.saturating_mul(faces as u64))
-}
-
-/// The work limit a budgeted method runs under.
-pub(crate) fn cut(budget: u64) -> u64 {
-    budget.saturating_mul(CUT) / 2
 }
 
 /// The chooser's list at `effort` for an input of `faces` triangles.
@@ -74,6 +76,7 @@ pub(crate) fn methods(effort: Effort, faces: usize) -> Vec<Entry> {
         Effort::Default => vec![
             entry(&Swing::AUTO, Some(swing_budget(faces))),
             entry(&Simplified::LEAN, None),
+            entry(&Displaced::DEFAULT, Some(displaced_budget(faces))),
         ],
         Effort::Max => vec![
             entry(&Mixed, None),

@@ -227,10 +227,29 @@ pub(crate) trait CodingMethod: Sync {
         false
     }
 
-    /// The work it predicts for `ask`, in the retiler's steps, for an
-    /// effort level's budget; `None` when it has no retiling to bound.
+    /// The work it predicts for `ask` (whose budget is `bytes`), in
+    /// [`work_unit`](Self::work_unit), for an effort level's budget;
+    /// `None` when it has no work to bound.
     fn predicted_work(&self, _job: &Job<'_, '_>, _ask: Ask, _bytes: u64) -> Option<u64> {
         None
+    }
+
+    /// What [`predicted_work`](Self::predicted_work) and an effort
+    /// level's budget for this method count.
+    fn work_unit(&self) -> &'static str {
+        "steps of retiling"
+    }
+
+    /// The limit on the retiler's work (`EncodeLimits::max_work`) it
+    /// runs under when an effort level gives it `budget`; `None`: the
+    /// budget only decides whether it runs.
+    fn work_limit(&self, _budget: u64) -> Option<u64> {
+        None
+    }
+
+    /// How a user runs it when an effort level's budget leaves it out.
+    fn run_anyway(&self) -> &'static str {
+        "--effort max tries it"
     }
 
     /// Its file for `ask`; `Ok(None)` when it has nothing to add for this

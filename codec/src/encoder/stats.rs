@@ -161,10 +161,15 @@ pub enum CandidateFailure {
     /// Not tried at this effort level: its predicted work is above the
     /// level's budget for this input and size.
     OverBudget {
-        /// The work predicted, in the retiler's steps.
+        /// The work predicted, in `unit`.
         predicted: u64,
-        /// The level's budget.
+        /// The level's budget, in `unit`.
         budget: u64,
+        /// What the method counts its work in ("steps of retiling",
+        /// "bytes of file").
+        unit: &'static str,
+        /// How a user runs it anyway ("--effort max tries it").
+        instead: &'static str,
     },
     /// The method has nothing to add for this input: a method per
     /// component on a mesh of one component, or one whose components all
@@ -186,9 +191,14 @@ impl core::fmt::Display for CandidateFailure {
                 f,
                 "not tried: the whole mesh at 16 bits per coordinate fits in {whole_bytes} bytes"
             ),
-            CandidateFailure::OverBudget { predicted, budget } => write!(
+            CandidateFailure::OverBudget {
+                predicted,
+                budget,
+                unit,
+                instead,
+            } => write!(
                 f,
-                "not tried at this effort: about {predicted} steps of retiling predicted, above the level's {budget} (--effort max tries it)"
+                "not tried at this effort: about {predicted} {unit} predicted, above the level's {budget} ({instead})"
             ),
             CandidateFailure::NotApplicable => write!(f, "nothing to add for this mesh"),
         }

@@ -46,7 +46,8 @@ pub fn run_auto(
 }
 
 /// Encodes (timed), decodes and measures; the row's `qp` is the
-/// simplified file's quantization or the SwingWrapper file's angle bits.
+/// simplified or displaced file's quantization (the displaced file's
+/// base's) or the SwingWrapper file's angle bits.
 fn coded(
     case: &crate::rd::case::Case,
     mode: swm::EncodeMode,
@@ -66,9 +67,14 @@ fn coded(
     };
     let encode_s = start.elapsed().as_secs_f64();
     let stats = &encoded.stats;
-    let qp = match (stats.simplified(), stats.swing()) {
-        (Some(s), _) => s.qp,
-        (_, Some(s)) => s.angle_bits,
+    let displaced = match &stats.method {
+        swm::MethodStats::Displaced(d) => Some(d),
+        _ => None,
+    };
+    let qp = match (stats.simplified(), stats.swing(), displaced) {
+        (Some(s), _, _) => s.qp,
+        (_, Some(s), _) => s.angle_bits,
+        (_, _, Some(d)) => d.qp,
         _ => 0,
     };
     let mut coded = measure(
@@ -85,6 +91,7 @@ fn coded(
         (Some(_), _) => "simplified",
         (_, Some(_)) if mixed => "mixed",
         (_, Some(_)) => "swing",
+        _ if displaced.is_some() => "displaced",
         _ => "lossless",
     }
     .into();

@@ -24,8 +24,9 @@ pub enum Config {
     /// mode wrote before effort levels existed).
     Auto,
     /// `swm encode` with no flag (`--effort default`): `baseline`'s
-    /// method, and SwingWrapper where its retiling fits the level's work
-    /// budget, whichever the encoder measures closer.
+    /// method, SwingWrapper where its retiling fits the level's work
+    /// budget, and displaced subdivision at low rates, whichever the
+    /// encoder measures closer.
     #[value(name = "auto-default")]
     AutoDefault,
     /// `swm encode --effort fast`: meshoptimizer's simplifier, then the

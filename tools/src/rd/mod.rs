@@ -104,8 +104,10 @@ Configurations:
   auto      swm encode --effort max: swing, baseline or a method per
             component, whichever the encoder measures closer to the input
             (the files the automatic mode wrote before effort levels)
-  auto-default  swm encode with no flag (--effort default): baseline, and
-            swing where its retiling fits the level's work budget
+  auto-default  swm encode with no flag (--effort default): baseline,
+            swing where its retiling fits the level's work budget, and
+            displaced subdivision at low rates (files of at most one byte
+            per twelve input triangles)
   auto-fast  swm encode --effort fast: meshoptimizer's simplifier, then the
             lossless mode, with a short search
             (the CSV's effort column: max, default, fast; empty for the

@@ -21,7 +21,7 @@
 //! | `l2_rel` | L2 (max of the one-sided RMS), in 1e-4 of the input's bbox diagonal |
 //! | `hausdorff_rel` | Hausdorff distance, same unit |
 //! | `encode_s`, `decode_s` | wall times (simplification included in the baseline's encode, the rate search in swing's, the whole chooser in auto's) |
-//! | `method` | how the file codes the mesh: `swing` (retiled), `simplified` (simplified, then lossless), `whole` (the whole mesh, lossless, at the quantization the simplified method chose: nothing more to code), `lossless` (the `lossless` row); for `auto`, the method it chose |
+//! | `method` | how the file codes the mesh: `swing` (retiled), `simplified` (simplified, then lossless), `whole` (the whole mesh, lossless, at the quantization the simplified method chose: nothing more to code), `lossless` (the `lossless` row), `displaced` (displaced subdivision: a simplified base and levels of scalars; `qp` is its base's), `mixed` (a method per component); for `auto`, the method it chose |
 //!
 //! Rows without a file (every status but `ok`) leave the measured columns
 //! empty. Numbers other than
