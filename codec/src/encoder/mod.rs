@@ -182,7 +182,11 @@ fn encode_with(
         encoded.stats.origins = provenance::of_file(&job, &encoded.bytes, seeds.as_deref())?;
     }
     if !streams.is_empty() {
-        encoded.stats.attributes = attribute_report(&cleaned, streams, &encoded.bytes)?;
+        encoded.stats.attributes = AttributeReport {
+            kept: streams.iter().map(|s| s.kind).collect(),
+            texcoord_error: job.simplifier().texcoord_error(&encoded.bytes)?,
+            ..Default::default()
+        };
     }
     Ok(encoded)
 }
@@ -204,29 +208,4 @@ fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<(Encoded, 
         },
     };
     Ok((encoded, chosen.seeds))
-}
-
-/// What the lossy file `bytes` kept of the cleaned input's `streams`
-/// (every one: only methods that carry them ran), with its texture
-/// coordinates measured against the input's (`metrics::texcoord`).
-fn attribute_report(
-    cleaned: &crate::Cleaned,
-    streams: Vec<crate::AttributeStream>,
-    bytes: &[u8],
-) -> Result<AttributeReport, Error> {
-    let decoded = crate::decoder::decode_attributed(bytes, &Default::default())?;
-    let input = crate::AttributedMesh::new(cleaned.mesh.clone(), streams);
-    let kept = input.streams.iter().map(|s| s.kind).collect();
-    let texcoord_error = match input.stream(crate::AttributeKind::TexCoord(0)) {
-        Some(_) => {
-            let surface = crate::metrics::Surface::new(&input.mesh)?;
-            crate::metrics::texcoord::texcoord_error(&input, &surface, &decoded)
-        }
-        None => None,
-    };
-    Ok(AttributeReport {
-        kept,
-        texcoord_error,
-        ..Default::default()
-    })
 }

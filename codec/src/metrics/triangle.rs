@@ -142,6 +142,7 @@ pub fn triangle_distance2_f64(p: [f64; 3], t: &[[f64; 3]; 3]) -> f64 {
 /// Barycentric coordinates of `p` (a point on or near `t`) on `t`:
 /// projected onto its plane, clamped to the triangle and summing to one;
 /// a degenerate face gives its first corner.
+#[cfg(feature = "encoder")]
 pub fn barycentric(t: &[[f32; 3]; 3], p: [f64; 3]) -> [f32; 3] {
     let w = |q: [f32; 3]| q.map(|c| c as f64);
     let (a, b, c) = (w(t[0]), w(t[1]), w(t[2]));

@@ -66,8 +66,9 @@ pub use crate::metrics::texcoord::TEXTURE_SIZE;
 /// about 1e-3 of the diagonal along its surface; a texture sliding along
 /// the surface by that much shows about as little as the surface leaving
 /// its place by a tenth of it. On spot at 2-8 b/v the simplified files'
-/// L2 is 4-57e-4 and their texture coordinates 3-15 texels off: both
-/// terms count.
+/// L2 is 11-60e-4 and their texture coordinates 3.6-15.5 texels off
+/// (BENCHMARKS.md, "Lossy encodes that keep attributes"): both terms
+/// count.
 pub const TEXEL_WEIGHT: f64 = 1e-4;
 
 /// What one 8-bit step (RMS, 1/255 over all components) of colour error

@@ -86,14 +86,24 @@ struct Attrs<'a> {
     streams: &'a [crate::AttributeStream],
     /// How the files quantize them.
     quantization: crate::AttributeQuantization,
-    /// Simplifications so far, by target, as the quick engine's `made`:
-    /// a new target is simplified from the smallest one above it.
+    /// The input with its streams.
+    input: crate::AttributedMesh,
+    /// Simplifications so far, by target (each a function of its target
+    /// alone, so which search asked first does not matter).
     made: std::sync::Mutex<Vec<(u32, crate::AttributedMesh)>>,
+    /// Anchor `k` (from 1): the input simplified toward `faces >> k`
+    /// faces from anchor `k − 1` (the input for 1), made on first use. A
+    /// target is simplified from the smallest anchor above it, so a size
+    /// search does not simplify the whole input at every probe, and the
+    /// result never depends on the order of probes (two searches of the
+    /// lean climb run side by side): unlike the quick engine's chain
+    /// from whatever was made last, the anchors are fixed by the input.
+    anchors: Vec<OnceLock<crate::AttributedMesh>>,
     /// The whole mesh's connectivity coded with what `ATTR` needs.
     prepared: OnceLock<Option<crate::lossless::Prepared>>,
-    /// The input with its streams and its surface, for
-    /// [`Simplifier::attribute_error`] (`None`: no surface).
-    measured: OnceLock<Option<(crate::AttributedMesh, Surface)>>,
+    /// The input's surface, for [`Simplifier::attribute_error`]
+    /// (`None`: no surface).
+    measured: OnceLock<Option<Surface>>,
 }
 
 impl<'a> Simplifier<'a> {
@@ -150,10 +160,13 @@ impl<'a> Simplifier<'a> {
         if streams.is_empty() {
             return self;
         }
+        let levels = (32 - self.faces().max(1).leading_zeros()) as usize;
         Simplifier {
             attrs: Some(Attrs {
                 streams,
                 quantization,
+                input: crate::AttributedMesh::new(self.mesh.clone(), streams.to_vec()),
+                anchors: (0..levels).map(|_| OnceLock::new()).collect(),
                 made: std::sync::Mutex::new(Vec::new()),
                 prepared: OnceLock::new(),
                 measured: OnceLock::new(),
@@ -172,22 +185,53 @@ impl<'a> Simplifier<'a> {
     /// streams, and for streams of other kinds (normals follow the
     /// surface, which L2 measures).
     pub fn attribute_error(&self, bytes: &[u8]) -> Result<f64, Error> {
-        let Some(a) = &self.attrs else {
+        let Some((texels, steps, diagonal)) = self.stream_errors(bytes)? else {
             return Ok(0.0);
         };
-        let measured = a.measured.get_or_init(|| {
-            let input = crate::AttributedMesh::new(self.mesh.clone(), a.streams.to_vec());
-            Surface::new(&input.mesh).ok().map(|s| (input, s))
-        });
-        let Some((input, surface)) = measured else {
-            return Ok(0.0);
+        let texels = texels.map_or(0.0, |e| e.rms_texels);
+        let relative = attributed::TEXEL_WEIGHT * texels
+            + attributed::COLOUR_STEP_WEIGHT * steps.unwrap_or(0.0);
+        Ok(relative * diagonal)
+    }
+
+    /// The texture coordinates' error of the file `bytes` against the
+    /// input's (`metrics::texcoord`), as the encoder reports it; `None`
+    /// without texture coordinates.
+    pub fn texcoord_error(
+        &self,
+        bytes: &[u8],
+    ) -> Result<Option<crate::metrics::texcoord::TexcoordError>, Error> {
+        Ok(self.stream_errors(bytes)?.and_then(|(t, _, _)| t))
+    }
+
+    /// The file's texture coordinates' error, its colours' RMS 8-bit
+    /// steps and the input's diagonal; `None` without streams.
+    #[allow(clippy::type_complexity)]
+    fn stream_errors(
+        &self,
+        bytes: &[u8],
+    ) -> Result<
+        Option<(
+            Option<crate::metrics::texcoord::TexcoordError>,
+            Option<f64>,
+            f64,
+        )>,
+        Error,
+    > {
+        let Some(a) = &self.attrs else {
+            return Ok(None);
+        };
+        let measured = a.measured.get_or_init(|| Surface::new(&a.input.mesh).ok());
+        let Some(surface) = measured else {
+            return Ok(None);
         };
         let decoded = crate::decoder::decode_attributed(bytes, &Default::default())?;
         use crate::metrics::texcoord::{colour_error_steps, texcoord_error};
-        let texels = texcoord_error(input, surface, &decoded).map_or(0.0, |e| e.rms_texels);
-        let steps = colour_error_steps(input, surface, &decoded).unwrap_or(0.0);
-        let relative = attributed::TEXEL_WEIGHT * texels + attributed::COLOUR_STEP_WEIGHT * steps;
-        Ok(relative * surface.diagonal())
+        Ok(Some((
+            texcoord_error(&a.input, surface, &decoded),
+            colour_error_steps(&a.input, surface, &decoded),
+            surface.diagonal(),
+        )))
     }
 
     /// Whether its files carry attribute streams.
@@ -201,33 +245,40 @@ impl<'a> Simplifier<'a> {
     }
 
     /// [`simplify`](Self::simplify) with the streams: the input itself at
-    /// `target` or more faces. Deterministic, as the search's sequence of
-    /// probes is (each target is simplified from the smallest
-    /// simplification above it made so far). Without streams, the
-    /// simplification with none.
+    /// `target` or more faces. Deterministic: a function of `target`
+    /// alone, simplified from the smallest anchor above it (`Attrs`).
+    /// Without streams, the simplification with none.
     pub fn simplify_attributed(&self, target: u32) -> crate::AttributedMesh {
         let Some(a) = &self.attrs else {
             return crate::AttributedMesh::from(self.simplify(target));
         };
-        let input = || crate::AttributedMesh::new(self.mesh.clone(), a.streams.to_vec());
         if target >= self.faces() {
-            return input();
+            return a.input.clone();
         }
-        let mut made = a.made.lock().unwrap_or_else(|p| p.into_inner());
-        if let Some((_, m)) = made.iter().find(|(t, _)| *t == target) {
+        let lock = || a.made.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some((_, m)) = lock().iter().find(|(t, _)| *t == target) {
             return m.clone();
         }
-        let from = made
-            .iter()
-            .map(|(_, m)| m)
-            .filter(|m| m.mesh.face_count() as u32 > target)
-            .min_by_key(|m| m.mesh.face_count());
-        let mesh = match from {
-            Some(from) => attributed::simplified(from, target),
-            None => attributed::simplified(&input(), target),
-        };
-        made.push((target, mesh.clone()));
+        // The deepest anchor whose target is above this one.
+        let k = (1..=a.anchors.len())
+            .take_while(|&k| self.faces() >> k > target)
+            .last()
+            .unwrap_or(0);
+        let mesh = attributed::simplified(self.anchor(a, k), target);
+        let mut made = lock();
+        if made.iter().all(|(t, _)| *t != target) {
+            made.push((target, mesh.clone()));
+        }
         mesh
+    }
+
+    /// Anchor `k` of `a` (0: the input).
+    fn anchor<'s>(&'s self, a: &'s Attrs<'a>, k: usize) -> &'s crate::AttributedMesh {
+        if k == 0 {
+            return &a.input;
+        }
+        a.anchors[k - 1]
+            .get_or_init(|| attributed::simplified(self.anchor(a, k - 1), self.faces() >> k))
     }
 
     /// The file of `mesh` (simplification `faces` of the input, refitted
