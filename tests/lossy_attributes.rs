@@ -36,7 +36,10 @@ fn assert_in_charts(input: &swm::AttributedMesh, decoded: &swm::AttributedMesh, 
             let d2: f32 = (0..3).map(|k| (kp[k] - p[k]).powi(2)).sum();
             d2 <= radius * radius && (kq[0] - q[0]).abs() <= step && (kq[1] - q[1]).abs() <= step
         });
-        assert!(near, "decoded corner at {p:?} has uv {q:?}: no input corner near it has it");
+        assert!(
+            near,
+            "decoded corner at {p:?} has uv {q:?}: no input corner near it has it"
+        );
     }
 }
 
@@ -97,7 +100,10 @@ fn spot_keeps_its_texture_coordinates_by_default() {
     ] {
         let out = dir.join(format!("spot-{effort}-{bpv}.swm"));
         let v = encode(&spot, &out, &["--effort", effort, "--bpv", bpv]);
-        assert_eq!(v["attribute_report"]["kept"], serde_json::json!(["texcoord0"]));
+        assert_eq!(
+            v["attribute_report"]["kept"],
+            serde_json::json!(["texcoord0"])
+        );
         assert_eq!(v["attribute_report"]["dropped"], serde_json::json!([]));
         let texels = v["attribute_report"]["texcoord_error"]["rms_texels"]
             .as_f64()
