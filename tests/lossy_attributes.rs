@@ -75,7 +75,10 @@ fn spot_keeps_its_texture_coordinates_by_default() {
         file.to_str().unwrap(),
     ]);
     let text = ok(&out);
-    assert!(text.contains("attributes kept: texcoord0"), "{text}");
+    assert!(
+        text.contains("attributes kept: texture coordinates 0"),
+        "{text}"
+    );
     assert!(
         !String::from_utf8_lossy(&out.stderr).contains("not kept"),
         "{}",
@@ -102,7 +105,7 @@ fn spot_keeps_its_texture_coordinates_by_default() {
         let v = encode(&spot, &out, &["--effort", effort, "--bpv", bpv]);
         assert_eq!(
             v["attribute_report"]["kept"],
-            serde_json::json!(["texcoord0"])
+            serde_json::json!(["texture coordinates 0"])
         );
         assert_eq!(v["attribute_report"]["dropped"], serde_json::json!([]));
         let texels = v["attribute_report"]["texcoord_error"]["rms_texels"]

@@ -556,7 +556,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             });
         }
         if attributed.is_some() {
-            json["attribute_report"] = attributes_json(&stats.attributes);
+            json["attribute_report"] = crate::report::attributes_json(&stats.attributes);
         }
         json["check"] = fidelity.map_or(serde_json::Value::Null, |f| f.to_json());
         crate::report::print_json(&json);
@@ -614,7 +614,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         );
     }
     if attributed.is_some() && !qp_only {
-        say!("{}", attributes_line(&stats.attributes));
+        say!("{}", crate::report::attributes_line(&stats.attributes));
     }
     if let Some(h) = stats.hint() {
         let chosen = match (h.chosen.sharpen, h.chosen.bend_steps) {
@@ -818,48 +818,6 @@ fn kinds_of(m: &swm::AttributedMesh) -> swm::io::Attributes {
         }
     }
     a
-}
-
-/// An attribute kind as the reports name it.
-fn kind_name(k: swm::AttributeKind) -> String {
-    match k {
-        swm::AttributeKind::Normal => "normals".to_string(),
-        swm::AttributeKind::TexCoord(n) => format!("texcoord{n}"),
-        swm::AttributeKind::Color(n) => format!("color{n}"),
-        swm::AttributeKind::Generic(n) => format!("generic{n}"),
-        _ => "other".to_string(),
-    }
-}
-
-/// `--json`'s `attribute_report` (beside the lossless figures' `attributes`,
-/// one entry per coded stream): what the file kept of the input's streams,
-/// what it dropped and why, and the texture coordinates' error.
-fn attributes_json(a: &swm::AttributeReport) -> serde_json::Value {
-    let names = |ks: &[swm::AttributeKind]| ks.iter().map(|&k| kind_name(k)).collect::<Vec<_>>();
-    serde_json::json!({
-        "kept": names(&a.kept),
-        "dropped": names(&a.dropped),
-        "dropped_because": a.dropped_because.map(|d| d.to_string()),
-        "texcoord_error": a.texcoord_error.map(|e| serde_json::json!({
-            "rms_texels": e.rms_texels,
-            "max_texels": e.max_texels,
-            "texture_size": e.texture_size,
-            "samples": e.samples,
-        })),
-    })
-}
-
-/// The report's line for the attributes a lossy file kept.
-fn attributes_line(a: &swm::AttributeReport) -> String {
-    let kept: Vec<String> = a.kept.iter().map(|&k| kind_name(k)).collect();
-    let mut line = format!("attributes kept: {}", kept.join(", "));
-    if let Some(e) = a.texcoord_error {
-        line.push_str(&format!(
-            " (texture coordinates within {:.2} texels RMS, {:.1} at most, of a {} texture)",
-            e.rms_texels, e.max_texels, e.texture_size
-        ));
-    }
-    line
 }
 
 /// How many components met each fate, e.g. "3 retiled, 99997 kept by
