@@ -1,8 +1,9 @@
 //! `swm encode` on inputs that carry vertex attributes (texture
-//! coordinates, normals, colours): the lossy modes do not code them, and
-//! say so in one warning line on stderr naming exactly what was found,
-//! stdout (text or `--json`) the same as for the bare mesh; the lossless
-//! mode keeps them (`ATTR`, format 1.2) without a warning.
+//! coordinates, normals, colours): the lossless, automatic and simplified
+//! modes keep them (`ATTR`, format 1.2) without a warning and say so in
+//! the report; the swing mode does not code them, and says so in one
+//! warning line on stderr naming exactly what was found, stdout (text or
+//! `--json`) the same as for the bare mesh.
 
 mod common;
 use common::*;
@@ -128,20 +129,22 @@ fn warnings(out: &Output) -> Vec<String> {
         .collect()
 }
 
-/// Encodes `file` and the bare torus the same ways: in a lossy mode one
-/// warning naming `names`, and stdout as for the bare mesh, in text and
-/// in JSON; in the lossless mode no warning, and the file decodes with
-/// `streams` attribute streams.
+/// Encodes `file` and the bare torus the same ways. The lossless mode,
+/// the automatic mode and the lossless mode at a size keep the streams
+/// the reader attached (`streams` of them; none warns with the reader's
+/// reason, and then stdout is the bare mesh's); `--json` names them under
+/// `attribute_report`. The swing mode drops them with one warning naming
+/// `names`, and its stdout (text and JSON) is the bare mesh's.
 fn check(dir: &Path, file: &Path, names: &str, streams: usize) {
+    let unattached = format!(
+        "swm: warning: {}: the input's {names} are not kept (not every face corner names them, or a value is malformed)",
+        file.display()
+    );
     let out = encode(file, &["--mode", "lossless"]);
     if streams == 0 {
         // Values no face corner names (`f 1 2 3` after `vt` lines) stay
         // behind, and the warning says why.
-        let expected = format!(
-            "swm: warning: {}: the input's {names} are not kept (not every face corner names them, or a value is malformed)",
-            file.display()
-        );
-        assert_eq!(warnings(&out), [expected]);
+        assert_eq!(warnings(&out), [unattached.clone()]);
     } else {
         assert!(warnings(&out).is_empty(), "{:?}", warnings(&out));
     }
@@ -150,36 +153,58 @@ fn check(dir: &Path, file: &Path, names: &str, streams: usize) {
     assert_eq!(decoded.streams.len(), streams);
     let bare = dir.join("bare.obj");
     std::fs::write(&bare, obj("")).unwrap();
+    let text = |o: &Output| -> Vec<String> {
+        // The input's name differs; the rest must not.
+        let name = |p: &Path| p.display().to_string();
+        untimed_text(o)
+            .into_iter()
+            .map(|l| l.replace(&name(file), "IN").replace(&name(&bare), "IN"))
+            .map(|l| l.replace(&name(&file.with_extension("swm")), "OUT"))
+            .map(|l| l.replace(&name(&bare.with_extension("swm")), "OUT"))
+            .collect()
+    };
     for mode in [
-        &["--mode", "auto"][..],
-        &["--mode", "lossless", "--size", "900"],
+        // Rates that leave the geometry room beside the streams (at the
+        // default 2 b/v a torus's normals and colours take most of 192
+        // bytes).
+        &["--mode", "auto", "--bpv", "12"][..],
+        &["--mode", "lossless", "--size", "1200"],
+        &["--mode", "swing"],
     ] {
         let plain = encode(&bare, mode);
         assert!(warnings(&plain).is_empty(), "{:?}", warnings(&plain));
         let out = encode(file, mode);
-        let expected = format!(
-            "swm: warning: {}: the input's {names} are not kept (swm codes positions and triangles only)",
-            file.display()
-        );
-        assert_eq!(warnings(&out), [expected], "{mode:?}");
-        let text = |o: &Output| -> Vec<String> {
-            // The input's name differs; the rest must not.
-            let name = |p: &Path| p.display().to_string();
-            untimed_text(o)
-                .into_iter()
-                .map(|l| l.replace(&name(file), "IN").replace(&name(&bare), "IN"))
-                .map(|l| l.replace(&name(&file.with_extension("swm")), "OUT"))
-                .map(|l| l.replace(&name(&bare.with_extension("swm")), "OUT"))
-                .collect()
+        let json_args: Vec<&str> = mode.iter().copied().chain(["--json"]).collect();
+        let out_json = encode(file, &json_args);
+        let kept = streams > 0 && mode[1] != "swing";
+        if kept {
+            assert!(warnings(&out).is_empty(), "{mode:?}: {:?}", warnings(&out));
+            let bytes = std::fs::read(file.with_extension("swm")).unwrap();
+            let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
+            assert_eq!(decoded.streams.len(), streams, "{mode:?}");
+            assert!(ok(&out).contains("attributes kept: "), "{mode:?}");
+            let v = json(&out_json);
+            assert_eq!(
+                v["attribute_report"]["kept"].as_array().unwrap().len(),
+                streams
+            );
+            assert_eq!(v["attribute_report"]["dropped"], json!([]));
+            continue;
+        }
+        let expected = if streams == 0 {
+            unattached.clone()
+        } else {
+            format!(
+                "swm: warning: {}: the input's {names} are not kept (the swing method's file cannot carry them; --mode auto keeps them)",
+                file.display()
+            )
         };
+        assert_eq!(warnings(&out), [expected], "{mode:?}");
         assert_eq!(text(&out), text(&plain), "{mode:?}");
         assert!(!ok(&out).contains("warning"));
-
-        let json_args: Vec<&str> = mode.iter().copied().chain(["--json"]).collect();
-        let out = encode(file, &json_args);
-        assert_eq!(warnings(&out).len(), 1);
+        assert_eq!(warnings(&out_json).len(), 1);
         assert_eq!(
-            untimed(&json(&out)),
+            untimed(&json(&out_json)),
             untimed(&json(&encode(&bare, &json_args))),
             "{mode:?}"
         );
@@ -231,8 +256,8 @@ fn bare_meshes_and_stl_warn_of_nothing() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// On the pipe path too: the input named `-`, the warning on stderr (a
-/// lossy mode), and with `-o -` the file alone on stdout.
+/// On the pipe path too: the input named `-`, the warning on stderr, and
+/// with `-o -` the file alone on stdout.
 #[test]
 fn standard_input_warns_too() {
     let dir = scratch("attributes-stdin");
@@ -251,7 +276,7 @@ fn standard_input_warns_too() {
     let to_file = dir.join("uv.swm");
     let out = run(to_file.to_str().unwrap());
     ok(&out);
-    let expected = "swm: warning: -: the input's texture coordinates are not kept (swm codes positions and triangles only)";
+    let expected = "swm: warning: -: the input's texture coordinates are not kept (not every face corner names them, or a value is malformed)";
     assert_eq!(warnings(&out), [expected]);
     let piped = run("-");
     ok(&piped);

@@ -14,9 +14,9 @@ pub use crate::swing::SwingStats;
 pub use crate::encoder::stats::CHECK_SAMPLES;
 #[cfg(feature = "encoder")]
 pub use crate::encoder::stats::{
-    Attempt, Candidate, CandidateFailure, Check, DisplacedStats, EncodeStats, Encoded, HintReport,
-    Measured, Method, MethodStats, Origin, PieceOutcome, PieceReport, RateReport, SimplifiedStats,
-    SwingReport,
+    Attempt, AttributeReport, AttributesDropped, Candidate, CandidateFailure, Check,
+    DisplacedStats, EncodeStats, Encoded, HintReport, Measured, Method, MethodStats, Origin,
+    PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport, TexcoordError,
 };
 #[cfg(feature = "encoder")]
 pub use crate::options::{
@@ -39,13 +39,19 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
 
 #[cfg(feature = "encoder")]
 /// Encodes a mesh with its attribute streams (normals, texture
-/// coordinates, colours, generic) in the lossless mode
-/// (`options.mode` must be [`EncodeMode::Lossless`]; a lossy mode is a
-/// [`ParameterError::NotApplicable`](crate::ParameterError::NotApplicable)
-/// error, as its triangles are not the input's). Each stream is
-/// quantized as `options.attributes` says and coded with its seams in
-/// the section `ATTR` (format 1.2); a mesh without streams gives the
-/// same bytes as [`encode`]. Deterministic, as [`encode`].
+/// coordinates, colours, generic), each quantized as
+/// `options.attributes` says and coded with its seams in the section
+/// `ATTR` (format 1.2), in any mode whose file can carry them: the
+/// lossless mode, the simplified mode and the automatic mode, which then
+/// weighs only the methods that carry them (the simplified method: a
+/// simplification that never collapses across a seam,
+/// `simplify::attributed`, coded losslessly; the size budget counts the
+/// `ATTR` bytes). A mode that names SwingWrapper or displaced
+/// subdivision drops them. What was kept, what was dropped and why, and
+/// the texture coordinates' error, are in
+/// [`EncodeStats::attributes`](crate::EncodeStats). A mesh without
+/// streams gives the same bytes as [`encode`]. Deterministic, as
+/// [`encode`].
 ///
 /// # Errors
 /// As [`encode`], and an invalid mesh or stream
@@ -54,7 +60,7 @@ pub fn encode_attributed(
     mesh: &crate::AttributedMesh,
     options: &EncodeOptions,
 ) -> Result<Encoded, Error> {
-    crate::encoder::lossless::encode_attributed(mesh, options)
+    crate::encoder::encode_attributed(mesh, options)
 }
 
 /// Decodes a `.swm` file with its attribute streams: those of a

@@ -64,10 +64,11 @@ pub use api::HintReport;
 pub use api::{decode, decode_attributed, inspect, FileInfo, LosslessStats, SwingStats};
 #[cfg(feature = "encoder")]
 pub use api::{
-    encode, encode_attributed, Attempt, AttributeQuantization, Candidate, CandidateFailure, Check,
-    DisplacedStats, Effort, EncodeMode, EncodeOptions, EncodeStats, Encoded, ErrorBound, Measured,
-    Method, MethodStats, Origin, PieceOutcome, PieceReport, RateReport, SimplifiedStats,
-    SwingReport, SwingTarget, SwingTuning, AUTO_SAMPLES, CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
+    encode, encode_attributed, Attempt, AttributeQuantization, AttributeReport, AttributesDropped,
+    Candidate, CandidateFailure, Check, DisplacedStats, Effort, EncodeMode, EncodeOptions,
+    EncodeStats, Encoded, ErrorBound, Measured, Method, MethodStats, Origin, PieceOutcome,
+    PieceReport, RateReport, SimplifiedStats, SwingReport, SwingTarget, SwingTuning, TexcoordError,
+    AUTO_SAMPLES, CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::{Framing, Mode};

@@ -330,11 +330,18 @@ fn encode<'py>(
         qp,
         max_error,
     )?;
-    // Only the lossless mode at a fixed qp codes attributes (the others
-    // make new triangles, which the input's values do not follow).
-    if attributes.is_some() && !matches!(mode, swm::EncodeMode::Lossless { .. }) {
+    // The lossless, automatic and simplified modes code attributes (the
+    // automatic mode weighs only methods whose files carry them); a
+    // retiled or displaced file cannot, and the library would drop them:
+    // refused here rather than lost silently.
+    if attributes.is_some()
+        && matches!(
+            mode,
+            swm::EncodeMode::Swing { .. } | swm::EncodeMode::Displaced { .. }
+        )
+    {
         return Err(PyValueError::new_err(
-            "attributes are coded by mode=\"lossless\" without size, bpv or max_error only",
+            "attributes are coded by mode=\"auto\" or \"lossless\"; a swing or displaced file cannot carry them",
         ));
     }
     let mesh = arrays::mesh(&vertices, &faces)?;

@@ -224,7 +224,8 @@ def encode(
     ``area_ratio``, ``l2_relative``, ``hausdorff_relative``,
     ``samples``), ``None`` in the lossless mode at a fixed ``qp``.
 
-    ``attributes`` (``mode="lossless"`` without a size only) is a dict
+    ``attributes`` (``mode="auto"`` or ``"lossless"``, with or without a
+    size; ``"swing"`` and ``"displaced"`` refuse them) is a dict
     of per-vertex float arrays, one row per vertex, as
     ``decode(..., attributes=True)`` returns them: ``"normals"`` (n, 3),
     ``"uv"`` (n, 2) and further sets ``"uv1"``, ...; ``"colors"`` (n, 3)
@@ -233,6 +234,8 @@ def encode(
     ``swm encode``'s default quantization (normals 8 bits per octahedral
     coordinate, texture coordinates 10 bits, colours and generic streams
     8); vertices that differ only by their values (a UV seam) stay apart.
+    A lossy file simplifies the mesh with them, never across a seam, and
+    its size counts their bytes.
 
     Deterministic: the same arrays and options give the same bytes.
     """

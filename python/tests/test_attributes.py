@@ -131,12 +131,22 @@ def test_a_file_without_attributes_decodes_the_same_either_way(generated_corpus:
     assert swm.encode(v, f, mode="lossless", attributes={}) == data
 
 
+def test_lossy_modes_keep_the_attributes():
+    v, f, attrs = tube()
+    for options in ({"bpv": 24}, {"mode": "lossless", "bpv": 24}):
+        data, report = swm.encode(v, f, attributes=attrs, report=True, **options)
+        dv, df, dattrs = swm.decode(data, attributes=True)
+        assert sorted(dattrs) == ["normals", "uv"], options
+        assert report["method"] in ("simplified", "lossless"), options
+        # The seam stays: no face spans it (u near 0 beside u near 1).
+        u = dattrs["uv"][:, 0][df]
+        assert (u.max(axis=1) - u.min(axis=1) < 0.5).all(), options
+
+
 def test_bad_attributes_are_refused():
     v, f, attrs = tube()
-    with pytest.raises(ValueError, match="lossless"):
-        swm.encode(v, f, attributes=attrs)
-    with pytest.raises(ValueError, match="lossless"):
-        swm.encode(v, f, mode="lossless", bpv=8, attributes=attrs)
+    with pytest.raises(ValueError, match="swing or displaced"):
+        swm.encode(v, f, mode="swing", attributes=attrs)
     for bad in ("uv0", "normal", "colors01", "generic"):
         with pytest.raises(ValueError, match="unknown attribute"):
             swm.encode(v, f, mode="lossless", attributes={bad: attrs["uv"]})

@@ -135,15 +135,15 @@ pub struct Args {
     /// Lossless without a size: bits per coordinate [default: 12].
     #[arg(long, value_parser = clap::value_parser!(u8).range(6..=24))]
     pub(crate) qp: Option<u8>,
-    /// Lossless without a size: bits per texture coordinate, as Draco's
-    /// -qt [default: 10].
+    /// Lossless and auto: bits per texture coordinate, as Draco's -qt
+    /// [default: 10].
     #[arg(long, value_parser = clap::value_parser!(u8).range(2..=24))]
     pub(crate) qt: Option<u8>,
-    /// Lossless without a size: bits per octahedral coordinate of a
-    /// normal, as Draco's -qn [default: 8].
+    /// Lossless and auto: bits per octahedral coordinate of a normal, as
+    /// Draco's -qn [default: 8].
     #[arg(long, value_parser = clap::value_parser!(u8).range(4..=16))]
     pub(crate) qn: Option<u8>,
-    /// Lossless without a size: bits per colour or generic component, as
+    /// Lossless and auto: bits per colour or generic component, as
     /// Draco's -qg [default: 8].
     #[arg(long, value_parser = clap::value_parser!(u8).range(2..=24))]
     pub(crate) qg: Option<u8>,
@@ -255,7 +255,6 @@ impl Args {
                 "auto",
                 vec![
                     (self.qp.is_some(), "--qp"),
-                    (self.attribute_bits(), "--qt, --qn, --qg"),
                     (self.angle_bits.is_some(), "--angle-bits"),
                 ],
             ),
@@ -276,10 +275,6 @@ impl Args {
                 "lossless",
                 vec![
                     (self.qp.is_some() && sized, "--qp with --size or --bpv"),
-                    (
-                        self.attribute_bits() && sized,
-                        "--qt, --qn, --qg with --size or --bpv",
-                    ),
                     (
                         self.effort != EffortArg::Default && !sized,
                         "--effort without --size, --bpv or --max-error",
@@ -387,20 +382,28 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let progress = crate::progress::Progress::spinner(args.quiet).prefix("swm encode");
     progress.phase("reading");
     let bounded = args.max_error.is_some() || args.max_error_units.is_some();
-    // The lossless mode at a given qp keeps the input's attributes
-    // (`ATTR`, format 1.2); every other mode drops them, with a warning.
-    let keeps_attributes =
-        args.mode == ModeArg::Lossless && args.size.is_none() && args.bpv.is_none() && !bounded;
-    let (mesh, attributed) = if keeps_attributes {
-        let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
-        let why = "not every face corner names them, or a value is malformed";
-        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
-        (m.mesh.clone(), Some(m))
-    } else {
-        let (mesh, read) = crate::pipe::read_mesh(&args.input, format)?;
-        let why = "swm codes positions and triangles only";
-        progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
-        (mesh, None)
+    // The lossless, automatic and simplified modes keep the input's
+    // attributes (`ATTR`, format 1.2; the automatic mode weighs only the
+    // methods that carry them); SwingWrapper and displaced files cannot,
+    // and drop them with a warning.
+    let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
+    let why = "not every face corner names them, or a value is malformed";
+    progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
+    let mesh = m.mesh.clone();
+    let attributed = match args.mode {
+        ModeArg::Swing | ModeArg::Displaced => {
+            let why = format!(
+                "the {} method's file cannot carry them; --mode auto keeps them",
+                if args.mode == ModeArg::Swing {
+                    "swing"
+                } else {
+                    "displaced"
+                }
+            );
+            progress.suspend(|| warn_dropped(&args.input, &kinds_of(&m), &why));
+            None
+        }
+        ModeArg::Auto | ModeArg::Lossless => (!m.streams.is_empty()).then_some(m),
     };
     let options = encode_options(args);
     progress.phase("encoding");
@@ -422,8 +425,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             let Some(mode) = at_size(&options.mode, e.smallest) else {
                 return Err(CliError::new(&args.input, swm::Error::Size(e)));
             };
-            let encoded = swm::encode(&mesh, &swm::EncodeOptions { mode, ..options })
-                .map_err(|e| CliError::new(&args.input, e))?;
+            let options = swm::EncodeOptions { mode, ..options };
+            let encoded = match attributed.as_ref() {
+                Some(m) => swm::encode_attributed(m, &options),
+                None => swm::encode(&mesh, &options),
+            }
+            .map_err(|e| CliError::new(&args.input, e))?;
             let why = if args.or_smallest {
                 "--or-smallest"
             } else {
@@ -548,6 +555,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 "crease_tips": h.crease_tips,
             });
         }
+        if attributed.is_some() {
+            json["attribute_report"] = crate::report::attributes_json(&stats.attributes);
+        }
         json["check"] = fidelity.map_or(serde_json::Value::Null, |f| f.to_json());
         crate::report::print_json(&json);
         return Ok(());
@@ -602,6 +612,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "{}",
             crate::report::choice_line(stats, options.effort, requested)
         );
+    }
+    if attributed.is_some() && !qp_only {
+        say!("{}", crate::report::attributes_line(&stats.attributes));
     }
     if let Some(h) = stats.hint() {
         let chosen = match (h.chosen.sharpen, h.chosen.bend_steps) {
@@ -790,6 +803,21 @@ fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes, why: &st
         "swm: warning: {}: the input's {listed} are not kept ({why})",
         input.display()
     );
+}
+
+/// The reader's flags of the streams `m` carries: what a mode that
+/// cannot keep them drops.
+fn kinds_of(m: &swm::AttributedMesh) -> swm::io::Attributes {
+    let mut a = swm::io::Attributes::default();
+    for s in &m.streams {
+        match s.kind {
+            swm::AttributeKind::Normal => a.normals = true,
+            swm::AttributeKind::TexCoord(_) => a.uv = true,
+            swm::AttributeKind::Color(_) => a.colors = true,
+            _ => a.generic = true,
+        }
+    }
+    a
 }
 
 /// How many components met each fate, e.g. "3 retiled, 99997 kept by

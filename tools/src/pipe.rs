@@ -140,16 +140,3 @@ pub fn read_attributed_mesh(
     }
     swm::io::read_attributed_mesh_with(path, Some(format), &limits).map_err(err)
 }
-
-pub fn read_mesh(
-    path: &Path,
-    format: swm::io::MeshFormat,
-) -> Result<(swm::TriMesh, swm::io::ReadReport), CliError> {
-    let limits = swm::Limits::default();
-    let err = |e| CliError::new(path, e);
-    if is_stdio(path) {
-        let bytes = read_stdin(limits.max_input_bytes).map_err(err)?;
-        return swm::io::read_mesh_bytes_with_report(&bytes, format, &limits).map_err(err);
-    }
-    swm::io::read_mesh_with_report(path, Some(format), &limits).map_err(err)
-}

@@ -81,6 +81,38 @@ pub fn attribute_name(kind: swm::AttributeKind) -> String {
     }
 }
 
+/// `--json`'s `attribute_report` (beside the lossless figures' `attributes`,
+/// one entry per coded stream): what the file kept of the input's streams,
+/// what it dropped and why, and the texture coordinates' error.
+pub fn attributes_json(a: &swm::AttributeReport) -> Value {
+    let names =
+        |ks: &[swm::AttributeKind]| ks.iter().map(|&k| attribute_name(k)).collect::<Vec<_>>();
+    serde_json::json!({
+        "kept": names(&a.kept),
+        "dropped": names(&a.dropped),
+        "dropped_because": a.dropped_because.map(|d| d.to_string()),
+        "texcoord_error": a.texcoord_error.map(|e| serde_json::json!({
+            "rms_texels": e.rms_texels,
+            "max_texels": e.max_texels,
+            "texture_size": e.texture_size,
+            "samples": e.samples,
+        })),
+    })
+}
+
+/// The report's line for the attributes a lossy file kept.
+pub fn attributes_line(a: &swm::AttributeReport) -> String {
+    let kept: Vec<String> = a.kept.iter().map(|&k| attribute_name(k)).collect();
+    let mut line = format!("attributes kept: {}", kept.join(", "));
+    if let Some(e) = a.texcoord_error {
+        line.push_str(&format!(
+            "; texture coordinates within {:.2} texels RMS, {:.1} at most, of a {} texture",
+            e.rms_texels, e.max_texels, e.texture_size
+        ));
+    }
+    line
+}
+
 /// The figures of a SwingWrapper file.
 pub fn swing_json(s: &swm::SwingStats) -> Value {
     let t = s.triangles.max(1) as f64;

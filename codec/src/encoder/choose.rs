@@ -61,10 +61,19 @@ enum State {
 /// The automatic mode's file for `ask` among the methods of `list`
 /// (first wins ties).
 pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chosen, Error> {
-    let mut states: Vec<Option<State>> = (0..list.len()).map(|_| None).collect();
+    // An input with attribute streams is coded only by methods that keep
+    // them: the others are not tried, and say why.
+    let keeps = |e: &Entry| job.streams().is_empty() || e.method.carries_attributes();
+    let mut states: Vec<Option<State>> = list
+        .iter()
+        .map(|e| (!keeps(e)).then_some(State::Failed(CandidateFailure::DropsAttributes)))
+        .collect();
     let budget = match ask.target {
         SwingTarget::EdgeLength(_) => {
-            let Some(first) = list.iter().position(|e| e.method.takes_edge_length()) else {
+            let Some(first) = list
+                .iter()
+                .position(|e| e.method.takes_edge_length() && keeps(e))
+            else {
                 return Err(ParameterError::NotApplicable {
                     name: "edge length",
                     mode: "automatic",
@@ -80,7 +89,7 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
             let budget = made.bytes.len() as u64;
             states[first] = Some(State::Made(made));
             for (i, e) in list.iter().enumerate() {
-                if i != first && !e.method.runs_when_whole_fits() {
+                if i != first && !e.method.runs_when_whole_fits() && states[i].is_none() {
                     states[i] = Some(State::Failed(CandidateFailure::NotApplicable));
                 }
             }
@@ -90,6 +99,9 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
             let budget = super::request::budget(t, job.input_vertices, ask.max_bytes, "automatic")?;
             // Over the level's work budget: not tried.
             for (i, e) in list.iter().enumerate() {
+                if states[i].is_some() {
+                    continue;
+                }
                 if let (Some(b), Some(p)) = (e.work, e.method.predicted_work(job, ask, budget)) {
                     if p > b {
                         let failure = CandidateFailure::OverBudget {
@@ -111,7 +123,7 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
             // reason overrides the work budget's, being the first a user
             // can act on.
             let asks: Vec<usize> = (0..list.len())
-                .filter(|&i| !list[i].method.runs_when_whole_fits())
+                .filter(|&i| !list[i].method.runs_when_whole_fits() && keeps(&list[i]))
                 .collect();
             if !asks.is_empty() {
                 // The simplifier's whole-mesh file: its connectivity, coded here,

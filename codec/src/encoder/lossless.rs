@@ -39,6 +39,10 @@ impl CodingMethod for Lossless {
         true
     }
 
+    fn carries_attributes(&self) -> bool {
+        true
+    }
+
     fn encode(&self, job: &Job<'_, '_>, _ask: Ask) -> Result<Option<Made>, Error> {
         let c = job.cleaned;
         let (bytes, stats, _) =
@@ -70,7 +74,7 @@ pub(crate) fn encode_attributed(
     };
     let method = Lossless::new(qp)?;
     let (cleaned, streams) = crate::clean_attributed(mesh, &options.clean)?;
-    let (bytes, stats) = crate::lossless::encode_attributed(
+    let (bytes, stats, _) = crate::lossless::encode_attributed(
         &cleaned.table,
         &cleaned.mesh,
         &streams,
@@ -86,6 +90,7 @@ pub(crate) fn encode_attributed(
             candidates: Vec::new(),
             check: None,
             origins: Vec::new(),
+            attributes: Default::default(),
         },
     })
 }

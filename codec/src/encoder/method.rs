@@ -45,6 +45,11 @@ pub(crate) struct Services<'a> {
     reference: OnceLock<Option<Surface>>,
     /// The input as given, as `swm distance` measures against it.
     given: OnceLock<Surface>,
+    /// The cleaned input's attribute streams (one triple per cleaned
+    /// face; empty without any) and their quantization: only methods
+    /// that carry them run ([`CodingMethod::carries_attributes`]).
+    streams: &'a [crate::AttributeStream],
+    quantization: crate::AttributeQuantization,
 }
 
 impl<'a> Services<'a> {
@@ -64,6 +69,22 @@ impl<'a> Services<'a> {
             simplifier: OnceLock::new(),
             reference: OnceLock::new(),
             given: OnceLock::new(),
+            streams: &[],
+            quantization: crate::AttributeQuantization::default(),
+        }
+    }
+
+    /// The same services for an input with attribute `streams` (the
+    /// cleaning's, `clean_attributed`), quantized as `quantization` says.
+    pub fn with_attributes(
+        self,
+        streams: &'a [crate::AttributeStream],
+        quantization: crate::AttributeQuantization,
+    ) -> Services<'a> {
+        Services {
+            streams,
+            quantization,
+            ..self
         }
     }
 }
@@ -77,7 +98,9 @@ impl<'a> Services<'a> {
 /// beetle 2 b/v 153 -> 69; woody 1 b/v, 11 faces, rose 44 -> 102). Its
 /// collapse sequence costs about 2.5 µs a face, 50 ms at this count, a
 /// sixth of fast's 0.3 s floor; meshoptimizer's pass is about 4x cheaper,
-/// which is what the larger inputs need.
+/// which is what the larger inputs need. An input with attribute streams
+/// is simplified by meshoptimizer with them at every effort and size
+/// (`simplify::attributed`: the collapse sequence knows no seams).
 pub(crate) const QUICK_ENGINE_FACES: usize = 20_000;
 
 /// One encode's input and the services its methods share.
@@ -105,7 +128,13 @@ impl<'a, 's> Job<'a, 's> {
                 false => Simplifier::new(mesh, s.framing),
             }
             .of_cleaned(s.cleaned)
+            .with_attributes(s.streams, s.quantization)
         })
+    }
+
+    /// The cleaned input's attribute streams (empty without any).
+    pub fn streams(&self) -> &'s [crate::AttributeStream] {
+        self.services.streams
     }
 
     /// The bounding-box diagonal of the input as given (what relative
@@ -218,6 +247,14 @@ pub(crate) trait CodingMethod: Sync {
     /// quantization fits the request (a retiling would then work far
     /// below the input's edge length and come nowhere near that file).
     fn runs_when_whole_fits(&self) -> bool {
+        false
+    }
+
+    /// Whether its file carries the input's attribute streams (`ATTR`,
+    /// format 1.2). An input with streams is coded only by methods that
+    /// do: the others are recorded as not tried
+    /// ([`CandidateFailure::DropsAttributes`](super::stats::CandidateFailure)).
+    fn carries_attributes(&self) -> bool {
         false
     }
 

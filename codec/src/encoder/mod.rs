@@ -26,26 +26,79 @@ pub(crate) mod swing;
 pub(crate) mod target;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_attributed;
 
 use crate::options::{EncodeMode, EncodeOptions, SwingTarget};
 use crate::{Error, TriMesh};
 use method::{Ask, CodingMethod, Job, Services};
-use stats::{EncodeStats, Encoded};
+use stats::{AttributeReport, AttributesDropped, EncodeStats, Encoded};
 
 /// Cleans and encodes `mesh` (see [`crate::encode`]).
 pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error> {
+    encode_with(mesh, None, options)
+}
+
+/// Cleans and encodes `mesh` with its attribute streams (see
+/// [`crate::encode_attributed`]). The lossless mode keeps them; the
+/// automatic and simplified modes keep them too, running only methods
+/// whose files carry them (`CodingMethod::carries_attributes`); a mode
+/// that names a method that cannot (SwingWrapper, displaced) drops them
+/// and says so ([`AttributeReport`]). No streams: [`encode`]'s bytes.
+pub(crate) fn encode_attributed(
+    mesh: &crate::AttributedMesh,
+    options: &EncodeOptions,
+) -> Result<Encoded, Error> {
+    mesh.validate()?;
+    if mesh.streams.is_empty() {
+        return encode(&mesh.mesh, options);
+    }
+    let kinds: Vec<crate::AttributeKind> = mesh.streams.iter().map(|s| s.kind).collect();
+    let dropped_by = match options.mode {
+        EncodeMode::Lossless { .. } => {
+            let mut encoded = lossless::encode_attributed(mesh, options)?;
+            encoded.stats.attributes.kept = kinds;
+            return Ok(encoded);
+        }
+        EncodeMode::Swing { .. } => Some(stats::Method::Swing),
+        EncodeMode::Displaced { .. } => Some(stats::Method::Displaced),
+        EncodeMode::Auto { .. } | EncodeMode::Simplified { .. } => None,
+    };
+    if let Some(method) = dropped_by {
+        let mut encoded = encode(&mesh.mesh, options)?;
+        encoded.stats.attributes = AttributeReport {
+            dropped: kinds,
+            dropped_because: Some(AttributesDropped::Method(method)),
+            ..Default::default()
+        };
+        return Ok(encoded);
+    }
+    encode_with(&mesh.mesh, Some(mesh), options)
+}
+
+/// [`encode`], with `attributed` (the same mesh with its streams) when
+/// the file is to carry them.
+fn encode_with(
+    mesh: &TriMesh,
+    attributed: Option<&crate::AttributedMesh>,
+    options: &EncodeOptions,
+) -> Result<Encoded, Error> {
     // A parameter error comes before any work.
     let lossless = match options.mode {
         EncodeMode::Lossless { qp } => Some(lossless::Lossless::new(qp)?),
         _ => None,
     };
-    let cleaned = crate::clean(mesh, &options.clean)?;
+    let (cleaned, streams) = match attributed {
+        Some(a) => crate::clean_attributed(a, &options.clean)?,
+        None => (crate::clean(mesh, &options.clean)?, Vec::new()),
+    };
     let services = Services::new(
         mesh,
         &cleaned,
         options.framing,
         options.effort == crate::Effort::Fast,
-    );
+    )
+    .with_attributes(&streams, options.attributes);
     let job = Job {
         cleaned: &cleaned,
         input_vertices: mesh.distinct_positions(),
@@ -65,6 +118,7 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
                 candidates: Vec::new(),
                 check: None,
                 origins: Vec::new(),
+                attributes: AttributeReport::default(),
             },
         };
         Ok((encoded, made.seeds))
@@ -127,6 +181,13 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
     if options.origins {
         encoded.stats.origins = provenance::of_file(&job, &encoded.bytes, seeds.as_deref())?;
     }
+    if !streams.is_empty() {
+        encoded.stats.attributes = AttributeReport {
+            kept: streams.iter().map(|s| s.kind).collect(),
+            texcoord_error: job.simplifier().texcoord_error(&encoded.bytes)?,
+            ..Default::default()
+        };
+    }
     Ok(encoded)
 }
 
@@ -143,6 +204,7 @@ fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<(Encoded, 
             candidates: chosen.candidates,
             check: None,
             origins: Vec::new(),
+            attributes: AttributeReport::default(),
         },
     };
     Ok((encoded, chosen.seeds))

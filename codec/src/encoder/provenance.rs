@@ -44,7 +44,7 @@
 
 use super::stats::Origin;
 use crate::mesh::clean::position_key as key;
-use crate::metrics::{NearestScratch, Surface};
+use crate::metrics::{barycentric, NearestScratch, Surface};
 use crate::TriMesh;
 use alloc::vec::Vec;
 
@@ -329,31 +329,6 @@ impl Around {
         }
         best.map_or(0, |(_, f)| f)
     }
-}
-
-/// Barycentric coordinates of `p` (a point on or near `t`) on `t`:
-/// projected onto its plane, clamped to the triangle and summing to one;
-/// a degenerate face gives its first corner.
-fn barycentric(t: &[[f32; 3]; 3], p: [f64; 3]) -> [f32; 3] {
-    let w = |q: [f32; 3]| q.map(|c| c as f64);
-    let (a, b, c) = (w(t[0]), w(t[1]), w(t[2]));
-    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-    let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-    let (e0, e1, d) = (sub(b, a), sub(c, a), sub(p, a));
-    let (d00, d01, d11) = (dot(e0, e0), dot(e0, e1), dot(e1, e1));
-    let (d20, d21) = (dot(d, e0), dot(d, e1));
-    let den = d00 * d11 - d01 * d01;
-    if !(den > 0.0) || !den.is_finite() {
-        return [1.0, 0.0, 0.0];
-    }
-    let v = ((d11 * d20 - d01 * d21) / den).max(0.0);
-    let u = ((d00 * d21 - d01 * d20) / den).max(0.0);
-    let (v, u) = if v + u > 1.0 {
-        (v / (v + u), u / (v + u))
-    } else {
-        (v, u)
-    };
-    [(1.0 - v - u).max(0.0) as f32, v as f32, u as f32]
 }
 
 #[cfg(test)]

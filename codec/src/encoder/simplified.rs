@@ -13,7 +13,7 @@
 use super::method::{Ask, CodingMethod, Job, Made};
 use super::stats::{Method, MethodStats, SimplifiedStats};
 use crate::simplify::Climb;
-use crate::{CleanOptions, Error};
+use crate::Error;
 
 /// How far the simplified method searches.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,6 +53,10 @@ impl CodingMethod for Simplified {
     }
 
     fn runs_when_whole_fits(&self) -> bool {
+        true
+    }
+
+    fn carries_attributes(&self) -> bool {
         true
     }
 
@@ -108,13 +112,11 @@ pub(crate) fn encode_at(job: &Job<'_, '_>, budget: u64, search: Search) -> Resul
         // winner's cleaning and encode, 65 ms, are not repeated).
         (fit.bytes.clone(), lossless, None)
     } else {
-        let cleaned = crate::clean(&fit.mesh, &CleanOptions::default())?;
-        let (bytes, lossless, source) =
-            crate::lossless::encode(&cleaned.table, &cleaned.mesh, fit.qp, s.framing())?;
+        let (bytes, lossless, source, cleaned) = s.file(fit.faces, &fit.mesh, fit.qp)?;
         let seeds = job
             .options
             .origins
-            .then(|| seeds(s, fit.faces, &fit.mesh, &cleaned.mesh, &source));
+            .then(|| seeds(s, fit.faces, &fit.mesh, &cleaned, &source));
         (bytes, lossless, seeds)
     };
     debug_assert_eq!(bytes, fit.bytes, "lossless encoding is deterministic");

@@ -171,6 +171,11 @@ pub enum CandidateFailure {
         /// How a user runs it anyway ("--effort max tries it").
         instead: &'static str,
     },
+    /// Not tried: the input has attribute streams (texture coordinates,
+    /// normals, colours) and this method's file cannot carry them
+    /// (SwingWrapper, per-component and displaced files have no
+    /// per-corner attributes); a method that keeps them coded it.
+    DropsAttributes,
     /// The method has nothing to add for this input: a method per
     /// component on a mesh of one component, or one whose components all
     /// chose the same method (the file would be another candidate's).
@@ -201,6 +206,10 @@ impl core::fmt::Display for CandidateFailure {
                 "not tried at this effort: about {predicted} {unit} predicted, above the level's {budget} ({instead})"
             ),
             CandidateFailure::NotApplicable => write!(f, "nothing to add for this mesh"),
+            CandidateFailure::DropsAttributes => write!(
+                f,
+                "not tried: its file cannot carry the input's texture coordinates, normals or colours"
+            ),
         }
     }
 }
@@ -248,7 +257,52 @@ pub struct EncodeStats {
     /// resampled from. Empty unless `EncodeOptions::origins` asks for it,
     /// and in the lossless mode, whose vertices are the input's own.
     pub origins: Vec<Origin>,
+    /// What became of the input's attribute streams
+    /// ([`encode_attributed`](crate::encode_attributed)): empty for an
+    /// input without any.
+    pub attributes: AttributeReport,
 }
+
+/// What an encode did with the input's attribute streams (issue 47):
+/// which the file carries, which it does not and why, and how far the
+/// decoded texture coordinates are from the input's.
+#[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct AttributeReport {
+    /// The streams the file carries (`ATTR`), in the input's order.
+    pub kept: Vec<crate::AttributeKind>,
+    /// The streams it does not carry.
+    pub dropped: Vec<crate::AttributeKind>,
+    /// Why, when some were dropped.
+    pub dropped_because: Option<AttributesDropped>,
+    /// The decoded texture coordinates measured against the input's
+    /// (`metrics::texcoord`): a lossy file that keeps set 0.
+    pub texcoord_error: Option<TexcoordError>,
+}
+
+/// Why an encode dropped the input's attribute streams.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AttributesDropped {
+    /// The mode named a method whose file cannot carry them
+    /// (SwingWrapper, displaced subdivision); the automatic mode runs
+    /// only methods that can.
+    Method(Method),
+}
+
+impl core::fmt::Display for AttributesDropped {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            AttributesDropped::Method(m) => write!(
+                f,
+                "the {} method's file cannot carry per-corner attributes",
+                m.name()
+            ),
+        }
+    }
+}
+
+pub use crate::metrics::texcoord::TexcoordError;
 
 impl EncodeStats {
     /// The method that wrote the file.

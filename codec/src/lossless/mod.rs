@@ -125,9 +125,10 @@ pub(crate) fn encode_attributed(
     quantization: &crate::options::AttributeQuantization,
     qp: u8,
     framing: Framing,
-) -> Result<(Vec<u8>, LosslessStats), Error> {
+) -> Result<(Vec<u8>, LosslessStats, Vec<u32>), Error> {
     let prepared = Prepared::build(table, mesh, framing, !streams.is_empty())?;
-    prepared.file_with(&mesh.positions, qp, Some((streams, quantization)))
+    let (bytes, stats) = prepared.file_with(&mesh.positions, qp, Some((streams, quantization)))?;
+    Ok((bytes, stats, prepared.source))
 }
 
 #[cfg(feature = "encoder")]
@@ -184,6 +185,17 @@ impl Prepared {
         framing: Framing,
     ) -> Result<Self, Error> {
         Self::build(table, mesh, framing, false)
+    }
+
+    /// [`Self::new`] for a mesh whose files carry attribute streams
+    /// ([`Self::file_with`]): the simplified method's whole-mesh files
+    /// of an attributed input, one per quantization.
+    pub(crate) fn with_attributes(
+        table: &CornerTable,
+        mesh: &TriMesh,
+        framing: Framing,
+    ) -> Result<Self, Error> {
+        Self::build(table, mesh, framing, true)
     }
 
     /// [`Self::new`], keeping for [`Self::file_with`] what coding
@@ -272,7 +284,7 @@ impl Prepared {
     /// [`Self::file`], with `ATTR` for `attrs` when given (the streams
     /// of the prepared mesh, built with `for_attributes`; none, or a
     /// `Prepared` without them, writes the file without `ATTR`).
-    fn file_with(
+    pub(crate) fn file_with(
         &self,
         positions: &[[f32; 3]],
         qp: u8,

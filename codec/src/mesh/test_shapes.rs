@@ -113,3 +113,46 @@ pub(crate) fn coloured_sphere() -> super::AttributedMesh {
         )],
     )
 }
+
+/// `uv_sphere(nu, nv)` with latitude-longitude texture coordinates (a
+/// seam along longitude 0, where `u` is 0 on one side and 1 on the
+/// other; one value per pole corner) and smooth normals. Shared by the
+/// lossless mode's round trips and the lossy encodes that keep
+/// attributes (`encoder::tests_attributed`).
+pub(crate) fn textured_sphere(nu: u32, nv: u32) -> super::AttributedMesh {
+    use super::{AttributeKind, AttributeStream, AttributedMesh};
+    let mesh = uv_sphere(nu, nv);
+    let mut uv = Vec::new();
+    let mut uv_corners = Vec::new();
+    let mut value = |u: f32, v: f32| {
+        uv.extend_from_slice(&[u, v]);
+        (uv.len() / 2 - 1) as u32
+    };
+    // Grid values (i, j) for i in 0..=nu, j in 1..nv; pole corners apart.
+    let mut grid = vec![0u32; ((nu + 1) * (nv + 1)) as usize];
+    for j in 1..nv {
+        for i in 0..=nu {
+            grid[(j * (nu + 1) + i) as usize] = value(i as f32 / nu as f32, j as f32 / nv as f32);
+        }
+    }
+    let g = |i: u32, j: u32| grid[(j * (nu + 1) + i) as usize];
+    for i in 0..nu {
+        let top = value((i as f32 + 0.5) / nu as f32, 0.0);
+        uv_corners.push([top, g(i, 1), g(i + 1, 1)]);
+        let bottom = value((i as f32 + 0.5) / nu as f32, 1.0);
+        uv_corners.push([bottom, g(i + 1, nv - 1), g(i, nv - 1)]);
+        for j in 1..nv - 1 {
+            uv_corners.push([g(i, j), g(i, j + 1), g(i + 1, j + 1)]);
+            uv_corners.push([g(i, j), g(i + 1, j + 1), g(i + 1, j)]);
+        }
+    }
+    let normals = mesh.positions.iter().flatten().copied().collect();
+    let corners = mesh.triangles.clone();
+    AttributedMesh::new(
+        mesh,
+        vec![
+            AttributeStream::new(AttributeKind::TexCoord(0), 2, uv, uv_corners),
+            AttributeStream::new(AttributeKind::Normal, 3, normals, corners),
+        ],
+    )
+}

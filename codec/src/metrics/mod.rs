@@ -33,6 +33,8 @@ pub(crate) mod ray;
 mod sample;
 #[cfg(test)]
 mod tests;
+#[cfg(feature = "encoder")]
+pub mod texcoord;
 mod triangle;
 
 use rayon::prelude::*;
@@ -46,7 +48,7 @@ use sample::{area, carried_counts, edge_points, face_points, SplitMix};
 use triangle::Tri;
 #[cfg(feature = "encoder")]
 pub(crate) use triangle::{
-    closest_point as closest_on_triangle, distance2, triangle_distance2_f64,
+    barycentric, closest_point as closest_on_triangle, distance2, triangle_distance2_f64,
 };
 
 /// What to sample. Defaults are Metro's.

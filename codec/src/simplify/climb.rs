@@ -20,6 +20,15 @@ fn probing(lean: bool) -> Probing {
 }
 use super::simplifier::{file_distance, Simplifier, MIN_FACES, ON_SIZE_SLACK, QPS, START_QP};
 use crate::metrics::{Surface, SurfaceDistance};
+
+/// A fit's measure: its distance to the input, and the error the climb
+/// weighs, its L2 plus the attribute error of an input with streams
+/// ([`Simplifier::attribute_error`]; `simplify::attributed`'s weights).
+#[derive(Clone, Copy)]
+struct Scored {
+    distance: SurfaceDistance,
+    weighed: f64,
+}
 use crate::Error;
 use rayon::prelude::*;
 
@@ -48,9 +57,11 @@ pub enum Climb {
 /// the time.
 pub const LEAN_SAMPLES: u64 = 30_000;
 
-/// The fit of lowest measured L2 against `reference` over [`QPS`], and
-/// that L2 relative to the reference's diagonal; `None` when no qp fits
-/// even `MIN_FACES` faces in `budget` bytes.
+/// The fit of lowest measured L2 against `reference` over [`QPS`] (plus,
+/// for an input with attribute streams, their error weighed as
+/// `simplify::attributed` says), and its L2 relative to the reference's
+/// diagonal; `None` when no qp fits even `MIN_FACES` faces in `budget`
+/// bytes.
 ///
 /// The error is unimodal in qp (coarser positions against fewer faces),
 /// so the search climbs from a predicted qp instead of trying all of
@@ -70,10 +81,12 @@ pub fn best_fit<'r>(
         Climb::Full(samples) => samples,
         Climb::Lean => LEAN_SAMPLES,
     };
-    let measure = |fit: &Fit| -> Result<SurfaceDistance, Error> {
-        file_distance(&fit.bytes, reference()?, samples)
+    let measure = |fit: &Fit| -> Result<Scored, Error> {
+        let distance = file_distance(&fit.bytes, reference()?, samples)?;
+        let weighed = distance.l2() + s.attribute_error(&fit.bytes)?;
+        Ok(Scored { distance, weighed })
     };
-    let measure: &(dyn Fn(&Fit) -> Result<SurfaceDistance, Error> + Sync) = &measure;
+    let measure: &(dyn Fn(&Fit) -> Result<Scored, Error> + Sync) = &measure;
     let mut tried = Climbed::default();
     // The first fit; coarser qps until something fits.
     let mut start = START_QP;
@@ -126,7 +139,7 @@ pub fn best_fit<'r>(
     // answer, unless the short one's error is lower by more than
     // ON_SIZE_SLACK (a cube exact at 32 faces is not traded for a worse
     // file that fills the last two bytes).
-    let mut measured: Vec<(Fit, SurfaceDistance)> = tried
+    let mut measured: Vec<(Fit, Scored)> = tried
         .fits
         .into_iter()
         .filter_map(|t| Some((t.fit?, t.distance?)))
@@ -136,17 +149,17 @@ pub fn best_fit<'r>(
         f.faces >= s.faces()
             || f.bytes.len() as f64 >= (1.0 - crate::swing::retile::rate::TOLERANCE) * budget as f64
     };
-    let lowest = |fits: Vec<(Fit, SurfaceDistance)>| {
+    let lowest = |fits: Vec<(Fit, Scored)>| {
         fits.into_iter()
-            .reduce(|a, b| if b.1.l2() < a.1.l2() { b } else { a })
+            .reduce(|a, b| if b.1.weighed < a.1.weighed { b } else { a })
     };
     let (band, short): (Vec<_>, Vec<_>) = measured.into_iter().partition(|(f, _)| in_band(f));
     let best = match (lowest(band), lowest(short)) {
-        (Some(b), Some(s)) if b.1.l2() > ON_SIZE_SLACK * s.1.l2() => Some(s),
+        (Some(b), Some(s)) if b.1.weighed > ON_SIZE_SLACK * s.1.weighed => Some(s),
         (Some(b), _) => Some(b),
         (None, s) => s,
     };
-    Ok(best.map(|(fit, d)| (fit, d.l2_relative())))
+    Ok(best.map(|(fit, d)| (fit, d.distance.l2_relative())))
 }
 
 /// One qp's size fit and, once measured, its distance to the input.
@@ -154,7 +167,7 @@ struct Tried {
     qp: u8,
     /// `None`: nothing fits at that qp.
     fit: Option<Fit>,
-    distance: Option<SurfaceDistance>,
+    distance: Option<Scored>,
 }
 
 /// The fits of one climb, in the order made.
@@ -238,7 +251,7 @@ impl Climbed {
         start: u8,
         qp: u8,
         budget: u64,
-        measure: &(dyn Fn(&Fit) -> Result<SurfaceDistance, Error> + Sync),
+        measure: &(dyn Fn(&Fit) -> Result<Scored, Error> + Sync),
     ) -> Result<(), Error> {
         let below = qp.checked_sub(1).filter(|q| QPS.contains(q));
         let todo: Vec<(u8, Whole)> = [Some(qp), below]
@@ -268,7 +281,7 @@ impl Climbed {
             self.record(s, q, whole, fit?, true)?;
         }
         let pair: Vec<u8> = [Some(qp), below].into_iter().flatten().collect();
-        let measured: Vec<Option<SurfaceDistance>> = pair
+        let measured: Vec<Option<Scored>> = pair
             .par_iter()
             .map(|q| {
                 let t = self.fits.iter().find(|t| t.qp == *q);
@@ -307,7 +320,7 @@ impl Climbed {
     fn measure(
         &mut self,
         qp: u8,
-        measure: &dyn Fn(&Fit) -> Result<SurfaceDistance, Error>,
+        measure: &dyn Fn(&Fit) -> Result<Scored, Error>,
     ) -> Result<Option<f64>, Error> {
         let Some(t) = self.fits.iter_mut().find(|t| t.qp == qp) else {
             return Ok(None);
@@ -318,6 +331,6 @@ impl Climbed {
         if t.distance.is_none() {
             t.distance = Some(measure(fit)?);
         }
-        Ok(t.distance.as_ref().map(|d| d.l2()))
+        Ok(t.distance.as_ref().map(|d| d.weighed))
     }
 }

@@ -8,7 +8,7 @@
 //! returns fits the budget; its probes depend only on the mesh, the qp,
 //! the budget and the previous qp's answer (deterministic).
 
-use super::simplifier::{coded, Simplifier, MIN_FACES, QPS};
+use super::simplifier::{Simplifier, MIN_FACES, QPS};
 use crate::lossless::LosslessStats;
 use crate::{Error, TriMesh};
 
@@ -234,7 +234,7 @@ pub(super) fn search_faces(
                 (faces, s.simplify(faces))
             }
         };
-        let Some((bytes, stats)) = coded(&mesh, qp, s.framing)? else {
+        let Some((bytes, stats)) = s.code(faces, &mesh, qp)? else {
             degenerate_below = degenerate_below.max(faces + 1).max(2 * faces);
             continue;
         };
@@ -355,7 +355,7 @@ pub(super) fn refitted(s: &Simplifier<'_>, fit: Fit, budget: u64) -> Result<Fit,
     }
     let mut mesh = fit.mesh.clone();
     s.refit(&mut mesh);
-    Ok(match coded(&mesh, fit.qp, s.framing)? {
+    Ok(match s.code(fit.faces, &mesh, fit.qp)? {
         Some((bytes, stats)) if bytes.len() as u64 <= budget => Fit {
             mesh,
             bytes,

@@ -39,7 +39,13 @@
 //! count. A simplification may stop above the face count asked where no
 //! collapse keeps the mesh a manifold. The input must be welded
 //! (`clean`): split vertices along seams would be holes to the quadrics.
+//! An input with attribute streams ([`Simplifier::with_attributes`]) is
+//! simplified with them, never across a seam ([`attributed`]), its files
+//! carry them (`ATTR`), so every size above counts their bytes, and the
+//! error of step 2 adds theirs (texture coordinates and colours, weighed
+//! as [`attributed`] says).
 
+pub mod attributed;
 mod chunked;
 mod climb;
 mod collapse_pieces;

@@ -87,8 +87,10 @@ pub fn quick_fit<'r>(
     };
     // (The reference is asked for where it is used: it may still be in
     // the making beside this search, `encoder::simplified`.)
+    // (With attribute streams, their error weighed beside it.)
     let l2 = |f: &Fit| -> Result<f64, Error> {
-        Ok(file_distance(&f.bytes, reference()?, QUICK_SAMPLES)?.l2())
+        let d = file_distance(&f.bytes, reference()?, QUICK_SAMPLES)?.l2();
+        Ok(d + s.attribute_error(&f.bytes)?)
     };
     if first.faces >= s.faces() {
         return whole_first(s, first, budget, &l2).map(Some);

@@ -9,7 +9,7 @@
 //! (`Simplifier::whole_file`): a search over quantizations of the whole
 //! mesh pays for its connectivity once, not once per quantization.
 
-use super::{collapse_pieces, qem, refit};
+use super::{attributed, collapse_pieces, qem, refit};
 use crate::container::Framing;
 use crate::metrics::{DistanceOptions, Surface, SurfaceDistance};
 use crate::swing::retile::valence::{max_valence, MAX_VALENCE};
@@ -74,6 +74,36 @@ pub struct Simplifier<'a> {
     /// error target runs the same searches at several sizes, and the
     /// winner's figures come from here).
     whole_files: std::sync::Mutex<Vec<(u8, Vec<u8>, LosslessStats)>>,
+    /// The input's attribute streams, when it has any
+    /// ([`Simplifier::with_attributes`]): every simplification carries
+    /// them ([`attributed`]) and every file codes them (`ATTR`).
+    attrs: Option<Attrs<'a>>,
+}
+
+/// What a simplifier of an attributed input keeps.
+struct Attrs<'a> {
+    /// One triple per face of the simplifier's mesh, in each stream.
+    streams: &'a [crate::AttributeStream],
+    /// How the files quantize them.
+    quantization: crate::AttributeQuantization,
+    /// The input with its streams.
+    input: crate::AttributedMesh,
+    /// Simplifications so far, by target (each a function of its target
+    /// alone, so which search asked first does not matter).
+    made: std::sync::Mutex<Vec<(u32, crate::AttributedMesh)>>,
+    /// Anchor `k` (from 1): the input simplified toward `faces >> k`
+    /// faces from anchor `k − 1` (the input for 1), made on first use. A
+    /// target is simplified from the smallest anchor above it, so a size
+    /// search does not simplify the whole input at every probe, and the
+    /// result never depends on the order of probes (two searches of the
+    /// lean climb run side by side): unlike the quick engine's chain
+    /// from whatever was made last, the anchors are fixed by the input.
+    anchors: Vec<OnceLock<crate::AttributedMesh>>,
+    /// The whole mesh's connectivity coded with what `ATTR` needs.
+    prepared: OnceLock<Option<crate::lossless::Prepared>>,
+    /// The input's surface, for [`Simplifier::attribute_error`]
+    /// (`None`: no surface).
+    measured: OnceLock<Option<Surface>>,
 }
 
 impl<'a> Simplifier<'a> {
@@ -111,7 +141,189 @@ impl<'a> Simplifier<'a> {
             given: None,
             prepared: OnceLock::new(),
             whole_files: std::sync::Mutex::new(Vec::new()),
+            attrs: None,
         }
+    }
+
+    /// The same simplifier for a mesh with attribute `streams` (one
+    /// triple per face of its mesh, as `clean_attributed` gives them),
+    /// quantized in its files as `quantization` says. Its
+    /// simplifications are meshoptimizer's with attributes, whatever the
+    /// engine ([`attributed`]: the collapse sequence knows no seams); its
+    /// files carry the streams in `ATTR`, so every size it measures
+    /// counts them. No streams: the simplifier as it was.
+    pub fn with_attributes(
+        self,
+        streams: &'a [crate::AttributeStream],
+        quantization: crate::AttributeQuantization,
+    ) -> Simplifier<'a> {
+        if streams.is_empty() {
+            return self;
+        }
+        let levels = (32 - self.faces().max(1).leading_zeros()) as usize;
+        Simplifier {
+            attrs: Some(Attrs {
+                streams,
+                quantization,
+                input: crate::AttributedMesh::new(self.mesh.clone(), streams.to_vec()),
+                anchors: (0..levels).map(|_| OnceLock::new()).collect(),
+                made: std::sync::Mutex::new(Vec::new()),
+                prepared: OnceLock::new(),
+                measured: OnceLock::new(),
+            }),
+            ..self
+        }
+    }
+
+    /// The error of the file `bytes`'s attribute streams against the
+    /// input's, in the mesh's units, to add to its L2 distance where
+    /// files are compared (the climb over quantizations, the quick
+    /// search): texture coordinates' RMS texels times
+    /// [`TEXEL_WEIGHT`](attributed::TEXEL_WEIGHT) and colours' RMS 8-bit
+    /// steps times [`COLOUR_STEP_WEIGHT`](attributed::COLOUR_STEP_WEIGHT),
+    /// of the input's diagonal (`metrics::texcoord`). Zero without
+    /// streams, and for streams of other kinds (normals follow the
+    /// surface, which L2 measures).
+    pub fn attribute_error(&self, bytes: &[u8]) -> Result<f64, Error> {
+        let Some((texels, steps, diagonal)) = self.stream_errors(bytes)? else {
+            return Ok(0.0);
+        };
+        let texels = texels.map_or(0.0, |e| e.rms_texels);
+        let relative = attributed::TEXEL_WEIGHT * texels
+            + attributed::COLOUR_STEP_WEIGHT * steps.unwrap_or(0.0);
+        Ok(relative * diagonal)
+    }
+
+    /// The texture coordinates' error of the file `bytes` against the
+    /// input's (`metrics::texcoord`), as the encoder reports it; `None`
+    /// without texture coordinates.
+    pub fn texcoord_error(
+        &self,
+        bytes: &[u8],
+    ) -> Result<Option<crate::metrics::texcoord::TexcoordError>, Error> {
+        Ok(self.stream_errors(bytes)?.and_then(|(t, _, _)| t))
+    }
+
+    /// The file's texture coordinates' error, its colours' RMS 8-bit
+    /// steps and the input's diagonal; `None` without streams.
+    #[allow(clippy::type_complexity)]
+    fn stream_errors(
+        &self,
+        bytes: &[u8],
+    ) -> Result<
+        Option<(
+            Option<crate::metrics::texcoord::TexcoordError>,
+            Option<f64>,
+            f64,
+        )>,
+        Error,
+    > {
+        let Some(a) = &self.attrs else {
+            return Ok(None);
+        };
+        let measured = a.measured.get_or_init(|| Surface::new(&a.input.mesh).ok());
+        let Some(surface) = measured else {
+            return Ok(None);
+        };
+        let decoded = crate::decoder::decode_attributed(bytes, &Default::default())?;
+        use crate::metrics::texcoord::{colour_error_steps, texcoord_error};
+        Ok(Some((
+            texcoord_error(&a.input, surface, &decoded),
+            colour_error_steps(&a.input, surface, &decoded),
+            surface.diagonal(),
+        )))
+    }
+
+    /// Whether its files carry attribute streams.
+    pub fn has_attributes(&self) -> bool {
+        self.attrs.is_some()
+    }
+
+    /// The input's streams (empty without any).
+    pub fn streams(&self) -> &[crate::AttributeStream] {
+        self.attrs.as_ref().map_or(&[], |a| a.streams)
+    }
+
+    /// [`simplify`](Self::simplify) with the streams: the input itself at
+    /// `target` or more faces. Deterministic: a function of `target`
+    /// alone, simplified from the smallest anchor above it (`Attrs`).
+    /// Without streams, the simplification with none.
+    pub fn simplify_attributed(&self, target: u32) -> crate::AttributedMesh {
+        let Some(a) = &self.attrs else {
+            return crate::AttributedMesh::from(self.simplify(target));
+        };
+        if target >= self.faces() {
+            return a.input.clone();
+        }
+        let lock = || a.made.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some((_, m)) = lock().iter().find(|(t, _)| *t == target) {
+            return m.clone();
+        }
+        // The deepest anchor whose target is above this one.
+        let k = (1..=a.anchors.len())
+            .take_while(|&k| self.faces() >> k > target)
+            .last()
+            .unwrap_or(0);
+        let mesh = attributed::simplified(self.anchor(a, k), target);
+        let mut made = lock();
+        if made.iter().all(|(t, _)| *t != target) {
+            made.push((target, mesh.clone()));
+        }
+        mesh
+    }
+
+    /// Anchor `k` of `a` (0: the input).
+    fn anchor<'s>(&'s self, a: &'s Attrs<'a>, k: usize) -> &'s crate::AttributedMesh {
+        if k == 0 {
+            return &a.input;
+        }
+        a.anchors[k - 1]
+            .get_or_init(|| attributed::simplified(self.anchor(a, k - 1), self.faces() >> k))
+    }
+
+    /// The file of `mesh` (simplification `faces` of the input, refitted
+    /// or not: the same triangles) at `qp`, with the streams when the
+    /// input has them; `None` when it cleans to nothing (every face of
+    /// zero area).
+    pub(super) fn code(
+        &self,
+        faces: u32,
+        mesh: &TriMesh,
+        qp: u8,
+    ) -> Result<Option<(Vec<u8>, LosslessStats)>, Error> {
+        match self.file(faces, mesh, qp) {
+            Ok((b, stats, _, _)) => Ok(Some((b, stats))),
+            Err(Error::Topology(TopologyError::NoTriangles)) => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// [`code`](Self::code)'s file with its figures, the cleaned mesh it
+    /// codes and the vertex of that mesh each decoded vertex is.
+    pub fn file(
+        &self,
+        faces: u32,
+        mesh: &TriMesh,
+        qp: u8,
+    ) -> Result<(Vec<u8>, LosslessStats, Vec<u32>, TriMesh), Error> {
+        let Some(a) = &self.attrs else {
+            let cleaned = crate::clean(mesh, &CleanOptions::default())?;
+            let (b, st, source) =
+                crate::lossless::encode(&cleaned.table, &cleaned.mesh, qp, self.framing)?;
+            return Ok((b, st, source, cleaned.mesh));
+        };
+        let streams = self.simplify_attributed(faces).streams;
+        let with = crate::AttributedMesh::new(mesh.clone(), streams);
+        let (cleaned, streams) = crate::clean_attributed(&with, &CleanOptions::default())?;
+        let (b, st, source) = crate::lossless::encode_attributed(
+            &cleaned.table,
+            &cleaned.mesh,
+            &streams,
+            &a.quantization,
+            qp,
+            self.framing,
+        )?;
+        Ok((b, st, source, cleaned.mesh))
     }
 
     /// The same simplifier, told that its mesh is `cleaned`'s (the
@@ -153,6 +365,29 @@ impl<'a> Simplifier<'a> {
             let (b, st, _) = lossless_file(self.mesh, qp, self.framing)?;
             return Ok((b, st));
         };
+        if let Some(a) = &self.attrs {
+            // The streams follow the given cleaning's faces; without it,
+            // the mesh is cleaned with them (`file`).
+            let prepared = self.given.and_then(|c| {
+                a.prepared
+                    .get_or_init(|| {
+                        crate::lossless::Prepared::with_attributes(&c.table, &c.mesh, self.framing)
+                            .ok()
+                    })
+                    .as_ref()
+            });
+            let (bytes, stats) = match prepared {
+                Some(p) => {
+                    p.file_with(&c.mesh.positions, qp, Some((a.streams, &a.quantization)))?
+                }
+                None => {
+                    let (b, st, _, _) = self.file(self.faces(), self.mesh, qp)?;
+                    (b, st)
+                }
+            };
+            lock().push((qp, bytes.clone(), stats.clone()));
+            return Ok((bytes, stats));
+        }
         let prepared = self
             .prepared
             .get_or_init(|| crate::lossless::Prepared::new(&c.table, &c.mesh, self.framing).ok());
@@ -199,6 +434,9 @@ impl<'a> Simplifier<'a> {
         if target >= self.faces() {
             return self.mesh.clone();
         }
+        if self.attrs.is_some() {
+            return self.simplify_attributed(target).mesh;
+        }
         if self.quick {
             let mut made = self.made.lock().unwrap_or_else(|p| p.into_inner());
             if let Some((_, m)) = made.iter().find(|(t, _)| *t == target) {
@@ -231,7 +469,7 @@ impl<'a> Simplifier<'a> {
     /// (`encoder::provenance`); a refit moves vertices but keeps their
     /// numbers, so it holds for the refitted mesh too.
     pub fn sources(&self, target: u32) -> Vec<u32> {
-        if target < self.faces() && !self.quick {
+        if target < self.faces() && !self.quick && self.attrs.is_none() {
             let c = self
                 .collapses
                 .get_or_init(|| collapse_pieces::collapses(&self.work, MIN_FACES));
@@ -351,25 +589,11 @@ fn compact(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> TriMesh {
 pub fn smallest_bytes(s: &Simplifier<'_>) -> Result<u64, Error> {
     let mut faces = MIN_FACES;
     loop {
-        match coded(&s.simplify(faces), *QPS.start(), s.framing)? {
+        match s.code(faces, &s.simplify(faces), *QPS.start())? {
             Some((bytes, _)) => return Ok(bytes.len() as u64),
             None if faces >= s.faces() => return Err(TopologyError::NoTriangles.into()),
             None => faces = faces.saturating_mul(2).min(s.faces()),
         }
-    }
-}
-
-/// [`lossless_bytes`] with the encode's figures, or `None` when the
-/// simplified mesh cleans to nothing (every face of zero area).
-pub(super) fn coded(
-    mesh: &TriMesh,
-    qp: u8,
-    framing: Framing,
-) -> Result<Option<(Vec<u8>, LosslessStats)>, Error> {
-    match lossless_file(mesh, qp, framing) {
-        Ok((b, stats, _)) => Ok(Some((b, stats))),
-        Err(Error::Topology(TopologyError::NoTriangles)) => Ok(None),
-        Err(e) => Err(e),
     }
 }
 
