@@ -284,3 +284,55 @@ fn standard_input_warns_too() {
     assert_eq!(piped.stdout, std::fs::read(&to_file).unwrap());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The torus as ASCII PLY with its own smooth vertex normals (as a
+/// scanner or a smooth-shading exporter writes them).
+fn ply_with_smooth_normals() -> String {
+    let m = torus();
+    let normals = swm::vertex_normals(&m);
+    let mut s = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\n\
+         property float z\nproperty float nx\nproperty float ny\nproperty float nz\n\
+         element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        m.positions.len(),
+        m.triangles.len()
+    );
+    for ([x, y, z], [a, b, c]) in m.positions.iter().zip(&normals) {
+        s.push_str(&format!("{x} {y} {z} {a} {b} {c}\n"));
+    }
+    for [a, b, c] in &m.triangles {
+        s.push_str(&format!("3 {a} {b} {c}\n"));
+    }
+    s
+}
+
+#[test]
+fn normals_that_follow_the_geometry_are_left_to_decoders_unless_asked() {
+    let dir = scratch("attributes-smooth");
+    let file = dir.join("scan.ply");
+    std::fs::write(&file, ply_with_smooth_normals()).unwrap();
+    let out = encode(&file, &["--bpv", "4"]);
+    assert!(warnings(&out).is_empty(), "{:?}", warnings(&out));
+    let said = ok(&out);
+    assert!(
+        said.contains("attributes kept: none; normals not coded: the normals follow the geometry"),
+        "{said}"
+    );
+    let bytes = std::fs::read(file.with_extension("swm")).unwrap();
+    let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
+    assert!(decoded.streams.is_empty());
+    let v = json(&encode(&file, &["--bpv", "4", "--json"]));
+    assert_eq!(v["attribute_report"]["dropped"], json!(["normals"]));
+    // The same file as the bare mesh's.
+    let bare = dir.join("bare.obj");
+    std::fs::write(&bare, obj("")).unwrap();
+    encode(&bare, &["--bpv", "4"]);
+    assert_eq!(std::fs::read(bare.with_extension("swm")).unwrap(), bytes);
+    // Asked for, they are coded.
+    let out = encode(&file, &["--bpv", "4", "--keep-normals"]);
+    assert!(ok(&out).contains("attributes kept: normals"), "{}", ok(&out));
+    let bytes = std::fs::read(file.with_extension("swm")).unwrap();
+    let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
+    assert_eq!(decoded.streams.len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -197,6 +197,12 @@ pub struct EncodeOptions {
     /// ([`encode_attributed`](crate::encode_attributed)). Default:
     /// Draco's defaults, see [`AttributeQuantization`].
     pub attributes: AttributeQuantization,
+    /// Keep an input's normals in a lossy file even where they follow
+    /// the geometry (`encode_attributed`): by default such normals
+    /// (within `encoder::smooth::SMOOTH_NORMAL_DEGREES` RMS of the
+    /// geometry's own) are not coded, as a decoder recomputes them from
+    /// the decoded surface, and the report says so. Default `false`.
+    pub keep_smooth_normals: bool,
 }
 
 #[cfg(feature = "encoder")]

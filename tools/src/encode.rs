@@ -143,6 +143,11 @@ pub struct Args {
     /// Draco's -qn [default: 8].
     #[arg(long, value_parser = clap::value_parser!(u8).range(4..=16))]
     pub(crate) qn: Option<u8>,
+    /// Auto: code the input's normals even where they follow the
+    /// geometry (within 10 degrees RMS of its own), which by default are
+    /// left to decoders to recompute.
+    #[arg(long)]
+    pub(crate) keep_normals: bool,
     /// Lossless and auto: bits per colour or generic component, as
     /// Draco's -qg [default: 8].
     #[arg(long, value_parser = clap::value_parser!(u8).range(2..=24))]
@@ -368,6 +373,7 @@ pub(crate) fn encode_options(args: &Args) -> swm::EncodeOptions {
         },
         effort: args.effort.into(),
         attributes: args.attributes(),
+        keep_smooth_normals: args.keep_normals,
         ..Default::default()
     };
     options

@@ -103,7 +103,13 @@ pub fn attributes_json(a: &swm::AttributeReport) -> Value {
 /// The report's line for the attributes a lossy file kept.
 pub fn attributes_line(a: &swm::AttributeReport) -> String {
     let kept: Vec<String> = a.kept.iter().map(|&k| attribute_name(k)).collect();
-    let mut line = format!("attributes kept: {}", kept.join(", "));
+    let mut line = match kept.is_empty() {
+        true => "attributes kept: none".to_string(),
+        false => format!("attributes kept: {}", kept.join(", ")),
+    };
+    if let Some(why @ swm::AttributesDropped::SmoothNormals { .. }) = a.dropped_because {
+        line.push_str(&format!("; normals not coded: {why} (--keep-normals codes them)"));
+    }
     if let Some(e) = a.texcoord_error {
         line.push_str(&format!(
             "; texture coordinates within {:.2} texels RMS, {:.1} at most, of a {} texture",

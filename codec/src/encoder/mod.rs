@@ -21,6 +21,7 @@ pub(crate) mod mixed;
 pub(crate) mod provenance;
 pub(crate) mod request;
 pub(crate) mod simplified;
+pub(crate) mod smooth;
 pub(crate) mod stats;
 pub(crate) mod swing;
 pub(crate) mod target;
@@ -73,7 +74,25 @@ pub(crate) fn encode_attributed(
         };
         return Ok(encoded);
     }
-    encode_with(&mesh.mesh, Some(mesh), options)
+    // Normals the geometry gives back are left to the decoder (`smooth`).
+    let smooth = match options.keep_smooth_normals {
+        true => None,
+        false => smooth::smooth_normals(mesh),
+    };
+    let Some(rms_degrees) = smooth else {
+        return encode_with(&mesh.mesh, Some(mesh), options);
+    };
+    let rest = smooth::without_normals(mesh);
+    let mut encoded = match rest.streams.is_empty() {
+        true => encode(&mesh.mesh, options)?,
+        false => encode_with(&mesh.mesh, Some(&rest), options)?,
+    };
+    let report = &mut encoded.stats.attributes;
+    report.dropped.push(crate::AttributeKind::Normal);
+    report.dropped_because = Some(AttributesDropped::SmoothNormals {
+        rms_degrees: rms_degrees as f32,
+    });
+    Ok(encoded)
 }
 
 /// [`encode`], with `attributed` (the same mesh with its streams) when

@@ -281,13 +281,21 @@ pub struct AttributeReport {
 }
 
 /// Why an encode dropped the input's attribute streams.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum AttributesDropped {
     /// The mode named a method whose file cannot carry them
     /// (SwingWrapper, displaced subdivision); the automatic mode runs
     /// only methods that can.
     Method(Method),
+    /// The input's normals follow its geometry (within `rms_degrees`
+    /// RMS, `encoder::smooth`): a decoder recomputes them from the
+    /// decoded surface, so a lossy file does not code them
+    /// (`EncodeOptions::keep_smooth_normals` keeps them).
+    SmoothNormals {
+        /// The RMS angle between the input's normals and its geometry's.
+        rms_degrees: f32,
+    },
 }
 
 impl core::fmt::Display for AttributesDropped {
@@ -297,6 +305,10 @@ impl core::fmt::Display for AttributesDropped {
                 f,
                 "the {} method's file cannot carry per-corner attributes",
                 m.name()
+            ),
+            AttributesDropped::SmoothNormals { rms_degrees } => write!(
+                f,
+                "the normals follow the geometry (within {rms_degrees:.1} degrees RMS): decoders recompute them from the decoded surface"
             ),
         }
     }
