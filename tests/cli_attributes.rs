@@ -336,3 +336,53 @@ fn normals_that_follow_the_geometry_are_left_to_decoders_unless_asked() {
     assert_eq!(decoded.streams.len(), 1);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The torus as OBJ with a texture coordinate per vertex (its positions'
+/// x and y, a chart without seams).
+fn obj_with_texcoords() -> String {
+    let m = torus();
+    let mut s = String::new();
+    for [x, y, z] in &m.positions {
+        s.push_str(&format!("v {x} {y} {z}\n"));
+    }
+    for [x, y, _] in &m.positions {
+        s.push_str(&format!("vt {} {}\n", 0.5 + 0.3 * x, 0.5 + 0.3 * y));
+    }
+    for [a, b, c] in &m.triangles {
+        let (a, b, c) = (a + 1, b + 1, c + 1);
+        s.push_str(&format!("f {a}/{a} {b}/{b} {c}/{c}\n"));
+    }
+    s
+}
+
+#[test]
+fn a_size_below_the_smallest_file_with_the_streams_keeps_the_surface_and_says_so() {
+    let dir = scratch("attributes-no-room");
+    let file = dir.join("textured.obj");
+    std::fs::write(&file, obj_with_texcoords()).unwrap();
+    // Room for the texture coordinates: kept.
+    let out = encode(&file, &["--bpv", "8"]);
+    assert!(warnings(&out).is_empty(), "{:?}", warnings(&out));
+    assert!(ok(&out).contains("attributes kept: texture coordinates 0"));
+    // A size the surface fits and the coordinates do not: the surface,
+    // a warning naming what was lost, and --strict refuses.
+    // (At 90 bytes the torus is coarse enough for the fidelity warning
+    // too.)
+    let out = encode(&file, &["--size", "90"]);
+    let warned = warnings(&out);
+    assert!(
+        warned.iter().any(|w| w.contains("the input's texture coordinates 0 are not kept (the size asked for is below the smallest file that keeps them")),
+        "{warned:?}"
+    );
+    let bytes = std::fs::read(file.with_extension("swm")).unwrap();
+    assert!(bytes.len() <= 90);
+    let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
+    assert!(decoded.streams.is_empty());
+    let v = json(&encode(&file, &["--size", "90", "--json"]));
+    assert_eq!(v["attribute_report"]["dropped"], json!(["texture coordinates 0"]));
+    std::fs::remove_file(file.with_extension("swm")).unwrap();
+    let out = encode(&file, &["--size", "90", "--strict"]);
+    assert!(!out.status.success());
+    assert!(!file.with_extension("swm").exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&dir);
+}

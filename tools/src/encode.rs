@@ -460,6 +460,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
         other => other.map_err(|e| CliError::new(&args.input, e))?,
     };
+    // Streams dropped for want of room: a loss, said on standard error
+    // (an error with --strict).
+    if let Some(why @ swm::AttributesDropped::NoRoom { .. }) =
+        encoded.stats.attributes.dropped_because
+    {
+        let names: Vec<String> = (encoded.stats.attributes.dropped.iter())
+            .map(|&k| crate::report::attribute_name(k))
+            .collect();
+        let what = format!("the input's {} are not kept ({why})", names.join(", "));
+        if args.strict {
+            let e = std::io::Error::other(format!("--strict: {what}; nothing written"));
+            return Err(CliError::new(&args.input, e));
+        }
+        progress.suspend(|| eprintln!("swm: warning: {}: {what}", args.input.display()));
+    }
     let seconds = start.elapsed().as_secs_f64();
     // What a rate counts: the input's distinct positions, as the encoder
     // counts them.

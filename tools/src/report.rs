@@ -107,8 +107,15 @@ pub fn attributes_line(a: &swm::AttributeReport) -> String {
         true => "attributes kept: none".to_string(),
         false => format!("attributes kept: {}", kept.join(", ")),
     };
-    if let Some(why @ swm::AttributesDropped::SmoothNormals { .. }) = a.dropped_because {
-        line.push_str(&format!("; normals not coded: {why} (--keep-normals codes them)"));
+    match a.dropped_because {
+        Some(why @ swm::AttributesDropped::SmoothNormals { .. }) => {
+            line.push_str(&format!("; normals not coded: {why} (--keep-normals codes them)"))
+        }
+        Some(why @ swm::AttributesDropped::NoRoom { .. }) => {
+            let names: Vec<String> = a.dropped.iter().map(|&k| attribute_name(k)).collect();
+            line.push_str(&format!("; {} not kept: {why}", names.join(", ")))
+        }
+        _ => {}
     }
     if let Some(e) = a.texcoord_error {
         line.push_str(&format!(

@@ -79,19 +79,48 @@ pub(crate) fn encode_attributed(
         true => None,
         false => smooth::smooth_normals(mesh),
     };
-    let Some(rms_degrees) = smooth else {
-        return encode_with(&mesh.mesh, Some(mesh), options);
+    let rest;
+    let coded = match smooth {
+        Some(_) => {
+            rest = smooth::without_normals(mesh);
+            &rest
+        }
+        None => mesh,
     };
-    let rest = smooth::without_normals(mesh);
-    let mut encoded = match rest.streams.is_empty() {
+    let mut encoded = match coded.streams.is_empty() {
         true => encode(&mesh.mesh, options)?,
-        false => encode_with(&mesh.mesh, Some(&rest), options)?,
+        false => match encode_with(&mesh.mesh, Some(coded), options) {
+            // A size below the smallest file that keeps the streams: the
+            // surface alone, and the report says why (a request is for
+            // bytes; `--strict` makes the loss an error).
+            // When the surface alone does not fit either, the error is the
+            // streams' (its smallest file keeps them).
+            Err(Error::Size(e)) => {
+                let mut encoded = match encode(&mesh.mesh, options) {
+                    Err(Error::Size(_)) => return Err(e.into()),
+                    other => other?,
+                };
+                encoded.stats.attributes = AttributeReport {
+                    dropped: coded.streams.iter().map(|s| s.kind).collect(),
+                    dropped_because: Some(AttributesDropped::NoRoom {
+                        smallest: e.smallest,
+                    }),
+                    ..Default::default()
+                };
+                encoded
+            }
+            other => other?,
+        },
     };
-    let report = &mut encoded.stats.attributes;
-    report.dropped.push(crate::AttributeKind::Normal);
-    report.dropped_because = Some(AttributesDropped::SmoothNormals {
-        rms_degrees: rms_degrees as f32,
-    });
+    if let Some(rms_degrees) = smooth {
+        let report = &mut encoded.stats.attributes;
+        report.dropped.push(crate::AttributeKind::Normal);
+        if report.dropped_because.is_none() {
+            report.dropped_because = Some(AttributesDropped::SmoothNormals {
+                rms_degrees: rms_degrees as f32,
+            });
+        }
+    }
     Ok(encoded)
 }
 

@@ -296,6 +296,12 @@ pub enum AttributesDropped {
         /// The RMS angle between the input's normals and its geometry's.
         rms_degrees: f32,
     },
+    /// The size asked for is below the smallest file that keeps them:
+    /// the file codes the surface alone.
+    NoRoom {
+        /// The smallest file with the streams, in bytes.
+        smallest: u64,
+    },
 }
 
 impl core::fmt::Display for AttributesDropped {
@@ -305,6 +311,10 @@ impl core::fmt::Display for AttributesDropped {
                 f,
                 "the {} method's file cannot carry per-corner attributes",
                 m.name()
+            ),
+            AttributesDropped::NoRoom { smallest } => write!(
+                f,
+                "the size asked for is below the smallest file that keeps them ({smallest} bytes)"
             ),
             AttributesDropped::SmoothNormals { rms_degrees } => write!(
                 f,
