@@ -384,5 +384,14 @@ fn a_size_below_the_smallest_file_with_the_streams_keeps_the_surface_and_says_so
     let out = encode(&file, &["--size", "90", "--strict"]);
     assert!(!out.status.success());
     assert!(!file.with_extension("swm").exists(), "nothing written");
+    // A mode that cannot carry them: a warning, or with --strict an error.
+    let out = encode(&file, &["--mode", "swing", "--strict"]);
+    assert!(!out.status.success());
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.contains("--strict: the input's texture coordinates are not kept (the swing method's file cannot carry them"),
+        "{said}"
+    );
+    assert!(!file.with_extension("swm").exists(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -190,8 +190,9 @@ pub struct Args {
     /// encoding, writing), never on standard output.
     #[arg(short, long)]
     pub(crate) quiet: bool,
-    /// Exit 1 and write nothing when the check of the decoded mesh fails
-    /// (otherwise a warning on standard error). The check decodes the
+    /// Exit 1 and write nothing when the check of the decoded mesh fails,
+    /// or when an attribute stream of the input is not kept (otherwise a
+    /// warning on standard error). The check decodes the
     /// file and measures it against the input (60,000 of Metro's samples
     /// each way, as swm distance takes them): it fails when the decoded
     /// surface area is under 10% of the input's, or the Hausdorff
@@ -394,7 +395,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // and drop them with a warning.
     let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
     let why = "not every face corner names them, or a value is malformed";
-    progress.suspend(|| warn_dropped(&args.input, &read.dropped, why));
+    progress.suspend(|| warn_dropped(&args.input, &read.dropped, why, args.strict))?;
     let mesh = m.mesh.clone();
     let attributed = match args.mode {
         ModeArg::Swing | ModeArg::Displaced => {
@@ -406,7 +407,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                     "displaced"
                 }
             );
-            progress.suspend(|| warn_dropped(&args.input, &kinds_of(&m), &why));
+            progress.suspend(|| warn_dropped(&args.input, &kinds_of(&m), &why, args.strict))?;
             None
         }
         ModeArg::Auto | ModeArg::Lossless => (!m.streams.is_empty()).then_some(m),
@@ -812,18 +813,28 @@ fn warn_missed_size(input: &std::path::Path, r: &swm::RateReport, bytes: u64) {
 /// warnings are not results (and `--json` on stdout stays the JSON
 /// alone). A lossy mode keeps no attribute; the lossless mode keeps
 /// every stream the reader could attach to the faces.
-fn warn_dropped(input: &std::path::Path, dropped: &swm::io::Attributes, why: &str) {
+/// With `--strict` (`strict`) it is an error instead, before any work:
+/// nothing is written (issue 47, item 6).
+fn warn_dropped(
+    input: &std::path::Path,
+    dropped: &swm::io::Attributes,
+    why: &str,
+    strict: bool,
+) -> Result<(), CliError> {
     let names: Vec<&str> = dropped.names().collect();
     let listed = match names.as_slice() {
-        [] => return,
+        [] => return Ok(()),
         [one] => one.to_string(),
         [init @ .., last] => format!("{} and {last}", init.join(", ")),
     };
     // Every name is a plural: "are".
-    eprintln!(
-        "swm: warning: {}: the input's {listed} are not kept ({why})",
-        input.display()
-    );
+    let what = format!("the input's {listed} are not kept ({why})");
+    if strict {
+        let e = std::io::Error::other(format!("--strict: {what}; nothing written"));
+        return Err(CliError::new(input, e));
+    }
+    eprintln!("swm: warning: {}: {what}", input.display());
+    Ok(())
 }
 
 /// The reader's flags of the streams `m` carries: what a mode that
