@@ -69,8 +69,23 @@ fn assert_in_chart(decoded: &AttributedMesh, tol: f64) {
 #[test]
 fn a_textured_sphere_keeps_its_uvs_and_its_seam_at_every_effort() {
     let mesh = textured_sphere(48, 24);
+    // Its normals are the sphere's own: by default a lossy file leaves
+    // them to the decoder (`smooth`) and keeps the UVs alone.
+    let e = crate::encode_attributed(&mesh, &auto(8.0, Effort::Fast)).unwrap();
+    let a = &e.stats.attributes;
+    assert_eq!(a.kept, vec![AttributeKind::TexCoord(0)]);
+    assert_eq!(a.dropped, vec![AttributeKind::Normal]);
+    assert!(matches!(
+        a.dropped_because,
+        Some(AttributesDropped::SmoothNormals { .. })
+    ));
     for effort in [Effort::Fast, Effort::Default, Effort::Max] {
-        let e = crate::encode_attributed(&mesh, &auto(8.0, effort)).unwrap();
+        // Asked to, it carries both streams through the simplification.
+        let options = EncodeOptions {
+            keep_smooth_normals: true,
+            ..auto(8.0, effort)
+        };
+        let e = crate::encode_attributed(&mesh, &options).unwrap();
         assert_eq!(e.stats.chosen(), Method::Simplified, "{effort:?}");
         let a = &e.stats.attributes;
         assert_eq!(
