@@ -162,7 +162,7 @@ def test_batch_with_a_worker_killed_then_a_rerun(library, tmp_path):
         assert 0 < float(row["l2_estimate"]) < 0.2, row
         # What made each file (the automatic mode's choice), also for a
         # file found there: a simplified file is not called lossless.
-        assert row["method"] in ("swing", "simplified"), row
+        assert row["method"] in ("swing", "simplified", "displaced"), row
     assert sum(r["status"] == "encoded" for r in rows.values()) >= len(inputs) - 2
     files = check_outputs(out, names)
     # The batch's files are those swm.encode makes (small inputs checked).
