@@ -330,7 +330,11 @@ fn normals_that_follow_the_geometry_are_left_to_decoders_unless_asked() {
     assert_eq!(std::fs::read(bare.with_extension("swm")).unwrap(), bytes);
     // Asked for, they are coded.
     let out = encode(&file, &["--bpv", "4", "--keep-normals"]);
-    assert!(ok(&out).contains("attributes kept: normals"), "{}", ok(&out));
+    assert!(
+        ok(&out).contains("attributes kept: normals"),
+        "{}",
+        ok(&out)
+    );
     let bytes = std::fs::read(file.with_extension("swm")).unwrap();
     let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
     assert_eq!(decoded.streams.len(), 1);
@@ -379,7 +383,10 @@ fn a_size_below_the_smallest_file_with_the_streams_keeps_the_surface_and_says_so
     let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
     assert!(decoded.streams.is_empty());
     let v = json(&encode(&file, &["--size", "90", "--json"]));
-    assert_eq!(v["attribute_report"]["dropped"], json!(["texture coordinates 0"]));
+    assert_eq!(
+        v["attribute_report"]["dropped"],
+        json!(["texture coordinates 0"])
+    );
     std::fs::remove_file(file.with_extension("swm")).unwrap();
     let out = encode(&file, &["--size", "90", "--strict"]);
     assert!(!out.status.success());

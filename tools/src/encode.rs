@@ -395,7 +395,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // and drop them with a warning.
     let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
     let why = "not every face corner names them, or a value is malformed";
-    progress.suspend(|| warn_dropped(&args.input, &read.dropped, why, args.strict))?;
+    let unattached = names_of(&read.dropped);
+    progress.suspend(|| warn_dropped(&args.input, &unattached, why, args.strict))?;
     let mesh = m.mesh.clone();
     let attributed = match args.mode {
         ModeArg::Swing | ModeArg::Displaced => {
@@ -407,7 +408,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                     "displaced"
                 }
             );
-            progress.suspend(|| warn_dropped(&args.input, &kinds_of(&m), &why, args.strict))?;
+            let streams = names_of(&kinds_of(&m));
+            progress.suspend(|| warn_dropped(&args.input, &streams, &why, args.strict))?;
             None
         }
         ModeArg::Auto | ModeArg::Lossless => (!m.streams.is_empty()).then_some(m),
@@ -469,12 +471,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         let names: Vec<String> = (encoded.stats.attributes.dropped.iter())
             .map(|&k| crate::report::attribute_name(k))
             .collect();
-        let what = format!("the input's {} are not kept ({why})", names.join(", "));
-        if args.strict {
-            let e = std::io::Error::other(format!("--strict: {what}; nothing written"));
-            return Err(CliError::new(&args.input, e));
-        }
-        progress.suspend(|| eprintln!("swm: warning: {}: {what}", args.input.display()));
+        let why = why.to_string();
+        progress.suspend(|| warn_dropped(&args.input, &names, &why, args.strict))?;
     }
     let seconds = start.elapsed().as_secs_f64();
     // What a rate counts: the input's distinct positions, as the encoder
@@ -817,14 +815,13 @@ fn warn_missed_size(input: &std::path::Path, r: &swm::RateReport, bytes: u64) {
 /// nothing is written (issue 47, item 6).
 fn warn_dropped(
     input: &std::path::Path,
-    dropped: &swm::io::Attributes,
+    names: &[String],
     why: &str,
     strict: bool,
 ) -> Result<(), CliError> {
-    let names: Vec<&str> = dropped.names().collect();
-    let listed = match names.as_slice() {
+    let listed = match names {
         [] => return Ok(()),
-        [one] => one.to_string(),
+        [one] => one.clone(),
         [init @ .., last] => format!("{} and {last}", init.join(", ")),
     };
     // Every name is a plural: "are".
@@ -835,6 +832,11 @@ fn warn_dropped(
     }
     eprintln!("swm: warning: {}: {what}", input.display());
     Ok(())
+}
+
+/// The reader's names of the streams `dropped` flags.
+fn names_of(dropped: &swm::io::Attributes) -> Vec<String> {
+    dropped.names().map(String::from).collect()
 }
 
 /// The reader's flags of the streams `m` carries: what a mode that

@@ -20,6 +20,7 @@
 
 use crate::vertex_normals;
 use crate::{AttributeKind, AttributedMesh};
+use glam::DVec3;
 
 /// The largest RMS angle (degrees) between a mesh's normals and its
 /// geometry's that counts as following the geometry. Scanner and
@@ -31,7 +32,10 @@ pub const SMOOTH_NORMAL_DEGREES: f64 = 10.0;
 /// geometry's own vertex normals, when it has a normal stream and that
 /// angle is at most [`SMOOTH_NORMAL_DEGREES`]; `None` otherwise.
 pub(crate) fn smooth_normals(mesh: &AttributedMesh) -> Option<f64> {
-    let stream = mesh.streams.iter().find(|s| s.kind == AttributeKind::Normal)?;
+    let stream = mesh
+        .streams
+        .iter()
+        .find(|s| s.kind == AttributeKind::Normal)?;
     if stream.dims != 3 {
         return None;
     }
@@ -39,15 +43,14 @@ pub(crate) fn smooth_normals(mesh: &AttributedMesh) -> Option<f64> {
     let (mut sum, mut n) = (0.0f64, 0u64);
     for (t, c) in mesh.mesh.triangles.iter().zip(&stream.corners) {
         for k in 0..3 {
-            let g = geometric.get(t[k] as usize)?.map(f64::from);
+            let g = DVec3::from(geometric.get(t[k] as usize)?.map(f64::from));
             let at = c[k] as usize * 3;
             let v = stream.values.get(at..at + 3)?;
-            let v = [v[0] as f64, v[1] as f64, v[2] as f64];
-            let (lg, lv) = (dot(g, g).sqrt(), dot(v, v).sqrt());
-            if lg == 0.0 || lv == 0.0 {
+            let v = DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
+            if g == DVec3::ZERO || v == DVec3::ZERO {
                 continue;
             }
-            let angle = (dot(g, v) / (lg * lv)).clamp(-1.0, 1.0).acos().to_degrees();
+            let angle = g.angle_between(v).to_degrees();
             sum += angle * angle;
             n += 1;
         }
@@ -57,10 +60,6 @@ pub(crate) fn smooth_normals(mesh: &AttributedMesh) -> Option<f64> {
     }
     let rms = (sum / n as f64).sqrt();
     (rms <= SMOOTH_NORMAL_DEGREES).then_some(rms)
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// `mesh` without its normal stream.
@@ -96,7 +95,12 @@ mod tests {
         let corners = mesh.triangles.clone();
         let sphere = AttributedMesh {
             mesh,
-            streams: vec![AttributeStream::new(AttributeKind::Normal, 3, normals, corners)],
+            streams: vec![AttributeStream::new(
+                AttributeKind::Normal,
+                3,
+                normals,
+                corners,
+            )],
         };
         let rms = smooth_normals(&sphere).expect("smooth");
         assert!(rms < 5.0, "{rms}");
