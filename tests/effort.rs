@@ -56,6 +56,20 @@ fn every_level_answers_the_request_and_says_what_it_weighed() {
         let chosen = e.stats.candidate(e.stats.chosen()).expect("the chosen one");
         assert_eq!(chosen.outcome.as_ref().unwrap().bytes, e.bytes.len() as u64);
         swm::decode(&e.bytes, &Default::default()).unwrap();
+        // The reported error is `swm distance`'s within 2%, from fewer
+        // of Metro's samples at `fast`.
+        let check = e.stats.check.expect("a lossy file is checked");
+        let (reported, measured) = (check.l2_relative.unwrap(), metro_l2(&mesh, &e.bytes));
+        assert!(
+            (reported / measured - 1.0).abs() <= 0.02,
+            "{effort:?}: {reported} against {measured}"
+        );
+        let cap = match effort {
+            Effort::Fast => swm::FAST_CHECK_SAMPLES,
+            _ => swm::CHECK_SAMPLES,
+        };
+        let n = check.samples as f64;
+        assert!(n <= 1.1 * cap as f64, "{effort:?}: {n} samples");
         // The same bytes on one thread and on three.
         let at = |threads| {
             rayon::ThreadPoolBuilder::new()
@@ -67,6 +81,23 @@ fn every_level_answers_the_request_and_says_what_it_weighed() {
         assert_eq!(at(1), e.bytes, "{effort:?}");
         assert_eq!(at(3), e.bytes, "{effort:?}");
     }
+}
+
+/// Effort `fast` checks its file with a third of the samples, and its
+/// reported error is still `swm distance`'s within 2%.
+#[test]
+fn fast_checks_with_fewer_samples_within_two_percent() {
+    let mesh = swm_corpus::uv_sphere(1.0, 120, 240);
+    let e = encode(&mesh, SwingTarget::BitsPerVertex(2.0), Effort::Fast);
+    let check = e.stats.check.expect("a lossy file is checked");
+    let n = check.samples as f64;
+    let cap = swm::FAST_CHECK_SAMPLES as f64;
+    assert!((0.9 * cap..=1.1 * cap).contains(&n), "{n} samples");
+    let (reported, measured) = (check.l2_relative.unwrap(), metro_l2(&mesh, &e.bytes));
+    assert!(
+        (reported / measured - 1.0).abs() <= 0.02,
+        "{reported} against {measured}"
+    );
 }
 
 #[test]

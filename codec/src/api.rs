@@ -11,13 +11,13 @@ pub use crate::lossless::LosslessStats;
 pub use crate::swing::SwingStats;
 
 #[cfg(feature = "encoder")]
-pub use crate::encoder::stats::CHECK_SAMPLES;
-#[cfg(feature = "encoder")]
 pub use crate::encoder::stats::{
     Attempt, AttributeReport, AttributesDropped, Candidate, CandidateFailure, Check,
     DisplacedStats, EncodeStats, Encoded, HintReport, Measured, Method, MethodStats, Origin,
     PieceOutcome, PieceReport, RateReport, SimplifiedStats, SwingReport, TexcoordError,
 };
+#[cfg(feature = "encoder")]
+pub use crate::encoder::stats::{CHECK_SAMPLES, FAST_CHECK_SAMPLES};
 #[cfg(feature = "encoder")]
 pub use crate::options::{
     AttributeQuantization, Effort, EncodeMode, EncodeOptions, ErrorBound, SwingTarget, SwingTuning,

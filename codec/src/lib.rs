@@ -68,7 +68,7 @@ pub use api::{
     Candidate, CandidateFailure, Check, DisplacedStats, Effort, EncodeMode, EncodeOptions,
     EncodeStats, Encoded, ErrorBound, Measured, Method, MethodStats, Origin, PieceOutcome,
     PieceReport, RateReport, SimplifiedStats, SwingReport, SwingTarget, SwingTuning, TexcoordError,
-    AUTO_SAMPLES, CHECK_SAMPLES, DEFAULT_ANGLE_BITS,
+    AUTO_SAMPLES, CHECK_SAMPLES, DEFAULT_ANGLE_BITS, FAST_CHECK_SAMPLES,
 };
 pub use buffers::{decode_into, decode_into_with, decoded_len, DecodedLen};
 pub use container::{Framing, Mode};

@@ -194,7 +194,7 @@ pub struct Args {
     /// or when an attribute stream of the input is not kept (otherwise a
     /// warning on standard error). The check decodes the
     /// file and measures it against the input (60,000 of Metro's samples
-    /// each way, as swm distance takes them): it fails when the decoded
+    /// each way, 20,000 at --effort fast, as swm distance takes them): it fails when the decoded
     /// surface area is under 10% of the input's, or the Hausdorff
     /// distance is over 10% of the input's bounding-box diagonal.
     #[arg(long)]

@@ -396,6 +396,12 @@ pub struct Encoded {
 /// BENCHMARKS.md, "The reported error").
 pub const CHECK_SAMPLES: u64 = 60_000;
 
+/// The check's samples per side at effort `fast`: about 0.5% standard
+/// error, still well inside the 2% the reported error promises, for a
+/// third of the check's queries (the check was a sixth of `fast`'s time
+/// on the scans: BENCHMARKS.md, "Session 2026-12-06 (eighth)").
+pub const FAST_CHECK_SAMPLES: u64 = 20_000;
+
 /// The file as decoded, measured against the input.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -408,7 +414,8 @@ pub struct Check {
     pub area_ratio: f64,
     /// Symmetric L2 distance to the input over the input's bounding-box
     /// diagonal, Metro's estimated from `CHECK_SAMPLES` of its samples a
-    /// side; `None` when the file decodes to no triangle.
+    /// side (`FAST_CHECK_SAMPLES` at effort `fast`); `None` when the file
+    /// decodes to no triangle.
     pub l2_relative: Option<f64>,
     /// The largest distance found among those samples (a lower bound of
     /// the Hausdorff distance) over the diagonal; `None` as above.

@@ -145,20 +145,33 @@ fn whole_first(
     l2: &(dyn Fn(&Fit) -> Result<f64, Error> + Sync),
 ) -> Result<Fit, Error> {
     // A finer grid makes a larger file, so the finest whole file that
-    // fits is bisected: on bunny-1m at 8 b/v three files instead of five.
+    // fits is searched from the size model's guess (`whole_estimate`,
+    // close above the measured grid): one file to confirm the guess and
+    // one to show the next grid over, where a bisection from the first
+    // fit's grid coded three (horse at 8 b/v; the same answer, sizes
+    // growing with the grid).
+    let vertices = s.mesh.positions.len() as u64;
+    let guess = (first.qp + 1..=*QPS.end())
+        .take_while(|&qp| {
+            whole_estimate(first.bytes.len() as u64, first.qp, qp, vertices) <= budget
+        })
+        .last()
+        .unwrap_or(first.qp + 1);
     let (mut lo, mut hi) = (first, *QPS.end() + 1);
-    while lo.qp + 1 < hi {
-        let qp = lo.qp + (hi - lo.qp) / 2;
-        let bytes = s.whole_bytes(qp)?;
+    let mut next = guess.min(*QPS.end());
+    while lo.qp < next && next < hi {
+        let bytes = s.whole_bytes(next)?;
         if bytes.len() as u64 <= budget {
             lo = Fit {
-                qp,
+                qp: next,
                 bytes,
                 stats: None,
                 ..lo
             };
+            next += 1;
         } else {
-            hi = qp;
+            hi = next;
+            next -= 1;
         }
     }
     let whole = lo;
@@ -172,7 +185,6 @@ fn whole_first(
     {
         return Ok(whole);
     }
-    let vertices = s.mesh.positions.len() as u64;
     let over = whole_estimate(whole.bytes.len() as u64, whole.qp, qp, vertices).max(budget + 1);
     let (simplified, l2_whole) = rayon::join(
         || fit_faces(s, qp, budget, None, Whole::Over(over), Probing::Quick),
