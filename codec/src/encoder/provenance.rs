@@ -26,6 +26,13 @@
 //!    and the nearest point is taken. A component's first vertex (no
 //!    parent, no seed) takes the nearest point: a retiled component's
 //!    first vertex is a point of the input.
+//!    For SwingWrapper the gate's face *is* the retiler's record of where
+//!    a tip was placed: the retiler fits each tip on its own surface M
+//!    (the cleaned input refined to the run's scale, or a coarser stand-in
+//!    for large inputs), whose faces are not the input's, so the face it
+//!    placed a tip in would need this same walk onto the input; starting
+//!    at the gate's face on the input does it in one step (a test keeps
+//!    retiled tips on their sheet of a shell 1e-3 thick).
 //! 2. The caller's face of that point, through the positions of its
 //!    corners. Cleaning never moves a vertex (it merges coincident ones,
 //!    drops degenerate and repeated faces, reorients and splits), so a
@@ -397,7 +404,11 @@ mod file_tests {
                 effort,
                 ..Default::default()
             };
-            on_their_sheet(&input, outer_faces, &options);
+            let crossed = on_their_sheet(&input, outer_faces, &options);
+            assert!(
+                crossed > 0,
+                "{effort:?}: the shell is not thin enough to tell"
+            );
         }
         // Displaced subdivision: its base through the collapses, its
         // levels from their edges' ends.
@@ -409,10 +420,31 @@ mod file_tests {
             origins: true,
             ..Default::default()
         };
+        let crossed = on_their_sheet(&input, outer_faces, &options);
+        assert!(
+            crossed > 0,
+            "displaced: the shell is not thin enough to tell"
+        );
+        // SwingWrapper: each tip from its gate's face. Its tips stay on
+        // the outer side of this shell (measured down to a thickness of
+        // 3e-4 with 4-bit angles), so the nearest point does not cross
+        // here and only the descent's answer is checked.
+        let (input, outer_faces) = shell(0.001);
+        let options = EncodeOptions {
+            mode: EncodeMode::Swing {
+                target: SwingTarget::Bytes(600),
+                angle_bits: Some(4),
+                max_bytes: None,
+            },
+            origins: true,
+            ..Default::default()
+        };
         on_their_sheet(&input, outer_faces, &options);
     }
 
-    fn on_their_sheet(input: &TriMesh, outer_faces: usize, options: &EncodeOptions) {
+    /// Checks that every origin is on its vertex's sheet; returns how
+    /// many the nearest point alone would put on the other one.
+    fn on_their_sheet(input: &TriMesh, outer_faces: usize, options: &EncodeOptions) -> usize {
         let encoded = crate::encode(input, options).unwrap();
         let plain = crate::decode(&encoded.bytes, &crate::DecodeOptions::plain()).unwrap();
         let origins = &encoded.stats.origins;
@@ -463,15 +495,10 @@ mod file_tests {
         };
         let effort = options.effort;
         assert_eq!(wrong(origins), 0, "{effort:?}: origins on the other sheet");
-        // The nearest point alone crosses over.
         let cleaned = crate::clean(input, &Default::default()).unwrap();
         let surface = crate::metrics::Surface::new(&cleaned.mesh).unwrap();
         let nearest = super::origins(input, &cleaned.mesh, &surface, &plain, None);
-        let crossed = wrong(&nearest);
-        assert!(
-            crossed > 0,
-            "{effort:?}: the shell is not thin enough to tell"
-        );
+        wrong(&nearest)
     }
 
     /// The point each origin names lies where its decoded vertex is,
