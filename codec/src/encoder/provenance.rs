@@ -26,13 +26,12 @@
 //!    and the nearest point is taken. A component's first vertex (no
 //!    parent, no seed) takes the nearest point: a retiled component's
 //!    first vertex is a point of the input.
-//!    For SwingWrapper the gate's face *is* the retiler's record of where
-//!    a tip was placed: the retiler fits each tip on its own surface M
-//!    (the cleaned input refined to the run's scale, or a coarser stand-in
-//!    for large inputs), whose faces are not the input's, so the face it
-//!    placed a tip in would need this same walk onto the input; starting
-//!    at the gate's face on the input does it in one step (a test keeps
-//!    retiled tips on their sheet of a shell 1e-3 thick).
+//!    For SwingWrapper the descent stands in for the retiler's own
+//!    record: the face of M (the cleaned input with its long faces split,
+//!    `retile::refine`) each tip was fitted in is not carried out of the
+//!    run (it would go through rate control, `compose`, the hole mask and
+//!    REST); a tip lies within an edge of its gate, and a test keeps
+//!    retiled tips on their sheet of a shell 1e-3 thick.
 //! 2. The caller's face of that point, through the positions of its
 //!    corners. Cleaning never moves a vertex (it merges coincident ones,
 //!    drops degenerate and repeated faces, reorients and splits), so a
