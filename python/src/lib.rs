@@ -17,7 +17,7 @@ mod file_info;
 mod scene;
 
 use errors::IntoPyResult;
-use numpy::{PyArray2, PyReadonlyArray2};
+use numpy::PyReadonlyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -495,8 +495,6 @@ fn encode<'py>(
     }
 }
 
-type Arrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
-
 /// Decodes `.swm` bytes: `(vertices, faces)`, then `normals` with
 /// `normals`, then a dict of per-vertex attribute arrays with
 /// `attributes` (the split form; see `attributes.rs`). `max_level`: the
@@ -627,22 +625,50 @@ fn distance<'py>(
     Ok(out)
 }
 
-/// Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb) as the command line does.
+/// Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb) as the command
+/// line does: `(vertices, faces)`, or with `attributes` `(vertices,
+/// faces, dict, dropped)`, the mesh in the split form with its streams
+/// (as `decode(..., attributes=True)` gives them) and the names of the
+/// attributes the file carried that the reader could not attach (the
+/// wrapper warns about them, as `swm encode` does on standard error).
 #[pyfunction]
-#[pyo3(signature = (path, *, limits=None))]
+#[pyo3(signature = (path, *, limits=None, attributes=false))]
 fn read<'py>(
     py: Python<'py>,
     path: PathBuf,
     limits: Option<PyRef<'py, Limits>>,
-) -> PyResult<Arrays<'py>> {
+    attributes: bool,
+) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
     let limits = Limits::to_swm(limits.as_deref());
-    let mesh = py
-        .detach(|| swm::io::read_mesh_with(&path, &limits))
+    if !attributes {
+        let mesh = py
+            .detach(|| swm::io::read_mesh_with(&path, &limits))
+            .py_err_file(py, &path.to_string_lossy())?;
+        return (
+            arrays::to_numpy(py, mesh.positions),
+            arrays::to_numpy(py, mesh.triangles),
+        )
+            .into_pyobject(py);
+    }
+    let (mesh, report) = py
+        .detach(|| {
+            let (m, report) = swm::io::read_attributed_mesh_with(&path, None, &limits)?;
+            // Without streams the split is the identity: skip its sort.
+            let m = match m.streams.is_empty() {
+                true => m,
+                false => m.split_vertices(),
+            };
+            Ok::<_, swm::Error>((m, report))
+        })
         .py_err_file(py, &path.to_string_lossy())?;
-    Ok((
-        arrays::to_numpy(py, mesh.positions),
-        arrays::to_numpy(py, mesh.triangles),
-    ))
+    let dropped: Vec<&str> = report.dropped.names().collect();
+    (
+        arrays::to_numpy(py, mesh.mesh.positions),
+        arrays::to_numpy(py, mesh.mesh.triangles),
+        attributes::to_dict(py, mesh.streams)?,
+        dropped,
+    )
+        .into_pyobject(py)
 }
 
 /// Writes a mesh file (.obj, .ply, .off, .stl, .glb), complete or not at

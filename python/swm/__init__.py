@@ -380,11 +380,46 @@ def distance(
     return _swm.distance(av, af, bv, bf, samples=samples, sampling=sampling)
 
 
-def read(path: PathLike, *, limits: Optional[Limits] = None) -> Tuple[Vertices, Faces]:
+#: Why :func:`read` did not attach attributes a file carries, after their names.
+_UNREAD = "not read: not every face corner names them, or a value is malformed"
+
+
+@overload
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: Literal[False] = False
+) -> Tuple[Vertices, Faces]: ...
+
+
+@overload
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: Literal[True]
+) -> Tuple[Vertices, Faces, "dict[str, Attribute]"]: ...
+
+
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: bool = False
+) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, "dict[str, Attribute]"]]:
     """Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb; the extension picks the
     format) as ``swm encode`` reads it: the raw mesh, polygons
-    fan-triangulated, nothing merged."""
-    return _swm.read(os.fspath(path), limits=limits)
+    fan-triangulated, nothing merged.
+
+    ``attributes=True`` adds, last, the file's attribute streams as
+    :func:`decode` gives them (``"normals"``, ``"uv"``, ``"colors"``,
+    ...; OBJ ``vt``/``vn``/vertex colours, PLY, OFF and glTF
+    ``NORMAL``/``TEXCOORD_n``/``COLOR_0``), the mesh then in the split
+    form (a vertex per distinct position and values, so a position on a UV
+    seam comes once per side): what :func:`encode` takes as
+    ``attributes``. Attributes the file carries that cannot be attached
+    (not every face corner names them, a malformed value) are named in a
+    ``UserWarning``, as ``swm encode`` names them on standard error."""
+    if not attributes:
+        return _swm.read(os.fspath(path), limits=limits)
+    v, f, streams, dropped = _swm.read(os.fspath(path), limits=limits, attributes=True)
+    if dropped:
+        import warnings
+
+        warnings.warn(f"{os.fspath(path)}: {', '.join(dropped)} {_UNREAD}", UserWarning, stacklevel=2)
+    return v, f, streams
 
 
 def write(path: PathLike, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> None:

@@ -45,9 +45,12 @@ What a run guarantees:
   coordinates or colours are coded losslessly with them, the others at
   their share of the target (``--size`` is then the budget of the
   scene's swm files); ``--max-size`` does not apply to scenes (a usage
-  error when the inputs hold one). ``--qn``, ``--qt`` and ``--qg`` are
-  the attribute quantization of ``swm encode`` (scenes; meshes are read
-  as positions and triangles).
+  error when the inputs hold one). A mesh is read with its texture
+  coordinates, normals and colours (:func:`swm.read` with
+  ``attributes=True``) and encoded with them (``--mode swing`` cannot
+  carry them: the ``dropped`` column says so, as it names every stream a
+  file does not keep, and why). ``--qn``, ``--qt`` and ``--qg`` are the
+  attribute quantization of ``swm encode``.
 * In ``--mode swing``, when the encoder finds no retiling of a mesh
   (``swm.RetileError``), the mesh is encoded lossless instead
   (``--fallback lossless``, the default; ``--fallback none`` records the
@@ -79,6 +82,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
+import numpy as np
+
 import swm
 
 #: Extensions of the mesh files a directory manifest takes.
@@ -100,8 +105,10 @@ SCENE_EXTENSIONS = (".glb", ".gltf")
 #: ``input_bytes`` and ``bytes`` are the input's and the output's size;
 #: ``swm_bytes`` the bytes of swm data in the output (a mesh: all of
 #: them; a scene: its coded primitives' swm files, beside the textures
-#: and the rest it keeps); ``vertices`` the input's vertices (a scene:
-#: those of its coded primitives, as written); ``bits_per_vertex`` is
+#: and the rest it keeps); ``vertices`` the input's vertices (with
+#: attribute streams, its positions once each however many texture
+#: coordinates or normals they carry; a scene: those of its coded
+#: primitives, as written); ``bits_per_vertex`` is
 #: ``8 * swm_bytes / vertices``; ``l2_estimate`` is the symmetric L2
 #: distance between input and decoded mesh over the input's bounding-box
 #: diagonal, from area-uniform face samples (``--samples``; a scene's
@@ -110,8 +117,11 @@ SCENE_EXTENSIONS = (".glb", ".gltf")
 #: ``seconds`` is the encode time (empty for a skipped input);
 #: ``uncompressed``, for a scene, every primitive kept as written
 #: (``mesh 2 "Fox" primitive 0 (JOINTS_0, WEIGHTS_0)``, joined by
-#: ``; ``; a skipped scene's without the reason); ``error`` the
-#: failure's message.
+#: ``; ``; a skipped scene's without the reason); ``dropped``, for a
+#: mesh, the attribute streams of the input (texture coordinates,
+#: normals, colours) its file does not carry, with why (the reader could
+#: not attach them, normals left to the decoder, no room, the swing
+#: method); ``error`` the failure's message.
 COLUMNS = (
     "input",
     "output",
@@ -126,6 +136,7 @@ COLUMNS = (
     "l2_estimate",
     "seconds",
     "uncompressed",
+    "dropped",
     "error",
 )
 
@@ -285,7 +296,6 @@ def method_of(data: bytes, faces: Any, earlier: Optional[str] = None) -> str:
         return "swing"
     if earlier in ("lossless", "simplified"):
         return earlier
-    import numpy as np
 
     f = np.asarray(faces)
     proper = int(np.count_nonzero((f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])))
@@ -300,38 +310,60 @@ def compress(job: Job) -> Dict[str, Any]:
     if is_scene(job.input):
         return compress_scene(job)
     row: Dict[str, Any] = {c: None for c in COLUMNS}
-    row.update(input=job.input, output=job.output, kind="mesh", uncompressed="", error="")
+    row.update(input=job.input, output=job.output, kind="mesh", uncompressed="", dropped="", error="")
     output = Path(job.output)
     try:
-        vertices, faces = swm.read(job.input)
+        # The mesh with its texture coordinates, normals and colours (the
+        # split form), and what the reader could not attach, for the row.
+        # (`swm.read` would warn; a worker's warnings reach no one.)
+        vertices, faces, streams, unread = swm._swm.read(os.fspath(job.input), attributes=True)
         row["input_bytes"] = os.stat(job.input).st_size
+        dropped = [f"{', '.join(unread)} {swm._UNREAD}"] if unread else []
         found = verified(output)
         if found is not None:
             data, decoded = found
             row["status"] = "skipped"
             method = method_of(data, faces, job.earlier_method)
+            kept = swm.decode(data, attributes=True)[2]
+            lost = [k for k in streams if k not in kept]
+            if lost:
+                dropped.append(f"{', '.join(lost)} not in the file")
         else:
             start = time.perf_counter()
+            # The swing method's file cannot carry attributes: it codes
+            # the surface alone, and the row says what it left out.
+            swing = job.options.get("mode") == "swing"
             try:
-                data, report = swm.encode(vertices, faces, **job.options, report=True)
+                data, report = swm.encode(vertices, faces, **job.options, report=True,
+                                          attributes=None if swing else streams)
                 method = report["method"]
+                a = report["attributes"]
+                if swing and streams:
+                    dropped.append(f"{', '.join(streams)} not kept: the swing method's file cannot carry them")
+                elif a["dropped"]:
+                    dropped.append(f"{', '.join(a['dropped'])} not kept: {a['dropped_because']['message']}")
             except swm.RetileError:
                 if not job.fallback:
                     raise
-                data = swm.encode(vertices, faces, mode="lossless")
+                data = swm.encode(vertices, faces, mode="lossless", attributes=streams)
                 method = "lossless"
             row["seconds"] = time.perf_counter() - start
             write_atomic(output, data)
             row["status"] = "encoded"
             decoded = swm.decode(data)
         d = swm.distance((vertices, faces), decoded, samples=job.samples, sampling="faces")
+        # Positions once however many texture coordinates or normals they
+        # carry (the split form repeats a position on a seam), as the
+        # encoder's rate counts them.
+        n = len(np.unique(vertices, axis=0)) if streams else len(vertices)
         row.update(
             method=method,
             bytes=len(data),
             swm_bytes=len(data),
-            vertices=len(vertices),
-            bits_per_vertex=8 * len(data) / max(len(vertices), 1),
+            vertices=n,
+            bits_per_vertex=8 * len(data) / max(n, 1),
             l2_estimate=d["l2_relative"],
+            dropped="; ".join(dropped),
         )
     except swm.IoError:
         raise
@@ -445,7 +477,7 @@ def compress_scene(job: Job) -> Dict[str, Any]:
     row's and the others propagate. The output is decoded before it is
     written: a scene that does not decode is never written."""
     row: Dict[str, Any] = {c: None for c in COLUMNS}
-    row.update(input=job.input, output=job.output, kind="scene", uncompressed="", error="")
+    row.update(input=job.input, output=job.output, kind="scene", uncompressed="", dropped="", error="")
     output = Path(job.output)
     try:
         input_scene = swm.scene_info(job.input)
@@ -556,6 +588,8 @@ def _progress(done: int, total: int, row: Dict[str, Any]) -> None:
         )
         if row.get("uncompressed"):
             what += f"; kept uncompressed: {row['uncompressed']}"
+        if row.get("dropped"):
+            what += f"; {row['dropped']}"
     print(f"[{done:>{width}}/{total}] {row['input']}: {what}", file=sys.stderr, flush=True)
 
 
@@ -616,9 +650,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--angle-bits", type=int, help="swing: bits per dihedral angle (default: chosen by rate control, as swm encode)")
     p.add_argument("--max-size", type=int, help="never more bytes than this (lossless: with --size or --bpv)")
     p.add_argument("--qp", type=int, help="lossless without a size: bits per coordinate (default 12)")
-    p.add_argument("--qn", type=int, help="scenes: bits per octahedral coordinate of a normal (default 8)")
-    p.add_argument("--qt", type=int, help="scenes: bits per texture coordinate (default 10)")
-    p.add_argument("--qg", type=int, help="scenes: bits per colour or generic component (default 8)")
+    p.add_argument("--qn", type=int, help="auto and lossless: bits per octahedral coordinate of a normal (default 8)")
+    p.add_argument("--qt", type=int, help="auto and lossless: bits per texture coordinate (default 10)")
+    p.add_argument("--qg", type=int, help="auto and lossless: bits per colour or generic component (default 8)")
     p.add_argument(
         "--fallback",
         choices=("lossless", "none"),

@@ -315,3 +315,43 @@ def test_quantization_bits_out_of_range_are_refused(swm_bin, tmp_path: Path):
             swm.encode(v, f, mode="swing", **extra)
     with pytest.raises(TypeError):
         swm.encode(v, f, mode="lossless", qt=10.5)
+
+
+def test_read_gives_the_files_attributes(swm_bin, tmp_path: Path):
+    v, f, attrs = tube()
+    obj = tube_obj(tmp_path / "tube.obj")
+    rv, rf, rattrs = swm.read(obj, attributes=True)
+    assert sorted(rattrs) == ["normals", "uv"] and len(rf) == len(f)
+    matches(rv, rattrs, v, attrs, {"position": 1e-6, "uv": 1e-6, "normals": 1e-6})
+    # Without attributes: the raw mesh, as before.
+    pv, pf = swm.read(obj)
+    assert pv.shape == v.shape and np.array_equal(pf, f)
+    # What swm.encode makes of them is swm encode's file of the OBJ.
+    for options, flags in (({"mode": "lossless"}, ["--mode", "lossless"]), ({"bpv": 24}, ["--bpv", "24"])):
+        run_cli(swm_bin, "encode", obj, "-o", tmp_path / "t.swm", *flags)
+        assert swm.encode(rv, rf, attributes=rattrs, **options) == (tmp_path / "t.swm").read_bytes(), options
+    # A `vt` on some corners only: not attached, and said so.
+    part = tmp_path / "part.obj"
+    part.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n")
+    with pytest.warns(UserWarning, match=r"part\.obj: texture coordinates not read"):
+        _, _, got = swm.read(part, attributes=True)
+    assert got == {}
+
+
+def test_read_attributes_of_the_shared_corpus(shared_corpus: Path, swm_bin, tmp_path: Path):
+    """spot's texture coordinates (with seams), suzanne's and beetle's
+    normals, read as swm encode reads them: the same bytes."""
+    spot = shared_corpus / "spot.obj"
+    v, f, attrs = swm.read(spot, attributes=True)
+    assert sorted(attrs) == ["uv"] and attrs["uv"].shape == (len(v), 2)
+    # The seams: some positions come once per side.
+    assert len(v) > len(np.unique(v, axis=0))
+    data, report = swm.encode(v, f, attributes=attrs, bpv=2, report=True)
+    run_cli(swm_bin, "encode", spot, "-o", tmp_path / "spot.swm", "--bpv", "2")
+    assert data == (tmp_path / "spot.swm").read_bytes()
+    assert report["attributes"]["kept"] == ["uv"] and report["attributes"]["texcoord_error"] is not None
+    for name in ("suzanne.obj", "beetle.obj"):
+        v, f, attrs = swm.read(shared_corpus / name, attributes=True)
+        assert sorted(attrs) == ["normals"], name
+        run_cli(swm_bin, "encode", shared_corpus / name, "-o", tmp_path / "m.swm", "--mode", "lossless")
+        assert swm.encode(v, f, attributes=attrs, mode="lossless") == (tmp_path / "m.swm").read_bytes(), name

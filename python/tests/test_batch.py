@@ -18,12 +18,14 @@ import warnings
 from pathlib import Path
 from typing import Dict, List, Optional
 
+import numpy as np
 import pytest
 
 import swm
 from swm import batch
 from conftest import ROOT, mesh_files
 from scenes import scene_glb, scene_gltf
+from test_attributes import tube_obj
 
 pytest.importorskip("distributed", reason="Dask distributed not installed (pip install 'dask[distributed]')")
 psutil = pytest.importorskip("psutil", reason="psutil not installed (it comes with dask[distributed])")
@@ -503,3 +505,34 @@ def test_scene_usage_errors(tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 2 and "would both write" in run.stderr, run.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_compress_keeps_a_meshs_attributes(tmp_path):
+    """A mesh's texture coordinates and normals go into its file; what a
+    file does not keep is in the row's `dropped`, with why."""
+    obj = tube_obj(tmp_path / "tube.obj")
+    row = batch.compress(batch.Job(str(obj), str(tmp_path / "a.swm"), {"bpv": 24.0}, 1000))
+    assert row["status"] == "encoded" and row["method"] == "simplified", row
+    data = (tmp_path / "a.swm").read_bytes()
+    v, f, attrs = swm.read(obj, attributes=True)
+    assert data == swm.encode(v, f, attributes=attrs, bpv=24.0)
+    assert sorted(swm.decode(data, attributes=True)[2]) == ["uv"]
+    # The tube's radial normals follow its surface: left to the decoder.
+    assert row["dropped"].startswith("normals not kept: the normals follow the geometry"), row
+    # Its positions, once each: the seam's copies are not counted twice.
+    assert int(row["vertices"]) == len(np.unique(v, axis=0)) < len(v)
+    row = batch.compress(batch.Job(str(obj), str(tmp_path / "l.swm"), {"mode": "lossless"}, 1000))
+    assert row["dropped"] == "" and sorted(swm.decode((tmp_path / "l.swm").read_bytes(), attributes=True)[2]) == [
+        "normals", "uv"]
+    # The swing method carries none; a rerun finds the file and says so.
+    job = batch.Job(str(obj), str(tmp_path / "s.swm"), {"mode": "swing", "bpv": 8.0}, 1000)
+    row = batch.compress(job)
+    assert row["method"] == "swing"
+    assert row["dropped"] == "normals, uv not kept: the swing method's file cannot carry them"
+    row = batch.compress(job)
+    assert row["status"] == "skipped" and row["dropped"] == "normals, uv not in the file"
+    # A `vt` on some corners only: the reader's note.
+    part = tmp_path / "part.obj"
+    part.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n")
+    row = batch.compress(batch.Job(str(part), str(tmp_path / "p.swm"), {"mode": "lossless"}, 1000))
+    assert row["status"] == "encoded" and row["dropped"].startswith("texture coordinates not read"), row
