@@ -176,6 +176,29 @@ def encode(
 ) -> Tuple[bytes, EncodeReport]: ...
 
 
+@overload
+def encode(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    max_size: Optional[int] = None,
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    attributes: Optional[Attributes] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+) -> Union[bytes, Tuple[bytes, EncodeReport]]: ...
+
+
 def encode(
     vertices: npt.ArrayLike,
     faces: npt.ArrayLike,
@@ -396,6 +419,12 @@ def read(
 ) -> Tuple[Vertices, Faces, "dict[str, Attribute]"]: ...
 
 
+@overload
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: bool
+) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, "dict[str, Attribute]"]]: ...
+
+
 def read(
     path: PathLike, *, limits: Optional[Limits] = None, attributes: bool = False
 ) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, "dict[str, Attribute]"]]:
@@ -433,18 +462,19 @@ def write(path: PathLike, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> None
 SceneLike = Union[BytesLike, PathLike]
 
 
-def _scene(scene: SceneLike, base: Optional[PathLike]) -> "dict[str, Any]":
-    """The document as the extension module takes it: ``data`` or ``path``."""
+def _scene(
+    scene: SceneLike, base: Optional[PathLike]
+) -> Tuple[Optional[bytes], Optional[str], Optional[str]]:
+    """The document as the extension module takes it: ``(data, path,
+    base)``, one of ``data`` and ``path`` given."""
+    folder = None if base is None else os.fspath(base)
     if isinstance(scene, (bytes, bytearray, memoryview)):
-        source: "dict[str, Any]" = {"data": _bytes(scene)}
-    elif isinstance(scene, (str, os.PathLike)):
-        source = {"path": os.fspath(scene)}
-    else:
-        raise TypeError(
-            f"scene must be bytes or the path of a .glb or .gltf file, got {type(scene).__name__}"
-        )
-    source["base"] = None if base is None else os.fspath(base)
-    return source
+        return _bytes(scene), None, folder
+    if isinstance(scene, (str, os.PathLike)):
+        return None, os.fspath(scene), folder
+    raise TypeError(
+        f"scene must be bytes or the path of a .glb or .gltf file, got {type(scene).__name__}"
+    )
 
 
 @overload
@@ -493,6 +523,30 @@ def encode_scene(
     format: str = "glb",
     limits: Optional[Limits] = None,
 ) -> Tuple[bytes, SceneReport]: ...
+
+
+@overload
+def encode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+    fallback: bool = False,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+) -> Union[bytes, Tuple[bytes, SceneReport]]: ...
 
 
 def encode_scene(
@@ -556,8 +610,11 @@ def encode_scene(
     ``EXT_meshopt_compression``; nothing beyond ``limits`` is allocated
     reading it.
     """
+    data, path, folder = _scene(scene, base)
     return _swm.encode_scene(
-        **_scene(scene, base),
+        data,
+        path=path,
+        base=folder,
         bpv=bpv,
         size=size,
         edge_length=edge_length,
@@ -599,6 +656,17 @@ def decode_scene(
 ) -> Tuple[bytes, SceneDecodeReport]: ...
 
 
+@overload
+def decode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+    report: bool,
+) -> Union[bytes, Tuple[bytes, SceneDecodeReport]]: ...
+
+
 def decode_scene(
     scene: SceneLike,
     *,
@@ -617,7 +685,8 @@ def decode_scene(
     ``report=True`` the result is ``(bytes, report)``,
     :class:`swm.reports.SceneDecodeReport`: ``bytes``, ``primitives``
     expanded, ``decoded_vertices`` and ``decoded_triangles`` over them."""
-    return _swm.decode_scene(**_scene(scene, base), format=format, limits=limits, report=report)
+    data, path, folder = _scene(scene, base)
+    return _swm.decode_scene(data, path=path, base=folder, format=format, limits=limits, report=report)
 
 
 def scene_info(
@@ -631,7 +700,8 @@ def scene_info(
     them: each a :class:`swm.reports.ScenePrimitive` (``mesh``,
     ``primitive``, ``name``, ``swm_bytes``, ``None`` for a primitive not
     coded, ``vertices``, ``triangles``, ``attributes``)."""
-    return _swm.scene_info(**_scene(scene, base), limits=limits)
+    data, path, folder = _scene(scene, base)
+    return _swm.scene_info(data, path=path, base=folder, limits=limits)
 
 
 def _trimesh() -> Any:

@@ -73,6 +73,27 @@ def encode(
     qg: Optional[int] = None,
     keep_normals: bool = False,
 ) -> Tuple[bytes, EncodeReport]: ...
+@overload
+def encode(
+    vertices: _V,
+    faces: _F,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    max_size: Optional[int] = None,
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    attributes: Optional[dict[str, _V]] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+) -> Union[bytes, Tuple[bytes, EncodeReport]]: ...
 def decode(
     data: bytes,
     *,
@@ -101,6 +122,10 @@ def read(
 def read(
     path: Union[str, PathLike[str]], *, limits: Optional[Limits] = None, attributes: Literal[True]
 ) -> Tuple[_V, _F, dict[str, _V], list[str]]: ...
+@overload
+def read(
+    path: Union[str, PathLike[str]], *, limits: Optional[Limits] = None, attributes: bool
+) -> Union[Tuple[_V, _F], Tuple[_V, _F, dict[str, _V], list[str]]]: ...
 def write(path: Union[str, PathLike[str]], vertices: _V, faces: _F) -> None: ...
 
 _Path = Union[str, PathLike[str]]
@@ -152,6 +177,29 @@ def encode_scene(
     limits: Optional[Limits] = None,
 ) -> Tuple[bytes, SceneReport]: ...
 @overload
+def encode_scene(
+    data: Optional[bytes] = None,
+    *,
+    path: Optional[_Path] = None,
+    base: Optional[_Path] = None,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+    fallback: bool = False,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+) -> Union[bytes, Tuple[bytes, SceneReport]]: ...
+@overload
 def decode_scene(
     data: Optional[bytes] = None,
     *,
@@ -171,6 +219,16 @@ def decode_scene(
     limits: Optional[Limits] = None,
     report: Literal[True],
 ) -> Tuple[bytes, SceneDecodeReport]: ...
+@overload
+def decode_scene(
+    data: Optional[bytes] = None,
+    *,
+    path: Optional[_Path] = None,
+    base: Optional[_Path] = None,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+    report: bool,
+) -> Union[bytes, Tuple[bytes, SceneDecodeReport]]: ...
 def scene_info(
     data: Optional[bytes] = None,
     *,

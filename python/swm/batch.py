@@ -80,7 +80,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -340,7 +340,7 @@ def compress(job: Job) -> Dict[str, Any]:
                 a = report["attributes"]
                 if swing and streams:
                     dropped.append(f"{', '.join(streams)} not kept: the swing method's file cannot carry them")
-                elif a["dropped"]:
+                elif a["dropped"] and a["dropped_because"] is not None:
                     dropped.append(f"{', '.join(a['dropped'])} not kept: {a['dropped_because']['message']}")
             except swm.RetileError:
                 if not job.fallback:
@@ -417,7 +417,7 @@ def _joined(methods: Iterable[str]) -> str:
     return "+".join(out) or "none"
 
 
-def scene_methods(data: bytes, input_scene: Optional[List[Dict[str, Any]]] = None) -> str:
+def scene_methods(data: bytes, input_scene: Optional[Sequence[Mapping[str, Any]]] = None) -> str:
     """What made an existing compressed scene's primitives, as the
     ``method`` column spells it: each coded primitive's swm file is read
     (:func:`swm.info`) and named as :func:`method_of` names a mesh's
@@ -464,7 +464,7 @@ def _scene_l2(input_path: str, decoded: bytes, samples: int) -> Optional[float]:
     return swm.distance(a, b, samples=samples, sampling="faces")["l2_relative"]
 
 
-def _label(p: Dict[str, Any]) -> str:
+def _label(p: Mapping[str, Any]) -> str:
     """A primitive as the library's report names it (``mesh 2 "Fox"
     primitive 0``)."""
     name = f' "{p["name"]}"' if p.get("name") is not None else ""
@@ -488,7 +488,7 @@ def compress_scene(job: Job) -> Dict[str, Any]:
             row["status"] = "skipped"
             method = job.earlier_method or scene_methods(data, input_scene)
             coded = {(p["mesh"], p["primitive"]): p for p in swm.scene_info(data) if p["swm_bytes"] is not None}
-            swm_bytes = sum(p["swm_bytes"] for p in coded.values())
+            swm_bytes = sum(p["swm_bytes"] or 0 for p in coded.values())
             vertices = sum(p["vertices"] for p in input_scene if (p["mesh"], p["primitive"]) in coded)
             row["uncompressed"] = "; ".join(
                 _label(p) for p in input_scene if (p["mesh"], p["primitive"]) not in coded
