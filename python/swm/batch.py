@@ -1,7 +1,7 @@
 """Batch compression of a mesh library on Dask distributed.
 
     python -m swm.batch MANIFEST --out DIR [--bpv R | --size B | --edge-length L]
-                        [--mode auto|swing|lossless] [--qn N] [--qt N] [--qg N]
+                        [--mode auto|swing|lossless] [--qn N] [--qt N] [--qg N] [--gltf-fallback]
                         [--address tcp://HOST:8786]
 
 MANIFEST is a directory (every .obj, .ply, .off and .stl mesh and every
@@ -50,7 +50,9 @@ What a run guarantees:
   ``attributes=True``) and encoded with them (``--mode swing`` cannot
   carry them: the ``dropped`` column says so, as it names every stream a
   file does not keep, and why). ``--qn``, ``--qt`` and ``--qg`` are the
-  attribute quantization of ``swm encode``.
+  attribute quantization of ``swm encode``; ``--gltf-fallback`` keeps an
+  uncompressed copy of each coded primitive of a scene, for viewers
+  without swm, as ``swm encode --gltf-fallback``.
 * In ``--mode swing``, when the encoder finds no retiling of a mesh
   (``swm.RetileError``), the mesh is encoded lossless instead
   (``--fallback lossless``, the default; ``--fallback none`` records the
@@ -155,6 +157,9 @@ class Job:
     #: What made the output, as an earlier run's summary records it
     #: (``None``: no summary, or no row for it), for a skipped input.
     earlier_method: Optional[str] = None
+    #: A scene keeps an uncompressed copy of each coded primitive beside
+    #: its swm file (``swm encode --gltf-fallback``).
+    gltf_fallback: bool = False
 
 
 def find_inputs(manifest: Path) -> List[Path]:
@@ -183,7 +188,12 @@ def find_inputs(manifest: Path) -> List[Path]:
 
 
 def plan(
-    manifest: Path, out: Path, options: Dict[str, Any], samples: int, fallback: bool = True
+    manifest: Path,
+    out: Path,
+    options: Dict[str, Any],
+    samples: int,
+    fallback: bool = True,
+    gltf_fallback: bool = False,
 ) -> List[Job]:
     """One job per input, each with its output path under ``out``."""
     inputs = find_inputs(manifest)
@@ -196,7 +206,7 @@ def plan(
     jobs = []
     for p in inputs:
         rel = p.relative_to(base).with_suffix(".glb" if is_scene(p) else ".swm")
-        jobs.append(Job(str(p), str(out / rel), dict(options), samples, fallback))
+        jobs.append(Job(str(p), str(out / rel), dict(options), samples, fallback, gltf_fallback=gltf_fallback))
     return jobs
 
 
@@ -495,7 +505,8 @@ def compress_scene(job: Job) -> Dict[str, Any]:
             )
         else:
             start = time.perf_counter()
-            data, report = swm.encode_scene(job.input, **_scene_options(job.options), report=True)
+            data, report = swm.encode_scene(job.input, **_scene_options(job.options), report=True,
+                                            fallback=job.gltf_fallback)
             decoded = swm.decode_scene(data)
             row["seconds"] = time.perf_counter() - start
             write_atomic(output, data)
@@ -659,6 +670,12 @@ def _parser() -> argparse.ArgumentParser:
         default="lossless",
         help="swing: what to do with a mesh no retiling fits (default: encode it lossless)",
     )
+    p.add_argument(
+        "--gltf-fallback",
+        action="store_true",
+        help="scenes: keep an uncompressed copy of each coded primitive, for viewers without swm "
+        "(swm encode --gltf-fallback)",
+    )
     where = p.add_mutually_exclusive_group()
     where.add_argument(
         "--address", help="an existing Dask scheduler, tcp://HOST:PORT (default: a local cluster)"
@@ -722,7 +739,8 @@ def main(argv: Optional[Iterable[str]] = None) -> int:
     if args.samples < 1:
         parser.error("--samples must be at least 1")
     out = args.out.absolute()
-    jobs = plan(args.manifest.absolute(), out, options, args.samples, args.fallback == "lossless")
+    jobs = plan(args.manifest.absolute(), out, options, args.samples, args.fallback == "lossless",
+                args.gltf_fallback)
     summary = args.summary.absolute() if args.summary else out / "summary.csv"
     earlier = earlier_methods(summary)
     jobs = [dataclasses.replace(j, earlier_method=earlier.get(j.output)) for j in jobs]

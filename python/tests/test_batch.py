@@ -471,6 +471,16 @@ def test_compress_scene_task(tmp_path):
     # Lossless: the decoded scene is the input within the quantization.
     assert 0 <= row["l2_estimate"] < 1e-3
     assert batch.compress(job)["status"] == "skipped"
+    # --gltf-fallback: an uncompressed copy beside each swm file, so the
+    # extension is used but not required.
+    kept = dataclasses.replace(job, output=str(tmp_path / "out" / "f.glb"), gltf_fallback=True)
+    assert batch.compress(kept)["status"] == "encoded"
+    with_copy = (tmp_path / "out" / "f.glb").read_bytes()
+    assert with_copy == swm.encode_scene(scene, mode="lossless", fallback=True) != data
+    doc, _ = batch.glb_chunks(with_copy)
+    assert "SWM_mesh_compression" in doc["extensionsUsed"] and "extensionsRequired" not in doc
+    assert batch.plan(tmp_path, tmp_path / "o", {}, 10, gltf_fallback=True)[0].gltf_fallback
+    assert batch._parser().parse_args(["m", "--out", "o", "--gltf-fallback"]).gltf_fallback
     # What made each primitive, read back from the file, against the input.
     info = swm.scene_info(scene)
     assert batch.scene_methods(data, info) == "lossless"
