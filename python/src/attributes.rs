@@ -16,7 +16,7 @@ use pyo3::types::PyDict;
 use swm::AttributeKind;
 
 /// The dict key of a stream kind.
-fn name(kind: AttributeKind) -> String {
+pub fn name(kind: AttributeKind) -> String {
     match kind {
         AttributeKind::Normal => "normals".into(),
         AttributeKind::TexCoord(0) => "uv".into(),

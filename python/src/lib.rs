@@ -14,9 +14,10 @@ mod arrays;
 mod attributes;
 mod errors;
 mod file_info;
+mod scene;
 
 use errors::IntoPyResult;
-use numpy::{PyArray2, PyReadonlyArray2};
+use numpy::PyReadonlyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -111,6 +112,59 @@ fn with_value(e: swm::Error, name: &str, value: i64) -> swm::Error {
     }
 }
 
+/// The attribute quantization of `qn`, `qt` and `qg`, with the
+/// defaults of `swm encode` (`swm::AttributeQuantization::default()`:
+/// 8, 10 and 8) and its ranges, checked whether or not the mesh has a
+/// stream of the kind (as the command line's parser checks them): normals
+/// 4..=16 bits per octahedral coordinate, texture coordinates and
+/// colours or generic components 2..=24. `qg` sets colours and generic
+/// streams alike, as Draco's `-qg` and `swm encode --qg` do.
+fn quantization(
+    qn: Option<i64>,
+    qt: Option<i64>,
+    qg: Option<i64>,
+) -> Result<swm::AttributeQuantization, swm::Error> {
+    /// `value` if in `min..=max`, `default` without one.
+    fn check(
+        name: &'static str,
+        value: Option<i64>,
+        default: u8,
+        (min, max): (u8, u8),
+    ) -> Result<u8, swm::Error> {
+        match value {
+            None => Ok(default),
+            Some(v) if (i64::from(min)..=i64::from(max)).contains(&v) => Ok(v as u8),
+            Some(v) => Err(swm::ParameterError::OutOfRange {
+                name,
+                value: v as f64,
+                min: min.into(),
+                max: max.into(),
+            }
+            .into()),
+        }
+    }
+    let d = swm::AttributeQuantization::default();
+    let qg = check("qg", qg, d.color_bits, (2, 24))?;
+    Ok(swm::AttributeQuantization {
+        normal_bits: check("qn", qn, d.normal_bits, (4, 16))?,
+        texcoord_bits: check("qt", qt, d.texcoord_bits, (2, 24))?,
+        color_bits: qg,
+        generic_bits: qg,
+    })
+}
+
+/// `effort` by its name in `swm encode --effort`.
+fn effort_of(effort: &str) -> PyResult<swm::Effort> {
+    match effort {
+        "fast" => Ok(swm::Effort::Fast),
+        "default" => Ok(swm::Effort::Default),
+        "max" => Ok(swm::Effort::Max),
+        other => Err(PyValueError::new_err(format!(
+            "effort must be \"fast\", \"default\" or \"max\", got {other:?}"
+        ))),
+    }
+}
+
 /// The `EncodeMode` for the options of `swm.encode`, with the rules of
 /// `swm encode`: options the chosen mode has no use for are refused (a
 /// `ValueError` naming them), not ignored.
@@ -125,6 +179,7 @@ fn encode_mode(
     angle_bits: Option<i64>,
     qp: Option<i64>,
     max_error: Option<f64>,
+    attribute_options: bool,
 ) -> PyResult<swm::EncodeMode> {
     if !matches!(mode, "auto" | "swing" | "lossless") {
         return Err(PyValueError::new_err(format!(
@@ -163,6 +218,11 @@ fn encode_mode(
         }
         "swing" => {
             refuse(qp.is_some(), "takes no qp (it is for mode=\"lossless\")")?;
+            refuse(
+                attribute_options,
+                "takes no qn, qt, qg or keep_normals: a swing file carries no attributes \
+                 (they are for mode=\"auto\" or \"lossless\")",
+            )?;
             refuse(
                 max_error.is_some(),
                 "takes no max_error (it is for mode=\"auto\" or \"lossless\")",
@@ -268,6 +328,7 @@ fn encode_report<'py>(
         }
         None => out.set_item("simplified", py.None())?,
     }
+    out.set_item("attributes", attribute_report(py, &stats.attributes)?)?;
     // As `swm encode --json`'s `check`: the file decoded and measured
     // against the input as `swm distance` measures it.
     match &stats.check {
@@ -286,12 +347,68 @@ fn encode_report<'py>(
     Ok(out)
 }
 
+/// The report's `attributes` (`swm::AttributeReport`, `swm encode
+/// --json`'s `attribute_report`): the streams kept and dropped under the
+/// keys of the `attributes` dict (`"uv"`, `"normals"`, ...), why some
+/// were dropped, and the decoded texture coordinates' error.
+fn attribute_report<'py>(
+    py: Python<'py>,
+    a: &swm::AttributeReport,
+) -> PyResult<Bound<'py, PyDict>> {
+    let names = |kinds: &[swm::AttributeKind]| -> Vec<String> {
+        kinds.iter().map(|&k| attributes::name(k)).collect()
+    };
+    let out = PyDict::new(py);
+    out.set_item("kept", names(&a.kept))?;
+    out.set_item("dropped", names(&a.dropped))?;
+    match a.dropped_because {
+        Some(why) => {
+            let d = PyDict::new(py);
+            // The reason as a word to match on, its figure, and the
+            // library's sentence.
+            match why {
+                swm::AttributesDropped::SmoothNormals { rms_degrees } => {
+                    d.set_item("reason", "smooth_normals")?;
+                    d.set_item("rms_degrees", rms_degrees)?;
+                }
+                swm::AttributesDropped::NoRoom { smallest } => {
+                    d.set_item("reason", "no_room")?;
+                    d.set_item("smallest", smallest)?;
+                }
+                swm::AttributesDropped::Method(m) => {
+                    d.set_item("reason", "method")?;
+                    d.set_item("method", m.name())?;
+                }
+                // `AttributesDropped` is non-exhaustive: a reason this
+                // binding does not know yet still has its sentence.
+                _ => d.set_item("reason", "other")?,
+            }
+            d.set_item("message", why.to_string())?;
+            out.set_item("dropped_because", d)?;
+        }
+        None => out.set_item("dropped_because", py.None())?,
+    }
+    match a.texcoord_error {
+        Some(e) => {
+            let d = PyDict::new(py);
+            d.set_item("rms_texels", e.rms_texels)?;
+            d.set_item("max_texels", e.max_texels)?;
+            d.set_item("texture_size", e.texture_size)?;
+            d.set_item("samples", e.samples)?;
+            out.set_item("texcoord_error", d)?;
+        }
+        None => out.set_item("texcoord_error", py.None())?,
+    }
+    Ok(out)
+}
+
 /// Encodes a mesh into `.swm` bytes (with `report`, `(bytes, dict)`).
 /// See `swm/__init__.py` for the documented wrapper.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
                     mode="auto", max_size=None, angle_bits=None, qp=None, report=false,
-                    effort="default", max_error=None, attributes=None))]
+                    effort="default", max_error=None, attributes=None, qn=None, qt=None,
+                    qg=None, keep_normals=false))]
 #[allow(clippy::too_many_arguments)]
 fn encode<'py>(
     py: Python<'py>,
@@ -308,17 +425,16 @@ fn encode<'py>(
     effort: &str,
     max_error: Option<f64>,
     attributes: Option<Bound<'py, PyDict>>,
+    qn: Option<i64>,
+    qt: Option<i64>,
+    qg: Option<i64>,
+    keep_normals: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let effort = match effort {
-        "fast" => swm::Effort::Fast,
-        "default" => swm::Effort::Default,
-        "max" => swm::Effort::Max,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "effort must be \"fast\", \"default\" or \"max\", got {other:?}"
-            )))
-        }
-    };
+    let effort = effort_of(effort)?;
+    // Out-of-range bits first, as the command line's parser refuses them
+    // before it looks at the mode.
+    let attribute_bits = quantization(qn, qt, qg).py_err(py)?;
+    let quantized = qn.is_some() || qt.is_some() || qg.is_some() || keep_normals;
     let mode = encode_mode(
         py,
         bpv,
@@ -329,6 +445,7 @@ fn encode<'py>(
         angle_bits,
         qp,
         max_error,
+        quantized,
     )?;
     // The lossless, automatic and simplified modes code attributes (the
     // automatic mode weighs only methods whose files carry them); a
@@ -354,6 +471,8 @@ fn encode<'py>(
     let options = swm::EncodeOptions {
         mode,
         effort,
+        attributes: attribute_bits,
+        keep_smooth_normals: keep_normals,
         ..Default::default()
     };
     let encoded = py
@@ -375,8 +494,6 @@ fn encode<'py>(
         Ok(bytes.into_any())
     }
 }
-
-type Arrays<'py> = (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>);
 
 /// Decodes `.swm` bytes: `(vertices, faces)`, then `normals` with
 /// `normals`, then a dict of per-vertex attribute arrays with
@@ -508,22 +625,50 @@ fn distance<'py>(
     Ok(out)
 }
 
-/// Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb) as the command line does.
+/// Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb) as the command
+/// line does: `(vertices, faces)`, or with `attributes` `(vertices,
+/// faces, dict, dropped)`, the mesh in the split form with its streams
+/// (as `decode(..., attributes=True)` gives them) and the names of the
+/// attributes the file carried that the reader could not attach (the
+/// wrapper warns about them, as `swm encode` does on standard error).
 #[pyfunction]
-#[pyo3(signature = (path, *, limits=None))]
+#[pyo3(signature = (path, *, limits=None, attributes=false))]
 fn read<'py>(
     py: Python<'py>,
     path: PathBuf,
     limits: Option<PyRef<'py, Limits>>,
-) -> PyResult<Arrays<'py>> {
+    attributes: bool,
+) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
     let limits = Limits::to_swm(limits.as_deref());
-    let mesh = py
-        .detach(|| swm::io::read_mesh_with(&path, &limits))
+    if !attributes {
+        let mesh = py
+            .detach(|| swm::io::read_mesh_with(&path, &limits))
+            .py_err_file(py, &path.to_string_lossy())?;
+        return (
+            arrays::to_numpy(py, mesh.positions),
+            arrays::to_numpy(py, mesh.triangles),
+        )
+            .into_pyobject(py);
+    }
+    let (mesh, report) = py
+        .detach(|| {
+            let (m, report) = swm::io::read_attributed_mesh_with(&path, None, &limits)?;
+            // Without streams the split is the identity: skip its sort.
+            let m = match m.streams.is_empty() {
+                true => m,
+                false => m.split_vertices(),
+            };
+            Ok::<_, swm::Error>((m, report))
+        })
         .py_err_file(py, &path.to_string_lossy())?;
-    Ok((
-        arrays::to_numpy(py, mesh.positions),
-        arrays::to_numpy(py, mesh.triangles),
-    ))
+    let dropped: Vec<&str> = report.dropped.names().collect();
+    (
+        arrays::to_numpy(py, mesh.mesh.positions),
+        arrays::to_numpy(py, mesh.mesh.triangles),
+        attributes::to_dict(py, mesh.streams)?,
+        dropped,
+    )
+        .into_pyobject(py)
 }
 
 /// Writes a mesh file (.obj, .ply, .off, .stl, .glb), complete or not at
@@ -549,6 +694,9 @@ fn _swm(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(distance, m)?)?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(write, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::encode_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::decode_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::scene_info, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

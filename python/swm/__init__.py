@@ -22,6 +22,16 @@ import numpy.typing as npt
 
 from . import _swm
 from ._swm import Limits
+from .reports import (
+    AttributeReport,
+    AttributesDropped,
+    EncodeReport,
+    PrimitiveReport,
+    SceneDecodeReport,
+    ScenePrimitive,
+    SceneReport,
+    TexcoordError,
+)
 from .errors import (
     FormatError,
     IoError,
@@ -136,6 +146,10 @@ def encode(
     effort: str = "default",
     max_error: Optional[float] = None,
     attributes: Optional[Attributes] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
 ) -> bytes: ...
 
 
@@ -155,7 +169,34 @@ def encode(
     effort: str = "default",
     max_error: Optional[float] = None,
     attributes: Optional[Attributes] = None,
-) -> Tuple[bytes, "dict[str, Any]"]: ...
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+) -> Tuple[bytes, EncodeReport]: ...
+
+
+@overload
+def encode(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    *,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    max_size: Optional[int] = None,
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    attributes: Optional[Attributes] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+) -> Union[bytes, Tuple[bytes, EncodeReport]]: ...
 
 
 def encode(
@@ -173,7 +214,11 @@ def encode(
     effort: str = "default",
     max_error: Optional[float] = None,
     attributes: Optional[Attributes] = None,
-) -> Union[bytes, Tuple[bytes, "dict[str, Any]"]]:
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+) -> Union[bytes, Tuple[bytes, EncodeReport]]:
     """Cleans and encodes a mesh into the bytes of a ``.swm`` file.
 
     The options and defaults are those of ``swm encode``. The target is
@@ -222,7 +267,22 @@ def encode(
     file decoded and measured against the input as ``swm distance``
     measures it (``decoded_vertices``, ``decoded_triangles``,
     ``area_ratio``, ``l2_relative``, ``hausdorff_relative``,
-    ``samples``), ``None`` in the lossless mode at a fixed ``qp``.
+    ``samples``), ``None`` in the lossless mode at a fixed ``qp``;
+    ``attributes``, what became of the ``attributes`` given
+    (:class:`swm.reports.AttributeReport`, ``swm encode --json``'s
+    ``attribute_report``): ``kept`` and ``dropped``, lists of their keys
+    (``"normals"``, ``"uv"``, ...); ``dropped_because``, ``None`` or a
+    dict whose ``reason`` is ``"smooth_normals"`` (the normals follow the
+    geometry within ``rms_degrees`` RMS, so a lossy file leaves them to
+    the decoder to recompute; ``keep_normals=True`` keeps them),
+    ``"no_room"`` (the size is below ``smallest``, the smallest file
+    that keeps them) or ``"method"`` (a ``method`` whose file cannot
+    carry them), with the library's sentence in ``message``;
+    ``texcoord_error``, for a lossy file that keeps ``"uv"``, the decoded
+    texture coordinates' error (``rms_texels``, ``max_texels`` of a
+    ``texture_size``² texture, ``samples``), else ``None``. Without
+    ``attributes`` it is ``{"kept": [], "dropped": [],
+    "dropped_because": None, "texcoord_error": None}``.
 
     ``attributes`` (``mode="auto"`` or ``"lossless"``, with or without a
     size; ``"swing"`` and ``"displaced"`` refuse them) is a dict
@@ -230,12 +290,23 @@ def encode(
     ``decode(..., attributes=True)`` returns them: ``"normals"`` (n, 3),
     ``"uv"`` (n, 2) and further sets ``"uv1"``, ...; ``"colors"`` (n, 3)
     or (n, 4) in 0..1 and ``"colors1"``, ...; ``"generic0"``, ... (n, 1
-    to 4). They are coded in the file's ``ATTR`` section (format 1.2) at
-    ``swm encode``'s default quantization (normals 8 bits per octahedral
-    coordinate, texture coordinates 10 bits, colours and generic streams
-    8); vertices that differ only by their values (a UV seam) stay apart.
-    A lossy file simplifies the mesh with them, never across a seam, and
-    its size counts their bytes.
+    to 4). They are coded in the file's ``ATTR`` section (format 1.2),
+    quantized as ``qn``, ``qt`` and ``qg`` say; vertices that differ only
+    by their values (a UV seam) stay apart. A lossy file simplifies the
+    mesh with them, never across a seam, and its size counts their bytes;
+    normals that follow the geometry are left for the decoder to
+    recompute unless ``keep_normals=True`` (the report's ``attributes``
+    says what was kept).
+
+    ``qn``, ``qt`` and ``qg`` are the bits of the attribute quantization,
+    as ``swm encode --qn --qt --qg`` and Draco's ``-qn -qt -qg``, with
+    their defaults and ranges: ``qn`` bits per octahedral coordinate of a
+    normal (default 8, 4 to 16), ``qt`` bits per texture coordinate
+    (default 10: a texel of a 1024² texture over a unit chart; 2 to 24),
+    ``qg`` bits per colour or generic component (default 8, 2 to 24). A
+    value outside its range raises :class:`ParameterError` naming it,
+    whatever streams the mesh has; ``mode="swing"`` takes none of them
+    nor ``keep_normals`` (``ValueError``).
 
     Deterministic: the same arrays and options give the same bytes.
     """
@@ -253,6 +324,10 @@ def encode(
         effort=effort,
         max_error=max_error,
         attributes=None if attributes is None else _attributes(attributes),
+        qn=qn,
+        qt=qt,
+        qg=qg,
+        keep_normals=keep_normals,
     )
 
 
@@ -328,11 +403,52 @@ def distance(
     return _swm.distance(av, af, bv, bf, samples=samples, sampling=sampling)
 
 
-def read(path: PathLike, *, limits: Optional[Limits] = None) -> Tuple[Vertices, Faces]:
+#: Why :func:`read` did not attach attributes a file carries, after their names.
+_UNREAD = "not read: not every face corner names them, or a value is malformed"
+
+
+@overload
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: Literal[False] = False
+) -> Tuple[Vertices, Faces]: ...
+
+
+@overload
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: Literal[True]
+) -> Tuple[Vertices, Faces, "dict[str, Attribute]"]: ...
+
+
+@overload
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: bool
+) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, "dict[str, Attribute]"]]: ...
+
+
+def read(
+    path: PathLike, *, limits: Optional[Limits] = None, attributes: bool = False
+) -> Union[Tuple[Vertices, Faces], Tuple[Vertices, Faces, "dict[str, Attribute]"]]:
     """Reads a mesh file (.obj, .ply, .off, .stl, .gltf, .glb; the extension picks the
     format) as ``swm encode`` reads it: the raw mesh, polygons
-    fan-triangulated, nothing merged."""
-    return _swm.read(os.fspath(path), limits=limits)
+    fan-triangulated, nothing merged.
+
+    ``attributes=True`` adds, last, the file's attribute streams as
+    :func:`decode` gives them (``"normals"``, ``"uv"``, ``"colors"``,
+    ...; OBJ ``vt``/``vn``/vertex colours, PLY, OFF and glTF
+    ``NORMAL``/``TEXCOORD_n``/``COLOR_0``), the mesh then in the split
+    form (a vertex per distinct position and values, so a position on a UV
+    seam comes once per side): what :func:`encode` takes as
+    ``attributes``. Attributes the file carries that cannot be attached
+    (not every face corner names them, a malformed value) are named in a
+    ``UserWarning``, as ``swm encode`` names them on standard error."""
+    if not attributes:
+        return _swm.read(os.fspath(path), limits=limits)
+    v, f, streams, dropped = _swm.read(os.fspath(path), limits=limits, attributes=True)
+    if dropped:
+        import warnings
+
+        warnings.warn(f"{os.fspath(path)}: {', '.join(dropped)} {_UNREAD}", UserWarning, stacklevel=2)
+    return v, f, streams
 
 
 def write(path: PathLike, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> None:
@@ -340,6 +456,252 @@ def write(path: PathLike, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> None
     The file is written in full under a temporary name and then renamed,
     so ``path`` never holds half a file."""
     _swm.write(os.fspath(path), _vertices(vertices), _faces(faces))
+
+
+#: A glTF document: its bytes, or the path of a ``.glb`` or ``.gltf`` file.
+SceneLike = Union[BytesLike, PathLike]
+
+
+def _scene(
+    scene: SceneLike, base: Optional[PathLike]
+) -> Tuple[Optional[bytes], Optional[str], Optional[str]]:
+    """The document as the extension module takes it: ``(data, path,
+    base)``, one of ``data`` and ``path`` given."""
+    folder = None if base is None else os.fspath(base)
+    if isinstance(scene, (bytes, bytearray, memoryview)):
+        return _bytes(scene), None, folder
+    if isinstance(scene, (str, os.PathLike)):
+        return None, os.fspath(scene), folder
+    raise TypeError(
+        f"scene must be bytes or the path of a .glb or .gltf file, got {type(scene).__name__}"
+    )
+
+
+@overload
+def encode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: Literal[False] = False,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+    fallback: bool = False,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+) -> bytes: ...
+
+
+@overload
+def encode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: Literal[True],
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+    fallback: bool = False,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+) -> Tuple[bytes, SceneReport]: ...
+
+
+@overload
+def encode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+    fallback: bool = False,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+) -> Union[bytes, Tuple[bytes, SceneReport]]: ...
+
+
+def encode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    bpv: Optional[float] = None,
+    size: Optional[int] = None,
+    edge_length: Optional[float] = None,
+    mode: str = "auto",
+    angle_bits: Optional[int] = None,
+    qp: Optional[int] = None,
+    report: bool = False,
+    effort: str = "default",
+    max_error: Optional[float] = None,
+    qn: Optional[int] = None,
+    qt: Optional[int] = None,
+    qg: Optional[int] = None,
+    keep_normals: bool = False,
+    fallback: bool = False,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+) -> Union[bytes, Tuple[bytes, SceneReport]]:
+    """Compresses a glTF scene: each triangle primitive is coded as an
+    swm file inside the glTF extension ``SWM_mesh_compression``
+    (format-spec/09-gltf.md) and everything else (nodes, transforms,
+    materials, textures, images, cameras, animations, skins, other
+    primitives) is kept as written. The same call as ``swm encode
+    scene.glb -o out.glb``: the same document and options give the same
+    bytes.
+
+    ``scene`` is the document's bytes or the path of a ``.glb`` or
+    ``.gltf`` file; external buffers are read from the file's folder, or
+    for bytes from ``base`` (without it such a document is refused).
+    ``format`` is the output's container: ``"glb"`` (default) or
+    ``"gltf"`` (JSON with its buffer embedded as a ``data:`` URI).
+
+    The options are :func:`encode`'s, with its defaults and rules, and
+    apply as ``swm encode`` applies them to a scene: a primitive with
+    normals, texture coordinates or colours is coded losslessly with
+    them (positions on ``qp`` bits, 12 by default, attributes on ``qn``,
+    ``qt``, ``qg``); one of positions only by ``mode`` at its share of
+    the target (``size`` is the budget of all the swm files, shared in
+    proportion to each primitive's area; ``bpv`` counts the positions of
+    those primitives; ``max_error`` and ``edge_length`` apply to each
+    primitive as it is). There is no ``max_size``. ``fallback=True``
+    keeps an uncompressed copy of each coded primitive beside its swm
+    file, so that viewers without swm still draw it (the extension is
+    then only in ``extensionsUsed``).
+
+    A primitive swm does not code (points, lines, a skin's joints and
+    weights, morph targets, tangents, an extension) is kept as written and
+    named, with why, in the report's ``uncompressed``. With
+    ``report=True`` the result is ``(bytes, report)``, ``report`` a
+    :class:`swm.reports.SceneReport`: the keys of ``swm encode --json``
+    for a scene (``bytes``, ``input_bytes``, ``swm_bytes``,
+    ``requested``, ``primitives``, ``uncompressed``,
+    ``unknown_extensions``). A malformed document raises
+    :class:`FormatError` (with ``filename`` set when read from a path),
+    as does one already compressed by swm or by
+    ``EXT_meshopt_compression``; nothing beyond ``limits`` is allocated
+    reading it.
+    """
+    data, path, folder = _scene(scene, base)
+    return _swm.encode_scene(
+        data,
+        path=path,
+        base=folder,
+        bpv=bpv,
+        size=size,
+        edge_length=edge_length,
+        mode=mode,
+        angle_bits=angle_bits,
+        qp=qp,
+        report=report,
+        effort=effort,
+        max_error=max_error,
+        qn=qn,
+        qt=qt,
+        qg=qg,
+        keep_normals=keep_normals,
+        fallback=fallback,
+        format=format,
+        limits=limits,
+    )
+
+
+@overload
+def decode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+    report: Literal[False] = False,
+) -> bytes: ...
+
+
+@overload
+def decode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+    report: Literal[True],
+) -> Tuple[bytes, SceneDecodeReport]: ...
+
+
+@overload
+def decode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+    report: bool,
+) -> Union[bytes, Tuple[bytes, SceneDecodeReport]]: ...
+
+
+def decode_scene(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    format: str = "glb",
+    limits: Optional[Limits] = None,
+    report: bool = False,
+) -> Union[bytes, Tuple[bytes, SceneDecodeReport]]:
+    """Expands every primitive of a glTF scene coded in
+    ``SWM_mesh_compression`` back to plain accessors and removes the
+    extension, as ``swm decode out.glb -o plain.glb``: a document any
+    glTF viewer reads. ``scene``, ``base`` and ``format`` are as for
+    :func:`encode_scene`. Every byte is hostile: a bad document or swm
+    file raises :class:`FormatError` (or another :class:`SwmError`), and
+    ``limits`` bound each file and all of them together. With
+    ``report=True`` the result is ``(bytes, report)``,
+    :class:`swm.reports.SceneDecodeReport`: ``bytes``, ``primitives``
+    expanded, ``decoded_vertices`` and ``decoded_triangles`` over them."""
+    data, path, folder = _scene(scene, base)
+    return _swm.decode_scene(data, path=path, base=folder, format=format, limits=limits, report=report)
+
+
+def scene_info(
+    scene: SceneLike,
+    *,
+    base: Optional[PathLike] = None,
+    limits: Optional[Limits] = None,
+) -> "list[ScenePrimitive]":
+    """The primitives of a glTF document, coded or not, from its JSON
+    alone (nothing is decoded), as ``swm info out.glb --json`` lists
+    them: each a :class:`swm.reports.ScenePrimitive` (``mesh``,
+    ``primitive``, ``name``, ``swm_bytes``, ``None`` for a primitive not
+    coded, ``vertices``, ``triangles``, ``attributes``)."""
+    data, path, folder = _scene(scene, base)
+    return _swm.scene_info(data, path=path, base=folder, limits=limits)
 
 
 def _trimesh() -> Any:
@@ -403,6 +765,9 @@ __all__ = [
     "distance",
     "read",
     "write",
+    "encode_scene",
+    "decode_scene",
+    "scene_info",
     "to_trimesh",
     "from_trimesh",
     "Limits",
@@ -415,5 +780,13 @@ __all__ = [
     "UnsupportedError",
     "RetileError",
     "SizeError",
+    "EncodeReport",
+    "AttributeReport",
+    "AttributesDropped",
+    "TexcoordError",
+    "SceneReport",
+    "PrimitiveReport",
+    "SceneDecodeReport",
+    "ScenePrimitive",
     "__version__",
 ]

@@ -5,6 +5,7 @@ in the split form, and into trimesh's visuals."""
 from __future__ import annotations
 
 import json
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -194,3 +195,163 @@ def test_trimesh_gets_normals_and_visuals():
     assert isinstance(mesh.visual, trimesh.visual.ColorVisuals)
     got = mesh.visual.vertex_colors[:, :3].astype(int)
     assert (np.abs(got - [255, 128, 0]) <= 1).all()
+
+
+def tube_obj(path: Path) -> Path:
+    """The tube as an OBJ with its `vt` and `vn`, for the command line."""
+    v, f, attrs = tube()
+    with open(path, "w") as out:
+        for p in v:
+            out.write("v %r %r %r\n" % tuple(map(float, p)))
+        for t in attrs["uv"]:
+            out.write("vt %r %r\n" % tuple(map(float, t)))
+        for n in attrs["normals"]:
+            out.write("vn %r %r %r\n" % tuple(map(float, n)))
+        for t in f + 1:
+            out.write("f " + " ".join(f"{i}/{i}/{i}" for i in t) + "\n")
+    return path
+
+
+# The CLI's names of the streams (`--json`'s attribute_report) and the
+# binding's (the keys of the attributes dict).
+CLI_NAMES = {"normals": "normals", "texture coordinates 0": "uv"}
+
+
+def test_the_report_says_which_attributes_were_kept_and_why():
+    v, f, attrs = tube()
+    # The tube's radial normals follow its surface: a lossy file leaves
+    # them to the decoder and says so, with the angle it measured.
+    _, report = swm.encode(v, f, attributes=attrs, bpv=24, report=True)
+    a = report["attributes"]
+    assert a["kept"] == ["uv"] and a["dropped"] == ["normals"], a
+    why = a["dropped_because"]
+    assert why["reason"] == "smooth_normals" and 0 <= why["rms_degrees"] < 10, why
+    assert "normals follow the geometry" in why["message"]
+    # A lossy file that keeps the UVs measures them, in texels of 1024².
+    e = a["texcoord_error"]
+    assert e["texture_size"] == 1024 and e["samples"] > 0
+    assert 0 <= e["rms_texels"] <= e["max_texels"] < 2, e
+    # keep_normals keeps them, as --keep-normals does.
+    data, report = swm.encode(v, f, attributes=attrs, bpv=24, report=True, keep_normals=True)
+    a = report["attributes"]
+    assert (a["kept"], a["dropped"], a["dropped_because"]) == (["normals", "uv"], [], None)
+    assert sorted(swm.decode(data, attributes=True)[2]) == ["normals", "uv"]
+    # The lossless mode keeps every stream and measures nothing.
+    _, report = swm.encode(v, f, attributes=attrs, mode="lossless", report=True)
+    assert report["attributes"] == {
+        "kept": ["normals", "uv"], "dropped": [], "dropped_because": None, "texcoord_error": None}
+    # A size below the smallest file with the streams: the surface alone,
+    # and the report names that smallest size.
+    data, report = swm.encode(v, f, attributes=attrs, size=80, report=True)
+    a = report["attributes"]
+    assert a["kept"] == [] and sorted(a["dropped"]) == ["normals", "uv"], a
+    why = a["dropped_because"]
+    assert why["reason"] == "no_room" and why["smallest"] > 80 and str(why["smallest"]) in why["message"]
+    assert swm.decode(data, attributes=True)[2] == {} and len(data) <= 80
+    # Without attributes, an empty report of the same shape.
+    _, report = swm.encode(v, f, bpv=24, report=True)
+    assert report["attributes"] == {"kept": [], "dropped": [], "dropped_because": None, "texcoord_error": None}
+
+
+def test_the_attribute_report_is_the_clis(swm_bin, tmp_path: Path):
+    v, f, attrs = tube()
+    obj = tube_obj(tmp_path / "tube.obj")
+    for options, flags in (({"bpv": 24}, ["--bpv", "24"]),
+                           ({"bpv": 24, "keep_normals": True}, ["--bpv", "24", "--keep-normals"]),
+                           ({"size": 80}, ["--size", "80"])):
+        out = run_cli(swm_bin, "encode", obj, "-o", tmp_path / "t.swm", "--json", *flags)
+        cli = json.loads(out.stdout)["attribute_report"]
+        data, report = swm.encode(v, f, attributes=attrs, report=True, **options)
+        assert data == (tmp_path / "t.swm").read_bytes(), options
+        a = report["attributes"]
+        assert a["kept"] == [CLI_NAMES[k] for k in cli["kept"]], options
+        assert a["dropped"] == [CLI_NAMES[k] for k in cli["dropped"]], options
+        assert (a["dropped_because"] or {}).get("message") == cli["dropped_because"], options
+        assert a["texcoord_error"] == cli["texcoord_error"], options
+
+
+def test_quantization_bits_are_the_clis(swm_bin, tmp_path: Path):
+    v, f, attrs = tube()
+    obj = tube_obj(tmp_path / "tube.obj")
+    default = swm.encode(v, f, mode="lossless", attributes=attrs)
+    # The defaults are swm encode's: 8, 10, 8.
+    assert swm.encode(v, f, mode="lossless", attributes=attrs, qn=8, qt=10, qg=8) == default
+    fine = swm.encode(v, f, mode="lossless", attributes=attrs, qn=12, qt=14)
+    run_cli(swm_bin, "encode", obj, "-o", tmp_path / "fine.swm", "--mode", "lossless", "--qn", "12", "--qt", "14")
+    assert fine == (tmp_path / "fine.swm").read_bytes() and len(fine) > len(default)
+    info = {a["kind"]: a["bits"] for a in swm.info(fine)["attributes"]}
+    assert info == {"normals": 12, "texture coordinates 0": 14}
+    # Finer bits, closer texture coordinates: within half a step of 2^14 - 1.
+    dv, df, dattrs = swm.decode(fine, attributes=True)
+    matches(dv, dattrs, v, attrs, dict(TOLERANCE, uv=0.5 / (2**14 - 1) + 1e-6, normals=0.002))
+    coarse = swm.encode(v, f, mode="lossless", attributes=attrs, qt=4)
+    u = swm.decode(coarse, attributes=True)[2]["uv"]
+    assert len(np.unique(u[:, 0])) <= 16
+    # qg sets colours (and generic streams).
+    rgb = np.random.default_rng(3).random((len(v), 3)).astype(np.float32)
+    q4 = swm.encode(v, f, mode="lossless", attributes={"colors": rgb}, qg=4)
+    assert {a["kind"]: a["bits"] for a in swm.info(q4)["attributes"]} == {"colours 0": 4}
+    # The automatic mode takes them too.
+    data = swm.encode(v, f, attributes=attrs, bpv=24, qt=12, keep_normals=True)
+    assert {a["kind"]: a["bits"] for a in swm.info(data)["attributes"]}["texture coordinates 0"] == 12
+
+
+def test_quantization_bits_out_of_range_are_refused(swm_bin, tmp_path: Path):
+    v, f, attrs = tube()
+    obj = tube_obj(tmp_path / "tube.obj")
+    for name, bad, low, high in (("qn", 3, 4, 16), ("qn", 17, 4, 16), ("qt", 1, 2, 24), ("qt", 25, 2, 24),
+                                 ("qg", 0, 2, 24), ("qg", 25, 2, 24), ("qn", -1, 4, 16)):
+        # Refused whatever the mesh's streams, as the command line's parser does.
+        for streams in (attrs, None):
+            with pytest.raises(swm.ParameterError, match=f"^{name} = {bad}: must be between {low} and {high}$"):
+                swm.encode(v, f, mode="lossless", attributes=streams, **{name: bad})
+        out = subprocess.run([str(swm_bin), "encode", str(obj), "-o", str(tmp_path / "x.swm"), "--mode",
+                              "lossless", f"--{name}={bad}"], capture_output=True)
+        assert out.returncode == 2 and f"{low}..={high}" in out.stderr.decode(), out.stderr
+    assert not (tmp_path / "x.swm").exists()
+    # The swing mode codes no attributes: its options are refused.
+    for extra in ({"qt": 12}, {"qn": 8}, {"qg": 8}, {"keep_normals": True}):
+        with pytest.raises(ValueError, match="swing"):
+            swm.encode(v, f, mode="swing", **extra)
+    with pytest.raises(TypeError):
+        swm.encode(v, f, mode="lossless", qt=10.5)
+
+
+def test_read_gives_the_files_attributes(swm_bin, tmp_path: Path):
+    v, f, attrs = tube()
+    obj = tube_obj(tmp_path / "tube.obj")
+    rv, rf, rattrs = swm.read(obj, attributes=True)
+    assert sorted(rattrs) == ["normals", "uv"] and len(rf) == len(f)
+    matches(rv, rattrs, v, attrs, {"position": 1e-6, "uv": 1e-6, "normals": 1e-6})
+    # Without attributes: the raw mesh, as before.
+    pv, pf = swm.read(obj)
+    assert pv.shape == v.shape and np.array_equal(pf, f)
+    # What swm.encode makes of them is swm encode's file of the OBJ.
+    for options, flags in (({"mode": "lossless"}, ["--mode", "lossless"]), ({"bpv": 24}, ["--bpv", "24"])):
+        run_cli(swm_bin, "encode", obj, "-o", tmp_path / "t.swm", *flags)
+        assert swm.encode(rv, rf, attributes=rattrs, **options) == (tmp_path / "t.swm").read_bytes(), options
+    # A `vt` on some corners only: not attached, and said so.
+    part = tmp_path / "part.obj"
+    part.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n")
+    with pytest.warns(UserWarning, match=r"part\.obj: texture coordinates not read"):
+        _, _, got = swm.read(part, attributes=True)
+    assert got == {}
+
+
+def test_read_attributes_of_the_shared_corpus(shared_corpus: Path, swm_bin, tmp_path: Path):
+    """spot's texture coordinates (with seams), suzanne's and beetle's
+    normals, read as swm encode reads them: the same bytes."""
+    spot = shared_corpus / "spot.obj"
+    v, f, attrs = swm.read(spot, attributes=True)
+    assert sorted(attrs) == ["uv"] and attrs["uv"].shape == (len(v), 2)
+    # The seams: some positions come once per side.
+    assert len(v) > len(np.unique(v, axis=0))
+    data, report = swm.encode(v, f, attributes=attrs, bpv=2, report=True)
+    run_cli(swm_bin, "encode", spot, "-o", tmp_path / "spot.swm", "--bpv", "2")
+    assert data == (tmp_path / "spot.swm").read_bytes()
+    assert report["attributes"]["kept"] == ["uv"] and report["attributes"]["texcoord_error"] is not None
+    for name in ("suzanne.obj", "beetle.obj"):
+        v, f, attrs = swm.read(shared_corpus / name, attributes=True)
+        assert sorted(attrs) == ["normals"], name
+        run_cli(swm_bin, "encode", shared_corpus / name, "-o", tmp_path / "m.swm", "--mode", "lossless")
+        assert swm.encode(v, f, attributes=attrs, mode="lossless") == (tmp_path / "m.swm").read_bytes(), name

@@ -18,11 +18,14 @@ import warnings
 from pathlib import Path
 from typing import Dict, List, Optional
 
+import numpy as np
 import pytest
 
 import swm
 from swm import batch
 from conftest import ROOT, mesh_files
+from scenes import scene_glb, scene_gltf
+from test_attributes import tube_obj
 
 pytest.importorskip("distributed", reason="Dask distributed not installed (pip install 'dask[distributed]')")
 psutil = pytest.importorskip("psutil", reason="psutil not installed (it comes with dask[distributed])")
@@ -240,14 +243,21 @@ def test_batch_on_an_existing_cluster(generated_corpus, tmp_path):
 
 def test_manifests(tmp_path):
     (tmp_path / "lib" / "a").mkdir(parents=True)
-    for name in ("a/x.obj", "a/y.PLY", "z.stl", "notes.txt", "w.swm"):
+    for name in ("a/x.obj", "a/y.PLY", "z.stl", "notes.txt", "w.swm", "a/s.glb", "t.GLTF", "t.bin"):
         (tmp_path / "lib" / name).write_text("")
     jobs = batch.plan(tmp_path / "lib", tmp_path / "out", {}, 10)
     assert [(Path(j.input).relative_to(tmp_path), Path(j.output).relative_to(tmp_path)) for j in jobs] == [
+        (Path("lib/a/s.glb"), Path("out/a/s.glb")),
         (Path("lib/a/x.obj"), Path("out/a/x.swm")),
         (Path("lib/a/y.PLY"), Path("out/a/y.swm")),
+        (Path("lib/t.GLTF"), Path("out/t.glb")),
         (Path("lib/z.stl"), Path("out/z.swm")),
     ]
+    assert batch.same_outputs(jobs) == []
+    (tmp_path / "lib" / "a" / "s.gltf").write_text("")
+    jobs = batch.plan(tmp_path / "lib", tmp_path / "out", {}, 10)
+    assert batch.same_outputs(jobs) == [
+        (str(tmp_path / "lib/a/s.glb"), str(tmp_path / "lib/a/s.gltf"), str(tmp_path / "out/a/s.glb"))]
     listing = tmp_path / "lib" / "list.txt"
     listing.write_text("# comment\n\na/x.obj\n  a/y.PLY  \na/x.obj\n" + str(tmp_path / "lib" / "z.stl") + "\n")
     jobs = batch.plan(listing, tmp_path / "out", {}, 10)
@@ -350,6 +360,9 @@ def test_usage_errors(generated_corpus, tmp_path):
         (["--mode", "swing", "--max-error", "0.001"], "--mode swing takes no --max-error"),
         (["--mode", "lossless", "--effort", "max"], "--mode lossless takes no --effort without"),
         (["--bpv", "2", "--max-error", "0.001"], "not allowed with argument"),
+        (["--mode", "swing", "--qt", "12"], "--mode swing takes no --qt"),
+        (["--qt", "25"], "qt = 25: must be between 2 and 24"),
+        (["--qn", "3"], "qn = 3: must be between 4 and 16"),
     ):
         run = subprocess.run([sys.executable, "-m", "swm.batch", str(generated_corpus), "--out", str(tmp_path),
                               *args], capture_output=True, text=True)
@@ -370,3 +383,166 @@ def test_usage_errors(generated_corpus, tmp_path):
     run = subprocess.run([sys.executable, "-m", "swm.batch", str(tmp_path / "nope"), "--out", str(tmp_path)],
                          capture_output=True, text=True)
     assert run.returncode == 2 and "no such file or directory" in run.stderr
+
+
+
+# -- glTF scenes -----------------------------------------------------------
+
+
+def scene_library(root: Path, generated_corpus: Path) -> Path:
+    """A folder of two scenes (one with a line strip swm keeps as
+    written, one `.gltf` with an embedded buffer, in a subfolder), a
+    mesh and a broken scene."""
+    lib = root / "scenes"
+    (lib / "sub").mkdir(parents=True)
+    (lib / "textured.glb").write_bytes(scene_glb())
+    (lib / "sub" / "plain.gltf").write_bytes(scene_gltf(lines=False))
+    (lib / "broken.glb").write_bytes(scene_glb()[:300])
+    (lib / "torus.obj").write_bytes((generated_corpus / "torus.obj").read_bytes())
+    return lib
+
+
+def test_batch_compresses_folders_of_scenes(generated_corpus, tmp_path):
+    lib = scene_library(tmp_path, generated_corpus)
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "swm.batch", str(lib), "--out", str(out), "--bpv", "8", "--workers", "1",
+               "--samples", SAMPLES]
+    run = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    # Exit 1: the broken scene failed; the rest have their files.
+    assert run.returncode == 1, run.stderr
+    rows = read_summary(out / "summary.csv")
+    assert sorted(rows) == ["broken.glb", "plain.gltf", "textured.glb", "torus.obj"]
+    broken = rows["broken.glb"]
+    assert (broken["kind"], broken["status"]) == ("scene", "failed") and broken["error"].startswith("FormatError: ")
+    assert not (out / "broken.glb").exists() and leftovers(out) == []
+    want, report = swm.encode_scene(lib / "textured.glb", bpv=8.0, report=True)
+    textured = rows["textured.glb"]
+    assert (out / "textured.glb").read_bytes() == want
+    assert textured["kind"] == "scene" and textured["status"] == "encoded"
+    assert textured["method"] == "+".join(dict.fromkeys(p["method"] for p in report["primitives"] if p["coded"]))
+    assert textured["method"] == "lossless+simplified"
+    assert int(textured["input_bytes"]) == (lib / "textured.glb").stat().st_size
+    assert int(textured["bytes"]) == len(want) < int(textured["input_bytes"])
+    assert int(textured["swm_bytes"]) == report["swm_bytes"]
+    assert int(textured["vertices"]) == 325 + 297
+    assert float(textured["bits_per_vertex"]) == pytest.approx(8 * report["swm_bytes"] / (325 + 297))
+    # Nothing silently lost: the line strip, in the row and on stderr.
+    assert textured["uncompressed"] == 'mesh 2 "Wire" primitive 0 (lines (mode 3))'
+    assert 'kept uncompressed: mesh 2 "Wire"' in run.stderr
+    # A scene of triangles only is measured as swm.read reads it; one
+    # with lines is not (swm.read refuses lines).
+    assert textured["l2_estimate"] == ""
+    plain = rows["plain.gltf"]
+    assert Path(plain["output"]) == out / "sub" / "plain.glb" and plain["uncompressed"] == ""
+    assert 0 <= float(plain["l2_estimate"]) < 0.05, plain
+    assert (out / "sub" / "plain.glb").read_bytes() == swm.encode_scene(lib / "sub" / "plain.gltf", bpv=8.0)
+    assert rows["torus.obj"]["kind"] == "mesh" and rows["torus.obj"]["swm_bytes"] == rows["torus.obj"]["bytes"]
+    for name in ("textured.glb", "sub/plain.glb"):
+        swm.decode_scene(out / name)
+    pa = pytest.importorskip("pyarrow.parquet", reason="pyarrow not installed")
+    table = {Path(r["input"]).name: r for r in pa.read_table(out / "summary.parquet").to_pylist()}
+    assert table["textured.glb"]["swm_bytes"] == report["swm_bytes"] and table["textured.glb"]["l2_estimate"] is None
+
+    # A rerun without the summary: every output is found, decoded and
+    # skipped, each scene's methods read from its file; a damaged scene
+    # is compressed again.
+    (out / "summary.csv").unlink()
+    (out / "sub" / "plain.glb").write_bytes(want[: len(want) // 3])
+    run = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 1, run.stderr
+    again = read_summary(out / "summary.csv")
+    assert again["plain.gltf"]["status"] == "encoded" and again["textured.glb"]["status"] == "skipped"
+    assert (out / "sub" / "plain.glb").read_bytes() == swm.encode_scene(lib / "sub" / "plain.gltf", bpv=8.0)
+    for name in ("textured.glb", "plain.gltf"):
+        for key in ("method", "bytes", "swm_bytes", "vertices", "input_bytes"):
+            assert again[name][key] == rows[name][key], (name, key)
+    assert again["textured.glb"]["uncompressed"] == 'mesh 2 "Wire" primitive 0'
+    assert leftovers(out) == []
+
+
+def test_compress_scene_task(tmp_path):
+    scene = tmp_path / "s.glb"
+    scene.write_bytes(scene_glb(lines=False))
+    job = batch.Job(str(scene), str(tmp_path / "out" / "s.glb"), {"mode": "lossless"}, 1000)
+    row = batch.compress(job)
+    assert (row["kind"], row["status"], row["method"], row["error"]) == ("scene", "encoded", "lossless", "")
+    data = (tmp_path / "out" / "s.glb").read_bytes()
+    assert data == swm.encode_scene(scene, mode="lossless")
+    # Lossless: the decoded scene is the input within the quantization.
+    assert 0 <= row["l2_estimate"] < 1e-3
+    assert batch.compress(job)["status"] == "skipped"
+    # --gltf-fallback: an uncompressed copy beside each swm file, so the
+    # extension is used but not required.
+    kept = dataclasses.replace(job, output=str(tmp_path / "out" / "f.glb"), gltf_fallback=True)
+    assert batch.compress(kept)["status"] == "encoded"
+    with_copy = (tmp_path / "out" / "f.glb").read_bytes()
+    assert with_copy == swm.encode_scene(scene, mode="lossless", fallback=True) != data
+    doc, _ = batch.glb_chunks(with_copy)
+    assert "SWM_mesh_compression" in doc["extensionsUsed"] and "extensionsRequired" not in doc
+    assert batch.plan(tmp_path, tmp_path / "o", {}, 10, gltf_fallback=True)[0].gltf_fallback
+    assert batch._parser().parse_args(["m", "--out", "o", "--gltf-fallback"]).gltf_fallback
+    # What made each primitive, read back from the file, against the input.
+    info = swm.scene_info(scene)
+    assert batch.scene_methods(data, info) == "lossless"
+    small = batch.Job(str(scene), str(tmp_path / "out" / "t.glb"), {"bpv": 4.0}, 1000)
+    row = batch.compress(small)
+    assert row["method"] == "lossless+simplified"
+    assert batch.scene_methods((tmp_path / "out" / "t.glb").read_bytes(), info) == row["method"]
+    assert batch.compress(dataclasses.replace(small, earlier_method="x"))["method"] == "x"
+    # An unusable output is replaced.
+    (tmp_path / "out" / "s.glb").write_bytes(b"glTF garbage")
+    assert batch.compress(job)["status"] == "encoded"
+    with pytest.raises(swm.FormatError):
+        batch.scene_methods(b"glTF garbage")
+    # An I/O error propagates, for Dask to retry; a bad scene is the row's.
+    with pytest.raises(swm.IoError):
+        batch.compress(batch.Job(str(tmp_path / "missing.glb"), str(tmp_path / "m.glb")))
+    (tmp_path / "bad.gltf").write_text("{\"asset\": 7}")
+    row = batch.compress(batch.Job(str(tmp_path / "bad.gltf"), str(tmp_path / "out" / "bad.glb")))
+    assert row["status"] == "failed" and row["error"].startswith("FormatError: ")
+    assert not (tmp_path / "out" / "bad.glb").exists()
+
+
+def test_scene_usage_errors(tmp_path):
+    (tmp_path / "lib").mkdir()
+    (tmp_path / "lib" / "a.glb").write_bytes(scene_glb())
+    for extra, message in ((["--max-size", "900"], "--max-size does not apply to glTF scenes"),):
+        run = subprocess.run([sys.executable, "-m", "swm.batch", str(tmp_path / "lib"), "--out",
+                              str(tmp_path / "out"), *extra], capture_output=True, text=True)
+        assert run.returncode == 2 and message in run.stderr, run.stderr
+    (tmp_path / "lib" / "a.gltf").write_bytes(scene_gltf())
+    run = subprocess.run([sys.executable, "-m", "swm.batch", str(tmp_path / "lib"), "--out", str(tmp_path / "out")],
+                         capture_output=True, text=True)
+    assert run.returncode == 2 and "would both write" in run.stderr, run.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_compress_keeps_a_meshs_attributes(tmp_path):
+    """A mesh's texture coordinates and normals go into its file; what a
+    file does not keep is in the row's `dropped`, with why."""
+    obj = tube_obj(tmp_path / "tube.obj")
+    row = batch.compress(batch.Job(str(obj), str(tmp_path / "a.swm"), {"bpv": 24.0}, 1000))
+    assert row["status"] == "encoded" and row["method"] == "simplified", row
+    data = (tmp_path / "a.swm").read_bytes()
+    v, f, attrs = swm.read(obj, attributes=True)
+    assert data == swm.encode(v, f, attributes=attrs, bpv=24.0)
+    assert sorted(swm.decode(data, attributes=True)[2]) == ["uv"]
+    # The tube's radial normals follow its surface: left to the decoder.
+    assert row["dropped"].startswith("normals not kept: the normals follow the geometry"), row
+    # Its positions, once each: the seam's copies are not counted twice.
+    assert int(row["vertices"]) == len(np.unique(v, axis=0)) < len(v)
+    row = batch.compress(batch.Job(str(obj), str(tmp_path / "l.swm"), {"mode": "lossless"}, 1000))
+    assert row["dropped"] == "" and sorted(swm.decode((tmp_path / "l.swm").read_bytes(), attributes=True)[2]) == [
+        "normals", "uv"]
+    # The swing method carries none; a rerun finds the file and says so.
+    job = batch.Job(str(obj), str(tmp_path / "s.swm"), {"mode": "swing", "bpv": 8.0}, 1000)
+    row = batch.compress(job)
+    assert row["method"] == "swing"
+    assert row["dropped"] == "normals, uv not kept: the swing method's file cannot carry them"
+    row = batch.compress(job)
+    assert row["status"] == "skipped" and row["dropped"] == "normals, uv not in the file"
+    # A `vt` on some corners only: the reader's note.
+    part = tmp_path / "part.obj"
+    part.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n")
+    row = batch.compress(batch.Job(str(part), str(tmp_path / "p.swm"), {"mode": "lossless"}, 1000))
+    assert row["status"] == "encoded" and row["dropped"].startswith("texture coordinates not read"), row

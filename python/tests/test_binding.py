@@ -31,6 +31,9 @@ OPTIONS = [
     (["--mode", "lossless", "--size", "600"], {"mode": "lossless", "size": 600}),
 ]
 
+#: The report's `attributes` for a mesh encoded without attribute streams.
+NO_ATTRIBUTES = {"kept": [], "dropped": [], "dropped_because": None, "texcoord_error": None}
+
 
 @pytest.fixture(scope="session")
 def small_meshes(generated_corpus: Path) -> list:
@@ -304,7 +307,8 @@ def test_lossless_with_a_size_simplifies_to_fit(torus):
     # Without a size: every triangle, at qp bits (default 12).
     exact, report = swm.encode(v, f, mode="lossless", report=True)
     # Nothing to check either: every triangle, each vertex within half a step.
-    assert report == {"method": "lossless", "choice": None, "simplified": None, "check": None}
+    assert report == {"method": "lossless", "choice": None, "simplified": None, "check": None,
+                      "attributes": NO_ATTRIBUTES}
     assert len(swm.decode(exact)[1]) == len(f)
     assert exact == swm.encode(v, f, mode="lossless", qp=12) != swm.encode(v, f, mode="lossless", qp=14)
 
@@ -312,7 +316,7 @@ def test_lossless_with_a_size_simplifies_to_fit(torus):
 def test_swing_mode_report(torus):
     data, report = swm.encode(*torus, mode="swing", bpv=3, report=True)
     check = report.pop("check")
-    assert report == {"method": "swing", "choice": None, "simplified": None}
+    assert report == {"method": "swing", "choice": None, "simplified": None, "attributes": NO_ATTRIBUTES}
     # The file as decoded, measured against the torus as swm distance would.
     dv, df = swm.decode(data)
     assert (check["decoded_vertices"], check["decoded_triangles"]) == (len(dv), len(df))
