@@ -252,9 +252,9 @@ fn encode_mode(
     let target = match (bpv, size, edge_length) {
         (_, Some(b), _) => swm::SwingTarget::Bytes(count("size", b).py_err(py)?),
         (_, _, Some(l)) => swm::SwingTarget::EdgeLength(l),
-        _ if max_error.is_some() => swm::SwingTarget::MaxError(swm::ErrorBound::Relative(
-            max_error.unwrap_or(f64::NAN),
-        )),
+        _ if max_error.is_some() => {
+            swm::SwingTarget::MaxError(swm::ErrorBound::Relative(max_error.unwrap_or(f64::NAN)))
+        }
         // `swm encode`'s default target: 2 bits per input vertex.
         (bpv, _, _) => swm::SwingTarget::BitsPerVertex(bpv.unwrap_or(2.0)),
     };
