@@ -3,19 +3,29 @@
 //! input, boundaries kept by the collapse's own rules) as the base, `k`
 //! levels of subdivision, one scalar per new vertex.
 //!
-//! Rate control: for each level count `k` in [`LEVELS`], a first guess of
-//! `B` from a cost model (bits per base face, bits per new vertex; for
-//! `k` > 1 from the file of `k − 1`), then at most [`TRIALS`] files, each
-//! `B` moved by a secant on log size against log faces ([`search`]; the
-//! second file of `k` uses the exponent the files of `k − 1` showed). The
-//! file of each `k` nearest the budget without passing it is measured
-//! with the chooser's distance and the closest to the input wins. A `k`
-//! whose first file, measured and its error carried to the budget
-//! ([`RATE_EXPONENT`]), is clearly worse than the best so far
-//! ([`GIVE_UP`]) is not searched, and neither are larger ones (error
-//! against `k` was unimodal in every cell measured). No loop runs until
-//! convergence: at most `|LEVELS| × TRIALS` files, 4.2 on average over
-//! bunny and horse at 0.5-8 b/v (6.3 before the last two rules).
+//! Rate control, in two rounds:
+//! 1. One file for each level count `k` in [`LEVELS`], its base faces
+//!    `B` from a cost model (bits per base face, bits per new vertex; for
+//!    `k` > 1 from the first file of `k − 1`), measured with the
+//!    chooser's distance and its error carried to the budget
+//!    ([`RATE_EXPONENT`]). A `k` whose carried error is clearly worse
+//!    than the best so far ([`GIVE_UP`]) ends the round (error against
+//!    `k` was unimodal in every cell measured), and so does a third `k`
+//!    after two whose last level gained less than [`NEXT_LEVEL_GAIN`].
+//! 2. The search of each `k` whose first file was not clearly worse than
+//!    the best, from that file: at most [`TRIALS`] files, each `B` moved
+//!    by a secant on log size against log faces ([`search`]). The file of
+//!    each `k` nearest the budget without passing it is measured (the
+//!    first one's measure serves when it stands) and the closest to the
+//!    input wins.
+//!
+//! Beyond the sources, measured (BENCHMARKS.md, "Session 2026-12-06
+//! (eighth)"): searching every `k` and probing the next one's first file
+//! made 4.2 files a cell over bunny and horse at 0.5-8 b/v, the level
+//! count that loses searched to the budget as fully as the winner; the
+//! two rounds spend 25-45% less CPU at 4-8 b/v, the chosen files within
+//! ±2% L2 (the secant lands them at other sizes within the tolerance).
+//! No loop runs until convergence: at most `|LEVELS| × TRIALS` files.
 //!
 //! Invariant: everything input-sized is made once per encode and shared
 //! (the collapse sequence, the reference tree); a file costs its base's
@@ -54,6 +64,14 @@ const RATE_EXPONENT: f64 = 0.85;
 /// A level count whose first file's error, carried to the budget, is
 /// more than this fraction above the best level count's is not searched.
 const GIVE_UP: f64 = 0.10;
+/// A level count is tried after two others only when the last level
+/// more cut the error by at least this fraction. One level more quarters
+/// the base for the same bytes, so the gains shrink fast: measured on
+/// bunny and horse at 2-8 b/v, two levels gained 6-27% over one, and
+/// three were worse than two in every one of those cells (by 1-700%),
+/// each probe a file of the most scalars and a measure: about a third
+/// of the method's work at those rates.
+const NEXT_LEVEL_GAIN: f64 = 0.30;
 
 /// The displaced-subdivision method and its settings.
 #[derive(Clone, Copy, Debug)]
@@ -133,57 +151,77 @@ impl CodingMethod for Displaced {
             .l2_relative())
         };
         let mut smallest = u64::MAX;
-        // Each level count's file and its error (the file's mesh dropped
-        // once measured).
-        let mut found: Vec<(f64, Written, usize)> = Vec::new();
-        // Exponent of size against base faces, from the last level
-        // count's files.
-        let mut slope = SLOPE;
+        // First, one file of each level count, measured and its error
+        // carried to the budget (`RATE_EXPONENT`).
+        let mut firsts: Vec<First> = Vec::new();
         for levels in LEVELS {
-            // The previous level count's file predicts this one's faces.
-            let guess = found
-                .last()
-                .map_or_else(|| first_guess(budget, levels), |f| next_guess(budget, &f.1));
-            let best = found.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
-            // A level count whose first file, its error carried to the
-            // budget, is clearly worse than the best so far is not searched.
-            let promising = |w: &Written| -> Result<bool, Error> {
-                if !best.is_finite() {
-                    return Ok(true);
+            // After two level counts, one more only where the last level
+            // still paid well (`NEXT_LEVEL_GAIN`).
+            if let [.., ref before, ref last] = firsts[..] {
+                if last.carried > (1.0 - NEXT_LEVEL_GAIN) * before.carried {
+                    break;
                 }
-                let l2 = measure(w)?;
-                let carried = l2 * (w.bytes.len() as f64 / budget as f64).powf(RATE_EXPONENT);
-                Ok(carried <= best * (1.0 + GIVE_UP))
-            };
-            let searched = search(
-                budget,
+            }
+            // The previous level count's file predicts this one's faces.
+            let faces = firsts
+                .last()
+                .map_or_else(|| first_guess(budget, levels), |f| next_guess(budget, &f.w))
+                .clamp(MIN_BASE_FACES, s.faces().max(MIN_BASE_FACES));
+            let w = file(faces, levels, self.settings.qp)?;
+            smallest = smallest.min(w.bytes.len() as u64);
+            let l2 = measure(&w)?;
+            let carried = l2 * (w.bytes.len() as f64 / budget as f64).powf(RATE_EXPONENT);
+            let best = firsts
+                .iter()
+                .map(|f| f.carried)
+                .fold(f64::INFINITY, f64::min);
+            firsts.push(First {
                 levels,
-                guess,
-                s.faces(),
-                self.settings.qp,
-                slope,
-                &mut smallest,
-                &file,
-                &promising,
-            )?;
-            slope = searched.slope.unwrap_or(slope);
+                faces,
+                w,
+                l2,
+                carried,
+            });
             // Error against level count was unimodal in every cell
             // measured (bunny and horse, 0.5-8 b/v): once a level more
-            // is worse, more levels are not tried (81 files -> 63 over
-            // those ten cells, the same files chosen).
-            if searched.abandoned {
+            // is clearly worse, more levels are not tried.
+            if carried > best * (1.0 + GIVE_UP) {
                 break;
             }
+        }
+        // Then the search of each level count whose first file was not
+        // clearly worse than the best (`GIVE_UP`), from that file.
+        let best = firsts
+            .iter()
+            .map(|f| f.carried)
+            .fold(f64::INFINITY, f64::min);
+        let mut found: Vec<(f64, Written, usize)> = Vec::new();
+        let mut slope = SLOPE;
+        for first in firsts {
+            if first.carried > best * (1.0 + GIVE_UP) {
+                continue;
+            }
+            let levels = first.levels;
+            let l2_first = first.l2;
+            let searched = search(
+                budget,
+                (first.faces, first.w),
+                s.faces(),
+                slope,
+                &mut smallest,
+                &|faces, qp| file(faces, levels, qp),
+            )?;
+            slope = searched.slope.unwrap_or(slope);
             let Some(mut w) = searched.fitting else {
                 continue;
             };
-            let l2 = measure(&w)?;
+            // The first file, when it stood, is measured already.
+            let l2 = match searched.first_fits {
+                true => l2_first,
+                false => measure(&w)?,
+            };
             w.mesh = crate::TriMesh::default();
-            let worse = found.last().is_some_and(|f| f.0 < l2);
             found.push((l2, w, levels));
-            if worse {
-                break;
-            }
         }
         // The closest; but a file within rate control's 3% of the budget
         // beats a shorter one unless 5% worse (the chooser's rule).
@@ -269,47 +307,52 @@ impl Displaced {
     }
 }
 
+/// A level count's first file: its base faces, error and error carried
+/// to the budget.
+struct First {
+    levels: usize,
+    faces: u32,
+    w: Written,
+    l2: f64,
+    carried: f64,
+}
+
 /// What [`search`] found for one level count.
 struct Searched {
     /// The largest file within the budget, if any.
     fitting: Option<Written>,
     /// The exponent of size against faces between its last two files.
     slope: Option<f64>,
-    /// The first file was judged not worth searching on from.
-    abandoned: bool,
+    /// Whether `fitting` is the first file (measured already).
+    first_fits: bool,
 }
 
-/// The largest file of `levels` levels found within `budget` in at most
-/// [`TRIALS`] files. The first file's quantization (its rule's, unless
-/// `qp` fixes it) stays for the others, so that size grows smoothly with
-/// the faces: the rule's steps made it jump by a fifth between
-/// neighbouring face counts. Each next face count comes from a secant on
-/// log size against log faces: between the largest file that fits and
-/// the smallest that does not once both are known (their geometric mean
-/// when the secant leaves the bracket), before that from the last file
-/// with the last two files' exponent (`slope`, the previous level
-/// count's, after the first), aiming 1% under the budget. A first file
-/// off the budget that `promising` rejects ends the search.
-#[allow(clippy::too_many_arguments)]
+/// The largest file of one level count found within `budget` in at most
+/// [`TRIALS`] files, the first one `first` (made from that many base
+/// faces). Its quantization stays for the others, so that size grows
+/// smoothly with the faces: the rule's steps made it jump by a fifth
+/// between neighbouring face counts. Each next face count comes from a
+/// secant on log size against log faces: between the largest file that
+/// fits and the smallest that does not once both are known (their
+/// geometric mean when the secant leaves the bracket), before that from
+/// the last file with the last two files' exponent (`slope`, the
+/// previous level count's, after the first), aiming 1% under the budget.
 fn search(
     budget: u64,
-    levels: usize,
-    guess: u32,
+    first: (u32, Written),
     input_faces: u32,
-    qp: Option<u8>,
     slope: f64,
     smallest: &mut u64,
-    file: &dyn Fn(u32, usize, Option<u8>) -> Result<Written, Error>,
-    promising: &dyn Fn(&Written) -> Result<bool, Error>,
+    file: &dyn Fn(u32, Option<u8>) -> Result<Written, Error>,
 ) -> Result<Searched, Error> {
     let most = input_faces.max(MIN_BASE_FACES);
     let aim = (budget as f64 * (1.0 - TOLERANCE / 3.0)).ln();
-    let mut faces = guess;
-    let mut qp = qp;
+    let qp = Some(first.1.qp);
+    let (mut faces, mut made) = (first.0, Some(first.1));
     let mut found = Searched {
         fitting: None,
         slope: None,
-        abandoned: false,
+        first_fits: false,
     };
     // (ln faces, ln size) of the largest fitting and smallest
     // oversized files, and of the last file.
@@ -321,17 +364,15 @@ fn search(
     let slope_of = |a: (f64, f64), b: (f64, f64)| (b.1 - a.1) / (b.0 - a.0);
     for trial in 0..TRIALS {
         let f = faces.clamp(MIN_BASE_FACES, most);
-        let w = file(f, levels, qp)?;
-        qp = Some(w.qp);
+        let w = match made.take() {
+            Some(w) => w,
+            None => file(f, qp)?,
+        };
         let size = w.bytes.len() as u64;
         *smallest = (*smallest).min(size);
         let point = ((f as f64).ln(), (size as f64).ln());
         let fits = size <= budget;
         let done = fits && (size as f64 >= budget as f64 * (1.0 - TOLERANCE) || f >= most);
-        if trial == 0 && !done && !promising(&w)? {
-            found.abandoned = true;
-            return Ok(found);
-        }
         if let Some(l) = last {
             let s = slope_of(l, point);
             if s.is_finite() && s > 0.0 {
@@ -348,6 +389,7 @@ fn search(
                 .is_none_or(|b| b.bytes.len() < w.bytes.len())
             {
                 found.fitting = Some(w);
+                found.first_fits = trial == 0;
             }
             if done {
                 break;
