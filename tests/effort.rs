@@ -120,7 +120,7 @@ fn default_leaves_a_large_retiling_to_max_and_says_so() {
 #[test]
 fn default_runs_displaced_subdivision_at_low_rates_only_and_says_so() {
     // A smooth sphere of 20,480 faces: its budget for the displaced
-    // method is 1,706 bytes (one per twelve faces).
+    // method is 2,925 bytes (one per seven faces).
     let mesh = swm_corpus::icosphere(1.0, 5);
     let low = encode(&mesh, SwingTarget::BitsPerVertex(1.0), Effort::Default);
     let displaced = low.stats.candidate(Method::Displaced).unwrap();

@@ -972,7 +972,7 @@ pub enum EffortArg {
     /// The simplified method's lean search (every promising quantization
     /// measured, each size search started where the last one predicts),
     /// SwingWrapper where its retiling fits the level's work budget, and
-    /// displaced subdivision for files of at most one byte per twelve
+    /// displaced subdivision for files of at most one byte per seven
     /// input triangles.
     Default,
     /// Every method's whole search.

@@ -16,7 +16,7 @@
 //! searches replay it; a retiling under the level's budget is bounded by
 //! one and a half times it (`Swing::work_limit`), counted in
 //! deterministic steps, so the bytes never depend on the machine; the
-//! displaced method runs only for files of at most one byte per twelve
+//! displaced method runs only for files of at most one byte per seven
 //! input triangles). The budgets and the predicted work are
 //! measured figures (BENCHMARKS.md, "Effort levels").
 
@@ -48,13 +48,16 @@ const SWING_STEPS_FLOOR: u64 = 2_500_000;
 /// triangle of the 15 the bar allows).
 const SWING_STEPS_PER_FACE: u64 = 20;
 /// Input triangles per byte of file up to which the `default` level runs
-/// the displaced method (its files then cost at most one byte per twelve
-/// input triangles: bunny and horse at up to 1 b/v). Measured on one
-/// core (BENCHMARKS.md, "Displaced subdivision joins `default`"): below
-/// that it adds 0.1-0.2 s to the level's encode and wins on scans by
-/// 12-15% of L2; at 2-8 b/v it adds 0.5-1.3 s, which the level's time
-/// bar does not leave, and on CAD parts and small meshes it never wins.
-const DISPLACED_FACES_PER_BYTE: u64 = 12;
+/// the displaced method (its files then cost at most one byte per seven
+/// input triangles: bunny and horse at up to 2 b/v). Its work grows with
+/// its file's bytes and the level's time bar with the input's triangles,
+/// hence the ratio. Measured (BENCHMARKS.md, "Displaced subdivision joins
+/// `default`" and "Session 2026-12-06 (eighth)"): up to 1 b/v it adds
+/// 0.1-0.2 s of one core to the level's encode and wins on scans by
+/// 12-15% of L2; at 2 b/v, since its rate control runs in two rounds,
+/// 0.2-0.3 s for 14-18%; at 4-8 b/v still 0.4-0.7 s, which the level's
+/// time bar does not leave. On CAD parts and small meshes it never won.
+const DISPLACED_FACES_PER_BYTE: u64 = 7;
 
 /// The `default` level's budget for the displaced method, in bytes of
 /// file, on an input of `faces` triangles.

@@ -107,7 +107,7 @@ Configurations:
   auto-default  swm encode with no flag (--effort default): baseline,
             swing where its retiling fits the level's work budget, and
             displaced subdivision at low rates (files of at most one byte
-            per twelve input triangles)
+            per seven input triangles)
   auto-fast  swm encode --effort fast: meshoptimizer's simplifier, then the
             lossless mode, with a short search
             (the CSV's effort column: max, default, fast; empty for the
