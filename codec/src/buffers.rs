@@ -133,6 +133,24 @@ pub fn decode_into_with(
     let bound = bounds(&file, options)?;
     fits("positions", bound.position_floats(), positions.len())?;
     fits("indices", bound.index_count(), indices.len())?;
+    let post = crate::post::hint::resolve(&file, options.sharpen, options.bend_steps);
+    if file.header.mode == crate::container::Mode::Displaced && post.is_plain() {
+        // The finest level straight into the buffers, not copied from a
+        // mesh of its own (the largest one of the decode).
+        let levels = options.max_level.map_or(usize::MAX, usize::from);
+        let (vertices, triangles) = crate::displaced::decode_levels_into(
+            &file,
+            &options.limits,
+            levels,
+            positions,
+            indices,
+        )?;
+        return Ok(DecodedLen {
+            vertices: vertices as u64,
+            triangles: triangles as u64,
+            exact: true,
+        });
+    }
     let mesh = decode_container(&file, options)?;
     Ok(copy_out(&mesh, positions, indices))
 }

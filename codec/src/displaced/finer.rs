@@ -26,28 +26,54 @@
 //! edge, each bucket (at most four pairs: an edge has at most two faces)
 //! ordered by the higher edge.
 //!
+//! The same construction gives the contexts of the next level's scalars
+//! (`scalars`' rule) without reading a triangle: a half's one parent
+//! (the vertex new on this level) is its edge's, `V + e`, and an inner
+//! edge's two parents are those of its two edges.
+//!
 //! Invariants: the result is [`Edges::new`] of the split triangles, field
-//! for field (a test compares them). Only for a level whose every edge has
+//! for field, and its contexts are `scalars::contexts` of them (tests
+//! compare both). Only for a level whose every edge has
 //! one or two corners in distinct faces, whose faces have three distinct
 //! vertices, and no two of whose faces share two edges (each of those
 //! would give an edge of the next level more corners than this
 //! construction lists); otherwise `None`, and the caller sorts.
 
+use super::scalars::{capped_length, context};
 use super::subdivide::{corner_vertices, Edges, NONE};
 use crate::prelude::*;
 
-/// The edges of `split(tris, edges, vertex_count)`, or `None` for a level
-/// this construction does not cover (see the module's docs).
-pub(crate) fn finer(edges: &Edges, tris: &[[u32; 3]], vertex_count: u32) -> Option<Edges> {
+/// The edges of `split(tris, edges, vertex_count)` and the contexts of
+/// their scalars (`qs` holds this level's, one per edge), or `None` for
+/// a level this construction does not cover (see the module's docs).
+pub(crate) fn finer(
+    edges: &Edges,
+    tris: &[[u32; 3]],
+    vertex_count: u32,
+    qs: &[i32],
+) -> Option<(Edges, Vec<u8>)> {
     let v = vertex_count as usize;
     let ec = edges.len();
+    if qs.len() != ec {
+        return None;
+    }
+    // Each edge's scalar's share of its children's contexts.
+    let lens: Vec<u8> = qs.iter().map(|&q| capped_length(q)).collect();
     if tris
         .iter()
         .any(|t| t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
     {
         return None;
     }
+    // Half ids `2e + side` (0 at `lo`, 1 at `hi`) must fit a `u32`.
+    if ec > (u32::MAX / 2) as usize {
+        return None;
+    }
+    // Each edge's ends, and the fine corners of its halves, read from its
+    // triangles once here, in edge order, rather than twice in the
+    // buckets' order below.
     let mut ends = Vec::with_capacity(ec);
+    let mut made = Vec::with_capacity(ec);
     for e in 0..ec {
         let cs = edges.corners(e);
         if cs.len() > 2 || (cs.len() == 2 && cs[0] / 3 == cs[1] / 3) {
@@ -57,7 +83,30 @@ pub(crate) fn finer(edges: &Edges, tris: &[[u32; 3]], vertex_count: u32) -> Opti
         if a.max(b) as usize >= v {
             return None;
         }
-        ends.push((a.min(b), a.max(b)));
+        let (lo, hi) = (a.min(b), a.max(b));
+        ends.push((lo, hi));
+        let mated = cs.len() == 2 && edges.mate(cs[0]) == Some(cs[1]);
+        let mut h = Made {
+            at: [[NONE; 2]; 2],
+            corners: cs.len() as u8,
+            mated,
+        };
+        for (i, &c) in cs.iter().enumerate() {
+            let (f, k) = (c / 3, (c % 3) as usize);
+            // A mate runs the other way; a second corner that is not
+            // one (same direction) is read.
+            let from = match i {
+                0 => a,
+                _ if mated => b,
+                _ => tris[f as usize][k],
+            };
+            // The half at the corner's start keeps its leaving piece.
+            let (leaving, arriving) = (12 * f + [0, 4, 8][k], 12 * f + [3, 7, 2][k]);
+            let at_lo = from == lo;
+            h.at[0][i] = if at_lo { leaving } else { arriving };
+            h.at[1][i] = if at_lo { arriving } else { leaving };
+        }
+        made.push(h);
     }
     let corners = 12 * tris.len();
     let halves = 2 * ec;
@@ -66,6 +115,7 @@ pub(crate) fn finer(edges: &Edges, tris: &[[u32; 3]], vertex_count: u32) -> Opti
     let mut start = Vec::with_capacity(fine_edges + 1);
     let mut of_corner = vec![0u32; corners];
     let mut mate = vec![NONE; corners];
+    let mut contexts = Vec::with_capacity(fine_edges);
 
     // The halves: each edge under both its ends, in edge order.
     let mut at = vec![0u32; v + 1];
@@ -78,33 +128,27 @@ pub(crate) fn finer(edges: &Edges, tris: &[[u32; 3]], vertex_count: u32) -> Opti
     }
     let mut under = vec![0u32; halves];
     for (e, &(lo, hi)) in ends.iter().enumerate() {
-        for x in [lo, hi] {
-            under[at[x as usize] as usize] = e as u32;
+        for (side, x) in [lo, hi].into_iter().enumerate() {
+            under[at[x as usize] as usize] = 2 * e as u32 + side as u32;
             at[x as usize] += 1;
         }
     }
-    // `at[x]` is now bucket x's end; the buckets follow one another.
-    let mut first = 0;
-    for (x, &end) in at[..v].iter().enumerate() {
-        for &e in &under[first..end as usize] {
-            let id = start.len() as u32;
-            start.push(list.len() as u32);
-            let cs = edges.corners(e as usize);
-            let mut made = [NONE; 2];
-            for (slot, &c) in made.iter_mut().zip(cs) {
-                let (f, k) = (c / 3, (c % 3) as usize);
-                let leaves = tris[f as usize][k] == x as u32;
-                let fine = 12 * f + if leaves { [0, 4, 8][k] } else { [3, 7, 2][k] };
-                *slot = fine;
-                list.push(fine);
-                of_corner[fine as usize] = id;
-            }
-            if cs.len() == 2 && edges.mate(cs[0]) == Some(cs[1]) {
-                mate[made[0] as usize] = made[1];
-                mate[made[1] as usize] = made[0];
-            }
+    // The buckets follow one another, in vertex order.
+    for &h in &under {
+        let (e, side) = ((h / 2) as usize, (h % 2) as usize);
+        let id = start.len() as u32;
+        start.push(list.len() as u32);
+        contexts.push(context(1, lens[e]));
+        let m = &made[e];
+        let fine = &m.at[side][..usize::from(m.corners)];
+        for &c in fine {
+            list.push(c);
+            of_corner[c as usize] = id;
         }
-        first = end as usize;
+        if m.mated {
+            mate[fine[0] as usize] = fine[1];
+            mate[fine[1] as usize] = fine[0];
+        }
     }
 
     // The inner edges: each face's three pairs under their lower edge.
@@ -136,7 +180,7 @@ pub(crate) fn finer(edges: &Edges, tris: &[[u32; 3]], vertex_count: u32) -> Opti
         }
     }
     let mut first = 0;
-    for &end in &at[..ec] {
+    for (lo, &end) in at[..ec].iter().enumerate() {
         let bucket = &mut inner[first..end as usize];
         // At most four pairs, from faces in increasing order: a stable
         // insertion sort by the higher edge keeps the corners in order.
@@ -150,9 +194,10 @@ pub(crate) fn finer(edges: &Edges, tris: &[[u32; 3]], vertex_count: u32) -> Opti
         if bucket.windows(2).any(|w| w[0].0 == w[1].0) {
             return None;
         }
-        for &(_, x, y) in bucket.iter() {
+        for &(hi, x, y) in bucket.iter() {
             let id = start.len() as u32;
             start.push(list.len() as u32);
+            contexts.push(context(2, lens[lo].max(lens[hi as usize])));
             list.extend([x, y]);
             of_corner[x as usize] = id;
             of_corner[y as usize] = id;
@@ -162,7 +207,18 @@ pub(crate) fn finer(edges: &Edges, tris: &[[u32; 3]], vertex_count: u32) -> Opti
         first = end as usize;
     }
     start.push(list.len() as u32);
-    Some(Edges::from_parts(list, start, of_corner, mate))
+    Some((Edges::from_parts(list, start, of_corner, mate), contexts))
+}
+
+/// The halves of one edge of this level: the fine corners of the half
+/// at its `lo` (`at[0]`) and at its `hi` (`at[1]`), one per corner of
+/// the edge, in its corner order.
+struct Made {
+    at: [[u32; 2]; 2],
+    /// The edge's corners: 1 or 2.
+    corners: u8,
+    /// Its two corners are mates (interior), and so are each half's.
+    mated: bool,
 }
 
 #[cfg(test)]
@@ -199,11 +255,16 @@ mod tests {
             let mut tris = tris;
             let mut n = tris.iter().flatten().max().map_or(0, |&v| v + 1);
             let mut edges = Edges::new(&tris);
-            for _ in 0..2 {
+            for level in 0..2 {
                 let fine = split(&tris, &edges, n);
-                let derived = finer(&edges, &tris, n).expect("a clean level");
+                let qs: Vec<i32> = (0..edges.len() as i32)
+                    .map(|e| (e * 7 + level) % 11 - 5)
+                    .collect();
+                let (derived, contexts) = finer(&edges, &tris, n, &qs).expect("a clean level");
                 let sorted = Edges::new(&fine);
                 same(&derived, &sorted);
+                let wanted = crate::displaced::scalars::contexts(&sorted, &fine, n as usize, &qs);
+                assert_eq!(contexts, wanted);
                 n += edges.len() as u32;
                 tris = fine;
                 edges = sorted;
@@ -221,7 +282,8 @@ mod tests {
         ] {
             let n = tris.iter().flatten().max().map_or(0, |&v| v + 1);
             let edges = Edges::new(&tris);
-            assert!(finer(&edges, &tris, n).is_none(), "{tris:?}");
+            let qs = vec![0; edges.len()];
+            assert!(finer(&edges, &tris, n, &qs).is_none(), "{tris:?}");
         }
     }
 }

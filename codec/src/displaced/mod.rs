@@ -24,10 +24,13 @@
 //! bounds every allocation (a hostile header cannot ask for `4^K` of
 //! anything). Dropping the last chunks (and fixing the header's counts
 //! and the CRC, [`cut_levels`]) gives the file of a coarser level.
+//! Decoding into the caller's buffers ([`decode_levels_into`]) places and
+//! splits the last level straight into them.
 //!
 //! One concern per file: `subdivide` (the split and the order of new
 //! vertices), `predict` (rules, normal, placement), `scalars` (the
-//! chunks' coding), `finer` (a level's edges from the level above);
+//! chunks' coding), `finer` (a level's edges, and its scalars' contexts,
+//! from the level above);
 //! encoder side: `fit` (the scalars against the input)
 //! and `write` (the file).
 
@@ -198,6 +201,62 @@ pub(crate) fn decode_levels(
     Ok(r.mesh)
 }
 
+/// [`decode_levels`] into the caller's `positions` and `indices`, which
+/// hold at least the header's counts: the last level is written there
+/// directly (`Refiner::refine_into`). Returns the vertex and triangle
+/// counts written.
+pub(crate) fn decode_levels_into(
+    file: &Container<'_>,
+    limits: &Limits,
+    max_levels: usize,
+    positions: &mut [f32],
+    indices: &mut [u32],
+) -> Result<(usize, usize), Error> {
+    let p = parse(file, limits)?;
+    let base = crate::lossless::decode(&p.base, limits)?;
+    let mut r = Refiner::new(p.head, base, &file.header);
+    let caps = r.caps;
+    let chunks = &p.chunks[..max_levels.min(p.chunks.len())];
+    let (vertices, triangles) = match chunks.split_last() {
+        Some((last, coarser)) => {
+            for chunk in coarser {
+                r.refine(chunk)?;
+            }
+            r.refine_into(last, positions, indices)?
+        }
+        None => write_mesh(&r.mesh, positions, indices)?,
+    };
+    if max_levels >= p.chunks.len() && vertices as u64 != caps.0 {
+        return Err(bad("fewer vertices than the header's"));
+    }
+    Ok((vertices, triangles))
+}
+
+/// `mesh` into the buffers of [`decode_levels_into`] (a decode of no
+/// level: the base).
+fn write_mesh(
+    mesh: &TriMesh,
+    positions: &mut [f32],
+    indices: &mut [u32],
+) -> Result<(usize, usize), Error> {
+    let (p, i) = (mesh.positions.as_flattened(), mesh.triangles.as_flattened());
+    positions
+        .get_mut(..p.len())
+        .ok_or_else(short)?
+        .copy_from_slice(p);
+    indices
+        .get_mut(..i.len())
+        .ok_or_else(short)?
+        .copy_from_slice(i);
+    Ok((mesh.positions.len(), mesh.triangles.len()))
+}
+
+/// A buffer of [`decode_levels_into`] too short for what it decodes
+/// (the caller sizes them by the header, so only a bug reaches this).
+fn short() -> Error {
+    bad("a level larger than its buffers")
+}
+
 /// A decode one level at a time, coarse to fine: `decode_levels`, and
 /// the stream decoder as each level's chunk arrives. Holds the mesh so
 /// far and the scalars of its last level (the next level's contexts).
@@ -259,33 +318,8 @@ impl Refiner {
 
     /// The next level from its chunk (`DISP`'s next, without its length).
     pub(crate) fn refine(&mut self, chunk: &[u8]) -> Result<(), Error> {
-        let Some(&step) = self.head.steps.get(self.level) else {
-            return Err(bad("DISP has more levels than HEAD"));
-        };
-        if 4 * self.mesh.triangles.len() as u64 > self.caps.1 {
-            return Err(bad("more triangles than the header's"));
-        }
+        let (edges, qs, step) = self.scalars(chunk)?;
         let mesh = &mut self.mesh;
-        // Derived from the level above when it allows (a third of the
-        // sort's time), else sorted.
-        let derived = self
-            .split
-            .take()
-            .and_then(|(e, t)| finer::finer(&e, &t, self.first as u32));
-        let edges = derived.unwrap_or_else(|| Edges::new(&mesh.triangles));
-        check_count_fits(
-            "scalar",
-            edges.len() as u64,
-            chunk.len(),
-            scalars::MIN_BITS.0,
-            scalars::MIN_BITS.1,
-        )?;
-        if mesh.positions.len() as u64 + edges.len() as u64 > self.caps.0 {
-            return Err(bad("more vertices than the header's"));
-        }
-        let contexts = scalars::contexts(&edges, &mesh.triangles, self.first, &self.below);
-        let mut qs = core::mem::take(&mut self.below);
-        scalars::decode_level(chunk, &contexts, &mut qs)?;
         self.first = mesh.positions.len();
         let (tris, rule) = (&mesh.triangles, self.head.rule);
         predict::place_level(&edges, tris, &mut mesh.positions, rule, step, &qs)
@@ -296,6 +330,73 @@ impl Refiner {
         self.below = qs;
         self.level += 1;
         Ok(())
+    }
+
+    /// The last level from its chunk, written into `positions` (`x y
+    /// z` per vertex) and `indices` (three per triangle) instead of a new
+    /// mesh: no copy of the finest level, the largest. Returns the
+    /// vertex and triangle counts written; a buffer too short for them
+    /// is an error (the caller checked the header's counts, which bound
+    /// them).
+    fn refine_into(
+        mut self,
+        chunk: &[u8],
+        positions: &mut [f32],
+        indices: &mut [u32],
+    ) -> Result<(usize, usize), Error> {
+        let (edges, qs, step) = self.scalars(chunk)?;
+        let (old, tris) = (&self.mesh.positions, &self.mesh.triangles);
+        let vertices = old.len() + edges.len();
+        let (kept, new) = positions
+            .get_mut(..3 * vertices)
+            .ok_or_else(short)?
+            .split_at_mut(3 * old.len());
+        kept.copy_from_slice(old.as_flattened());
+        predict::place_into(&edges, tris, old, new, self.head.rule, step, &qs)
+            .ok_or(bad("a displaced vertex is not finite"))?;
+        let out = indices.get_mut(..12 * tris.len()).ok_or_else(short)?;
+        subdivide::split_into(tris, &edges, old.len() as u32, out);
+        Ok((vertices, 4 * tris.len()))
+    }
+
+    /// The next level's edges, after the checks that bound it, and its
+    /// scalars decoded from `chunk`, with its step.
+    fn scalars(&mut self, chunk: &[u8]) -> Result<(Edges, Vec<i32>, f32), Error> {
+        let Some(&step) = self.head.steps.get(self.level) else {
+            return Err(bad("DISP has more levels than HEAD"));
+        };
+        if 4 * self.mesh.triangles.len() as u64 > self.caps.1 {
+            return Err(bad("more triangles than the header's"));
+        }
+        let mesh = &self.mesh;
+        // Derived from the level above when it allows (a third of the
+        // sort's time), with the contexts of its scalars; else sorted.
+        let below = &self.below;
+        let derived = self
+            .split
+            .take()
+            .and_then(|(e, t)| finer::finer(&e, &t, self.first as u32, below));
+        let (edges, contexts) = match derived {
+            Some(d) => d,
+            None => {
+                let edges = Edges::new(&mesh.triangles);
+                let contexts = scalars::contexts(&edges, &mesh.triangles, self.first, below);
+                (edges, contexts)
+            }
+        };
+        check_count_fits(
+            "scalar",
+            edges.len() as u64,
+            chunk.len(),
+            scalars::MIN_BITS.0,
+            scalars::MIN_BITS.1,
+        )?;
+        if mesh.positions.len() as u64 + edges.len() as u64 > self.caps.0 {
+            return Err(bad("more vertices than the header's"));
+        }
+        let mut qs = core::mem::take(&mut self.below);
+        scalars::decode_level(chunk, &contexts, &mut qs)?;
+        Ok((edges, qs, step))
     }
 }
 

@@ -22,10 +22,12 @@
 //! Every level's chunk is its own range-coder stream with fresh models,
 //! so a file cut after a level's chunk still decodes.
 //!
-//! Speed: a level's contexts are made in one pass over its edges (each
-//! edge's first corner read directly), into a flat byte array, before its
+//! Speed: a level's contexts are made into a flat byte array before its
 //! scalars are decoded into a flat `i32` array that placement then reads
-//! in edge order.
+//! in edge order; for a level whose edges were derived from the level
+//! above (`finer`), by that construction, which knows each edge's parents
+//! (no triangle read), else in one pass over its edges (each edge's
+//! first corner read directly).
 
 use crate::entropy::{AdaptiveModel, Decoder};
 use crate::prelude::*;
@@ -64,30 +66,48 @@ fn length_of(z: u32) -> u32 {
 
 /// The context of each edge of a level (see the module's docs): `first`
 /// is the first vertex made by the level below, `below` that level's
-/// scalars (empty for the first level).
+/// scalars (empty for the first level). A level whose edges were derived
+/// from the level above (`finer`) gets the same contexts from
+/// [`capped_lengths`] and [`context`] without reading its triangles.
 pub(crate) fn contexts(
     edges: &super::subdivide::Edges,
     triangles: &[[u32; 3]],
     first: usize,
     below: &[i32],
 ) -> Vec<u8> {
+    if below.is_empty() {
+        return vec![0; edges.len()];
+    }
     (0..edges.len())
         .map(|e| {
             let [a, b, _] = super::subdivide::corner_vertices(edges.first_corner(e), triangles);
-            let (mut parents, mut len) = (0u8, 0u32);
+            let (mut parents, mut len) = (0u8, 0u8);
             for v in [a, b] {
                 if let Some(&q) = (v as usize).checked_sub(first).and_then(|i| below.get(i)) {
-                    let z = ((q as u32) << 1) ^ ((q >> 31) as u32);
                     parents += 1;
-                    len = len.max(length_of(z));
+                    len = len.max(capped_length(q));
                 }
             }
-            match parents {
-                0 => 0,
-                p => 1 + 4 * (p - 1) + len.min(3) as u8,
-            }
+            context(parents, len)
         })
         .collect()
+}
+
+/// A scalar's bit length, capped at 3: its share of a context.
+#[inline]
+pub(crate) fn capped_length(q: i32) -> u8 {
+    let z = ((q as u32) << 1) ^ ((q >> 31) as u32);
+    length_of(z).min(3) as u8
+}
+
+/// The context of a vertex with `parents` parents (0, 1 or 2) whose
+/// largest [`capped_length`] is `len`.
+#[inline]
+pub(crate) fn context(parents: u8, len: u8) -> u8 {
+    match parents {
+        0 => 0,
+        p => 1 + 4 * (p - 1) + len,
+    }
 }
 
 /// The models of one level's stream.

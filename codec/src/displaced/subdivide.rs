@@ -255,15 +255,40 @@ pub(crate) fn corner_vertices(c: u32, triangles: &[[u32; 3]]) -> [u32; 3] {
 /// (see the module's figure); `vertex_count` is the coarse level's.
 pub(crate) fn split(triangles: &[[u32; 3]], edges: &Edges, vertex_count: u32) -> Vec<[u32; 3]> {
     let mut out = Vec::with_capacity(4 * triangles.len());
-    for (&[a, b, c], m) in triangles.iter().zip(edges.of_corners().chunks_exact(3)) {
-        let (m0, m1, m2) = (
-            vertex_count + m[0],
-            vertex_count + m[1],
-            vertex_count + m[2],
-        );
-        out.extend_from_slice(&[[a, m0, m2], [m0, b, m1], [m2, m1, c], [m0, m1, m2]]);
+    for (t, m) in triangles.iter().zip(edges.of_corners().chunks_exact(3)) {
+        out.extend_from_slice(&quarters(t, m, vertex_count));
     }
     out
+}
+
+/// [`split`] into `out`, three indices per triangle (`12 ×` the coarse
+/// triangles): the decoder's last level, straight into the caller's
+/// index buffer.
+pub(crate) fn split_into(
+    triangles: &[[u32; 3]],
+    edges: &Edges,
+    vertex_count: u32,
+    out: &mut [u32],
+) {
+    debug_assert_eq!(out.len(), 12 * triangles.len());
+    for ((t, m), o) in triangles
+        .iter()
+        .zip(edges.of_corners().chunks_exact(3))
+        .zip(out.chunks_exact_mut(12))
+    {
+        o.copy_from_slice(quarters(t, m, vertex_count).as_flattened());
+    }
+}
+
+/// The four triangles of face `[a, b, c]` whose corners' edges are `m`.
+#[inline(always)]
+fn quarters(&[a, b, c]: &[u32; 3], m: &[u32], vertex_count: u32) -> [[u32; 3]; 4] {
+    let (m0, m1, m2) = (
+        vertex_count + m[0],
+        vertex_count + m[1],
+        vertex_count + m[2],
+    );
+    [[a, m0, m2], [m0, b, m1], [m2, m1, c], [m0, m1, m2]]
 }
 
 #[cfg(test)]

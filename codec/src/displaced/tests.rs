@@ -87,6 +87,43 @@ fn decode_is_the_encoders_reconstruction_bit_for_bit() {
     }
 }
 
+/// Decoding into buffers (the finest level placed and split straight
+/// into them) gives the owned decode's bits at every `max_level`, for
+/// both rules, and leaves the rest of the buffers as they were.
+#[test]
+fn decode_into_buffers_is_the_owned_decode_at_every_level() {
+    for rule in [Rule::Loop, Rule::Butterfly] {
+        let (w, _) = written(200, &plan(3, rule));
+        for max_level in [None, Some(0), Some(1), Some(2), Some(3), Some(7)] {
+            let o = crate::DecodeOptions {
+                max_level,
+                ..crate::DecodeOptions::plain()
+            };
+            let mesh = crate::decoder::decode(&w.bytes, &o).unwrap();
+            let len = crate::decoded_len(&w.bytes, &o).unwrap();
+            let mut p = vec![f32::NAN; len.position_floats() as usize];
+            let mut i = vec![u32::MAX; len.index_count() as usize];
+            let got = crate::decode_into_with(&w.bytes, &o, &mut p, &mut i).unwrap();
+            let (v, t) = (mesh.positions.len(), mesh.triangles.len());
+            let what = format!("{rule:?} {max_level:?}");
+            assert_eq!(
+                (got.vertices, got.triangles),
+                (v as u64, t as u64),
+                "{what}"
+            );
+            let bits = |x: &[f32]| x.iter().map(|c| c.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&p[..3 * v]),
+                bits(mesh.positions.as_flattened()),
+                "{what}"
+            );
+            assert_eq!(&i[..3 * t], mesh.triangles.as_flattened(), "{what}");
+            assert!(p[3 * v..].iter().all(|x| x.is_nan()), "{what}");
+            assert!(i[3 * t..].iter().all(|&x| x == u32::MAX), "{what}");
+        }
+    }
+}
+
 #[test]
 fn every_level_cut_decodes_and_the_error_falls_level_by_level() {
     let (w, surface) = written(200, &plan(3, Rule::Loop));

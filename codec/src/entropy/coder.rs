@@ -1,6 +1,8 @@
 //! The range encoder and decoder: constriction's queue range coder
 //! (`u32` words, `u64` state), so symbols are decoded in the order they
-//! were encoded.
+//! were encoded. The encoder is constriction's; the decoder is its
+//! decoder written out, operation for operation, so that a model can
+//! find most symbols without the coder's division (see [`Decoder`]).
 //!
 //! Source: the range coder of G. N. N. Martin, "Range encoding: an
 //! algorithm for removing redundancy from a digitised message" (1979), as
@@ -24,11 +26,9 @@ use core::borrow::Borrow;
 use core::convert::Infallible;
 use core::num::NonZeroU32;
 
-use constriction::backends::ReadWords;
-use constriction::stream::model::{DecoderModel, EncoderModel, EntropyModel};
-use constriction::stream::queue::{DecoderFrontendError, DefaultRangeEncoder, RangeDecoder};
-use constriction::stream::{Code, Decode, Encode};
-use constriction::{CoderError, Queue};
+use constriction::stream::model::{EncoderModel, EntropyModel};
+use constriction::stream::queue::DefaultRangeEncoder;
+use constriction::stream::Encode;
 
 use super::model::{AdaptiveModel, PRECISION};
 use crate::{Error, FormatError, Malformed};
@@ -68,16 +68,6 @@ impl EncoderModel<PRECISION> for Uniform {
     }
 }
 
-impl DecoderModel<PRECISION> for Uniform {
-    #[inline(always)]
-    fn quantile_function(&self, quantile: u32) -> (u32, u32, NonZeroU32) {
-        let v = quantile >> self.shift;
-        // shift < PRECISION, so the probability is never zero.
-        let p = NonZeroU32::new(1 << self.shift).unwrap_or(NonZeroU32::MIN);
-        (v, v << self.shift, p)
-    }
-}
-
 /// Unwraps a result whose error type is uninhabited.
 #[inline(always)]
 fn infallible<T>(r: Result<T, Infallible>) -> T {
@@ -92,15 +82,22 @@ fn malformed(what: Malformed) -> Error {
     Error::Format(FormatError::new("SWM", what))
 }
 
-/// constriction's only decoding error: the data points outside the model.
+/// The quantile `offset / scale` of [`Decoder`]'s interval, `None` when
+/// it is `2^PRECISION` or more (or the scale zero, which the coder's
+/// invariants rule out: no panic may come from the data).
+#[inline(always)]
+pub(super) fn quantile(offset: u64, scale: u64) -> Option<u32> {
+    let q = offset.checked_div(scale)?;
+    (q < 1 << PRECISION).then_some(q as u32)
+}
+
+/// The decoder's only error (constriction's): the data points outside
+/// the model.
 #[cold]
-fn coder_error(e: CoderError<DecoderFrontendError, Infallible>) -> Error {
-    match e {
-        CoderError::Frontend(_) => malformed(Malformed::BadSyntax(
-            "entropy-coded data is invalid for its model",
-        )),
-        CoderError::Backend(e) => match e {},
-    }
+fn invalid() -> Error {
+    malformed(Malformed::BadSyntax(
+        "entropy-coded data is invalid for its model",
+    ))
 }
 
 /// Encodes symbols with adaptive models, and raw bits, into bytes.
@@ -187,40 +184,32 @@ impl Encoder {
     }
 }
 
-/// The decoder's view of the bytes: little-endian `u32` words, then "no
-/// more data" forever (constriction then shifts in zeros). Counts every
-/// request, so [`Decoder::finish`] can tell where the stream ended.
-#[derive(Clone, Debug)]
-struct WordSource<'a> {
-    words: core::slice::ChunksExact<'a, u8>,
-    reads: u64,
-}
-
-impl ReadWords<u32, Queue> for WordSource<'_> {
-    type ReadError = Infallible;
-
-    #[inline(always)]
-    fn read(&mut self) -> Result<Option<u32>, Infallible> {
-        self.reads += 1;
-        match self.words.next() {
-            Some(&[a, b, c, d]) => Ok(Some(u32::from_le_bytes([a, b, c, d]))),
-            _ => Ok(None),
-        }
-    }
-
-    #[inline(always)]
-    fn maybe_exhausted(&self) -> bool {
-        self.words.len() == 0
-    }
-}
-
 /// Decodes what an [`Encoder`] wrote, in the same order and with models
 /// created and used the same way.
+///
+/// constriction's queue range decoder (`u32` words, `u64` state), written
+/// out here so that the model sees the point's offset and the interval's
+/// scale rather than their quotient: a symbol's decode waits on the
+/// previous one's, and the 64-bit division is its longest step, which
+/// `Table::find_scaled` skips for a model's first
+/// symbol (and both of a binary model's). Every state change is
+/// constriction's, in its order, so every symbol and every error is the
+/// same (a test decodes random and valid streams with both).
 #[derive(Clone, Debug)]
 pub struct Decoder<'a> {
-    coder: RangeDecoder<u32, u64, WordSource<'a>>,
+    /// The words not read yet.
+    words: core::slice::ChunksExact<'a, u8>,
+    /// Word requests so far, those past the end included (constriction
+    /// then shifts in zeros): [`Decoder::finish`] counts them.
+    reads: u64,
+    /// The coder's interval `[lower, lower + range)` (wrapping), `range`
+    /// never zero.
+    lower: u64,
+    range: u64,
+    /// The point the encoder's output pins down, read two words ahead.
+    point: u64,
     /// Length of the data in words.
-    words: u64,
+    total: u64,
 }
 
 impl<'a> Decoder<'a> {
@@ -232,23 +221,72 @@ impl<'a> Decoder<'a> {
                 "entropy-coded data is not a whole number of 32-bit words",
             )));
         }
-        let source = WordSource {
+        let mut d = Decoder {
             words: bytes.chunks_exact(4),
             reads: 0,
+            lower: 0,
+            range: u64::MAX,
+            point: 0,
+            total: (bytes.len() / 4) as u64,
         };
-        Ok(Decoder {
-            coder: infallible(RangeDecoder::with_backend(source)),
-            words: (bytes.len() / 4) as u64,
-        })
+        // The point's first two words; constriction stops at the first
+        // missing one and shifts what it read to the top.
+        let mut read = 0;
+        while let Some(w) = d.word() {
+            d.point = (d.point << 32) | u64::from(w);
+            read += 1;
+            if read == 2 {
+                break;
+            }
+        }
+        if read == 1 {
+            d.point <<= 32;
+        }
+        Ok(d)
+    }
+
+    /// The next word, counted; `None` past the end.
+    #[inline(always)]
+    fn word(&mut self) -> Option<u32> {
+        self.reads += 1;
+        match self.words.next() {
+            Some(&[a, b, c, d]) => Some(u32::from_le_bytes([a, b, c, d])),
+            _ => None,
+        }
+    }
+
+    /// One symbol: `find` maps the point's offset in the interval and
+    /// the interval's scale (`range / 2^PRECISION`) to the symbol whose
+    /// interval holds the quantile `offset / scale`, with its left
+    /// cumulative and its frequency (≥ 1, the intervals tiling
+    /// `0..2^PRECISION`), or to `None` when that quantile is `2^PRECISION`
+    /// or more (constriction's error). Given both, a model can often
+    /// answer without the division (`Table::find_scaled`).
+    #[inline(always)]
+    fn symbol(
+        &mut self,
+        find: impl FnOnce(u64, u64) -> Option<(u32, u32, u32)>,
+    ) -> Result<u32, Error> {
+        let scale = self.range >> PRECISION;
+        let offset = self.point.wrapping_sub(self.lower);
+        let (symbol, left, frequency) = find(offset, scale).ok_or_else(invalid)?;
+        self.lower = self.lower.wrapping_add(scale * u64::from(left));
+        self.range = scale * u64::from(frequency);
+        if self.range < 1 << 32 {
+            self.lower <<= 32;
+            self.range <<= 32;
+            self.point <<= 32;
+            if let Some(w) = self.word() {
+                self.point |= u64::from(w);
+            }
+        }
+        Ok(symbol)
     }
 
     /// Decodes one symbol with `model`, then updates the model.
-    #[inline]
+    #[inline(always)]
     pub fn decode(&mut self, model: &mut AdaptiveModel) -> Result<u32, Error> {
-        let symbol = self
-            .coder
-            .decode_symbol(model.table())
-            .map_err(coder_error)?;
+        let symbol = self.symbol(|offset, scale| model.table().find_scaled(offset, scale))?;
         // Must match the encoder exactly: the same update, after the symbol.
         model.update(symbol);
         Ok(symbol)
@@ -259,7 +297,7 @@ impl<'a> Decoder<'a> {
     /// # Panics
     ///
     /// If `bits > MAX_RAW_BITS` (a bug in the caller).
-    #[inline]
+    #[inline(always)]
     pub fn decode_bits(&mut self, bits: u32) -> Result<u32, Error> {
         assert!(bits <= MAX_RAW_BITS, "at most 24 raw bits at a time");
         // High chunk first; must match the encoder exactly.
@@ -272,15 +310,18 @@ impl<'a> Decoder<'a> {
         }
     }
 
+    /// `bits` (1 ≤ `bits` ≤ `PRECISION`) raw bits: the uniform model's
+    /// symbol, as [`Uniform`] maps quantiles for the encoder.
     #[inline(always)]
     fn raw(&mut self, bits: u32) -> Result<u32, Error> {
         if bits == 0 {
             return Ok(0);
         }
-        let model = Uniform {
-            shift: PRECISION as u32 - bits,
-        };
-        self.coder.decode_symbol(model).map_err(coder_error)
+        let shift = PRECISION as u32 - bits;
+        self.symbol(|offset, scale| {
+            let v = quantile(offset, scale)? >> shift;
+            Some((v, v << shift, 1 << shift))
+        })
     }
 
     /// Checks that the stream ends exactly where the decoded symbols say
@@ -296,13 +337,11 @@ impl<'a> Decoder<'a> {
     /// how many words past the end it should have asked for (one or
     /// none).
     pub fn finish(self) -> Result<(), Error> {
-        let state = self.coder.state();
-        let (lower, range) = (state.lower(), state.range().get());
-        let (source, _, _) = self.coder.into_raw_parts();
+        let (lower, range) = (self.lower, self.range);
         // The range is all ones until the first symbol narrows it, and
         // never again afterwards; the encoder writes nothing in that case.
         if range == u64::MAX {
-            return if self.words == 0 {
+            return if self.total == 0 {
                 Ok(())
             } else {
                 Err(malformed(Malformed::TrailingData))
@@ -311,8 +350,8 @@ impl<'a> Decoder<'a> {
         // Words the decoder needed: two to start with, then one per read
         // since. (constriction stops its first two reads at the first
         // "no more data", so those are counted apart.)
-        let first_reads = self.words.min(2) + u64::from(self.words < 2);
-        let needed = 2 + (source.reads - first_reads);
+        let first_reads = self.total.min(2) + u64::from(self.total < 2);
+        let needed = 2 + (self.reads - first_reads);
         // The encoder's flush, as constriction computes it: the word of
         // `lower + 2^32 − 1`, then a zero word if that word is also the
         // top word of `lower + range`. After a one-word flush the decoder
@@ -320,10 +359,129 @@ impl<'a> Decoder<'a> {
         let point_word = lower.wrapping_add((1 << 32) - 1) >> 32;
         let upper_word = lower.wrapping_add(range) >> 32;
         let written = needed - u64::from(point_word != upper_word);
-        match written.cmp(&self.words) {
+        match written.cmp(&self.total) {
             core::cmp::Ordering::Greater => Err(malformed(Malformed::Truncated)),
             core::cmp::Ordering::Less => Err(malformed(Malformed::TrailingData)),
             core::cmp::Ordering::Equal => Ok(()),
+        }
+    }
+}
+
+/// The decoder against constriction's own, which it writes out.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::entropy::tests::Rng;
+    use constriction::backends::ReadWords;
+    use constriction::stream::model::DecoderModel;
+    use constriction::stream::queue::RangeDecoder;
+    use constriction::stream::{Code, Decode};
+    use constriction::Queue;
+
+    /// constriction's view of the bytes, as the decoder had it before:
+    /// words, then "no more data", every request counted.
+    struct Words<'a> {
+        words: core::slice::ChunksExact<'a, u8>,
+        reads: u64,
+    }
+
+    impl ReadWords<u32, Queue> for Words<'_> {
+        type ReadError = Infallible;
+
+        fn read(&mut self) -> Result<Option<u32>, Infallible> {
+            self.reads += 1;
+            Ok(match self.words.next() {
+                Some(&[a, b, c, d]) => Some(u32::from_le_bytes([a, b, c, d])),
+                _ => None,
+            })
+        }
+
+        fn maybe_exhausted(&self) -> bool {
+            self.words.len() == 0
+        }
+    }
+
+    impl DecoderModel<PRECISION> for Uniform {
+        fn quantile_function(&self, quantile: u32) -> (u32, u32, NonZeroU32) {
+            let v = quantile >> self.shift;
+            (
+                v,
+                v << self.shift,
+                NonZeroU32::new(1 << self.shift).unwrap(),
+            )
+        }
+    }
+
+    /// Random bytes, and valid streams cut or flipped: every symbol, every
+    /// error, and the state `finish` reads are constriction's.
+    #[test]
+    fn symbols_errors_and_state_are_constrictions() {
+        let mut rng = Rng(46);
+        for round in 0..2_000 {
+            let symbols = [2, 5, 22, 256, 4096][rng.below(5) as usize];
+            let bytes: Vec<u8> = if round % 2 == 0 {
+                let len = 4 * rng.below(60) as usize;
+                (0..len).map(|_| rng.next() as u8).collect()
+            } else {
+                let mut enc = Encoder::new();
+                let mut m = AdaptiveModel::new(symbols);
+                for _ in 0..rng.below(400) {
+                    let r = rng.unit();
+                    enc.encode(&mut m, (r * r * f64::from(symbols)) as u32);
+                    if rng.below(4) == 0 {
+                        let bits = rng.below(MAX_RAW_BITS + 1);
+                        enc.encode_bits(rng.next() as u32 & ((1u64 << bits) - 1) as u32, bits);
+                    }
+                }
+                let mut b = enc.finish();
+                if rng.below(3) == 0 && !b.is_empty() {
+                    let k = rng.below(b.len() as u32) as usize;
+                    b[k] ^= 1 << rng.below(8);
+                }
+                if rng.below(3) == 0 {
+                    b.truncate(b.len() / 8 * 4);
+                }
+                b
+            };
+            let mut ours = Decoder::new(&bytes).unwrap();
+            let words = Words {
+                words: bytes.chunks_exact(4),
+                reads: 0,
+            };
+            let mut theirs = RangeDecoder::<u32, u64, _>::with_backend(words).unwrap();
+            let (mut m1, mut m2) = (AdaptiveModel::new(symbols), AdaptiveModel::new(symbols));
+            for _ in 0..rng.below(500) {
+                let (a, b) = if rng.below(4) == 0 {
+                    let bits = 1 + rng.below(PRECISION as u32);
+                    let u = Uniform {
+                        shift: PRECISION as u32 - bits,
+                    };
+                    (ours.raw(bits), theirs.decode_symbol(u))
+                } else {
+                    let a = ours.decode(&mut m1);
+                    let b = theirs.decode_symbol(m2.table());
+                    if let Ok(s) = b {
+                        m2.update(s);
+                    }
+                    (a, b)
+                };
+                match (a, b) {
+                    (Ok(x), Ok(y)) => assert_eq!(x, y, "round {round}"),
+                    (Err(_), Err(_)) => break,
+                    (x, y) => panic!("round {round}: {x:?} vs {y:?}"),
+                }
+                let state = theirs.state();
+                assert_eq!(
+                    (ours.lower, ours.range),
+                    (state.lower(), state.range().get())
+                );
+            }
+            let (words, _, point) = theirs.into_raw_parts();
+            assert_eq!(
+                (ours.reads, ours.point),
+                (words.reads, point),
+                "round {round}"
+            );
         }
     }
 }

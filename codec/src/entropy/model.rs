@@ -36,6 +36,10 @@
 //! symbol start per quantum and is visited with probability `2^−LB`. A
 //! binary search would cost `log2 n` dependent loads every time; a full
 //! `2^P` lookup table would cost 128 KB per model and a slow rebuild.
+//! Before any of that, the first symbol (and the second of a binary
+//! model) is recognized from the coder's offset and scale without the
+//! division that makes the quantile (`Table::find_scaled`): the same
+//! symbol, without the longest step of its decode.
 //!
 //! The update step ([`AdaptiveModel::update`]) is the single function both
 //! the encoder and the decoder call after every symbol: the two sides stay
@@ -165,6 +169,28 @@ impl Table {
             start = end;
         }
         debug_assert_eq!(start, self.lookup.len());
+    }
+
+    /// [`find`](Self::find) of the quantile `offset / scale` (the range
+    /// decoder's), `None` when that is `2^PRECISION` or more. The first
+    /// symbol, the most frequent of most models (a zero residual, a zero
+    /// displacement), is recognized without the division: `offset / scale`
+    /// (rounded down) is below the integer `cum[1]` exactly when `offset`
+    /// is below `scale · cum[1]`, which cannot overflow since
+    /// `scale · 2^PRECISION` is at most the coder's range. So is the second
+    /// of a two-symbol model, below `scale · 2^PRECISION`. The division is
+    /// the longest step of a symbol's decode, and the next symbol waits
+    /// on this one: the same symbol, sooner.
+    #[inline(always)]
+    pub(super) fn find_scaled(&self, offset: u64, scale: u64) -> Option<(u32, u32, u32)> {
+        let one = self.cum[1];
+        if offset < scale * u64::from(one) {
+            return Some((0, 0, one));
+        }
+        if self.cum.len() == 3 {
+            return (offset < scale << PRECISION).then_some((1, one, TOTAL - one));
+        }
+        Some(self.find(super::coder::quantile(offset, scale)?))
     }
 
     /// The symbol whose interval holds `quantile` (< `2^PRECISION`), with
