@@ -1,8 +1,10 @@
 //! The range encoder and decoder: constriction's queue range coder
 //! (`u32` words, `u64` state), so symbols are decoded in the order they
-//! were encoded. The encoder is constriction's; the decoder is its
-//! decoder written out, operation for operation, so that a model can
-//! find most symbols without the coder's division (see [`Decoder`]).
+//! were encoded. The encoder is constriction's; the decoder is swm's own
+//! implementation of the same arithmetic (Martin's range decoding step
+//! with constriction's word size, state width and end-of-data rule), so
+//! that a model can find most symbols without the coder's division, which
+//! constriction's model interface does not allow (see [`Decoder`]).
 //!
 //! Source: the range coder of G. N. N. Martin, "Range encoding: an
 //! algorithm for removing redundancy from a digitised message" (1979), as
@@ -187,9 +189,9 @@ impl Encoder {
 /// Decodes what an [`Encoder`] wrote, in the same order and with models
 /// created and used the same way.
 ///
-/// constriction's queue range decoder (`u32` words, `u64` state), written
-/// out here so that the model sees the point's offset and the interval's
-/// scale rather than their quotient: a symbol's decode waits on the
+/// The decoding side of constriction's queue range coder (`u32` words,
+/// `u64` state), implemented here so that the model sees the point's
+/// offset and the interval's scale rather than their quotient: a symbol's decode waits on the
 /// previous one's, and the 64-bit division is its longest step, which
 /// `Table::find_scaled` skips for a model's first
 /// symbol (and both of a binary model's). Every state change is
