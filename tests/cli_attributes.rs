@@ -402,3 +402,29 @@ fn a_size_below_the_smallest_file_with_the_streams_keeps_the_surface_and_says_so
     assert!(!file.with_extension("swm").exists(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An edge length asks for SwingWrapper, which keeps no texture
+/// coordinates: the automatic mode says so and names both ways out, and
+/// forcing the method encodes (dropping them, with a warning).
+#[test]
+fn an_edge_length_on_a_textured_mesh_says_what_it_asks_for() {
+    let dir = scratch("attributes-edge-length");
+    let file = dir.join("textured.glb");
+    std::fs::write(&file, glb_with_texcoords()).unwrap();
+    let out = encode(&file, &["--edge-length", "0.2"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("asks for the swing method, which keeps no attribute streams")
+            && err.contains("--mode swing"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let out = encode(&file, &["--edge-length", "0.2", "--mode", "swing"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

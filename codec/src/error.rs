@@ -567,6 +567,15 @@ pub enum ParameterError {
         /// The mode.
         mode: &'static str,
     },
+    /// An option only a method that keeps no attribute streams takes,
+    /// given for an input that has some (an edge length asks for
+    /// SwingWrapper).
+    KeepsNoAttributes {
+        /// The option's name.
+        name: &'static str,
+        /// The method it asks for, as the command line names it.
+        method: &'static str,
+    },
 }
 
 impl fmt::Display for ParameterError {
@@ -624,6 +633,11 @@ impl fmt::Display for ParameterError {
             ParameterError::NotApplicable { name, mode } => {
                 write!(f, "the {mode} mode takes no {name}")
             }
+            ParameterError::KeepsNoAttributes { name, method } => write!(
+                f,
+                "an {name} asks for the {method} method, which keeps no attribute streams: \
+                 ask for a size to keep them, or force it (--mode {method}) to drop them"
+            ),
         }
     }
 }

@@ -74,6 +74,15 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
                 .iter()
                 .position(|e| e.method.takes_edge_length() && keeps(e))
             else {
+                // A method would take it, but not the input's attributes:
+                // say so, rather than that the mode takes none.
+                if let Some(e) = list.iter().find(|e| e.method.takes_edge_length()) {
+                    return Err(ParameterError::KeepsNoAttributes {
+                        name: "edge length",
+                        method: e.method.method().name(),
+                    }
+                    .into());
+                }
                 return Err(ParameterError::NotApplicable {
                     name: "edge length",
                     mode: "automatic",
