@@ -32,7 +32,7 @@ use constriction::stream::model::{EncoderModel, EntropyModel};
 use constriction::stream::queue::DefaultRangeEncoder;
 use constriction::stream::Encode;
 
-use super::model::{AdaptiveModel, PRECISION};
+use super::model::{quantile, AdaptiveModel, PRECISION};
 use crate::{Error, FormatError, Malformed};
 
 /// Largest number of raw bits [`Encoder::encode_bits`] takes at once.
@@ -82,15 +82,6 @@ fn infallible<T>(r: Result<T, Infallible>) -> T {
 /// The error every invalid entropy-coded stream gives.
 fn malformed(what: Malformed) -> Error {
     Error::Format(FormatError::new("SWM", what))
-}
-
-/// The quantile `offset / scale` of [`Decoder`]'s interval, `None` when
-/// it is `2^PRECISION` or more (or the scale zero, which the coder's
-/// invariants rule out: no panic may come from the data).
-#[inline(always)]
-pub(super) fn quantile(offset: u64, scale: u64) -> Option<u32> {
-    let q = offset.checked_div(scale)?;
-    (q < 1 << PRECISION).then_some(q as u32)
 }
 
 /// The decoder's only error (constriction's): the data points outside

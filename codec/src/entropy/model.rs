@@ -190,7 +190,7 @@ impl Table {
         if self.cum.len() == 3 {
             return (offset < scale << PRECISION).then_some((1, one, TOTAL - one));
         }
-        Some(self.find(super::coder::quantile(offset, scale)?))
+        Some(self.find(quantile(offset, scale)?))
     }
 
     /// The symbol whose interval holds `quantile` (< `2^PRECISION`), with
@@ -376,6 +376,17 @@ impl ContextModel {
     pub fn get_ref(&self, context: usize) -> &AdaptiveModel {
         &self.models[context]
     }
+}
+
+/// The quantile `offset / scale` of the range decoder's interval
+/// (`coder::Decoder`), `None` when it is `2^PRECISION` or more (or the
+/// scale zero, which the coder's invariants rule out: no panic may come
+/// from the data). Here, below the coder, so that models and the coder's
+/// raw bits share it without the two files importing each other.
+#[inline(always)]
+pub(super) fn quantile(offset: u64, scale: u64) -> Option<u32> {
+    let q = offset.checked_div(scale)?;
+    (q < 1 << PRECISION).then_some(q as u32)
 }
 
 #[cfg(test)]
