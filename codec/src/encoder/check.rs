@@ -8,11 +8,11 @@
 //! surface, which the chooser built already: the cleaned input, or the
 //! same surface with its widest fans rebuilt (`Simplifier::reference`,
 //! within about 1e-4 of a spoke). Metro's samples are thinned to
-//! [`CHECK_SAMPLES`] a side (`metrics::metro_estimate`; effort `fast`
-//! takes [`FAST_CHECK_SAMPLES`], a third of the queries for about 0.5%
-//! standard error instead of 0.3%), keeping each
-//! kind's share, so the L2 estimates what `swm distance` reports rather
-//! than the chooser's area-uniform figure, which on simplified scans runs
+//! [`check_samples`] a side (`metrics::metro_estimate`): 60,000 (a
+//! third of that at effort `fast`, about 0.5% standard error instead of
+//! 0.3%), keeping each kind's share, so the L2 estimates what
+//! `swm distance` reports rather than the chooser's area-uniform figure,
+//! which on simplified scans runs
 //! 5-10% lower. One reference tree serves the chooser and this check;
 //! callers need not build their own (the CLI's check once did, on a
 //! million-triangle scan a second of its time).
@@ -23,7 +23,7 @@ use crate::metrics::estimate::metro_estimate;
 use crate::metrics::{Build, Surface};
 use crate::Error;
 
-use super::stats::{CHECK_SAMPLES, FAST_CHECK_SAMPLES};
+use super::stats::check_samples;
 
 /// Decodes `bytes` and measures the result against the job's reference.
 pub(crate) fn check(job: &Job<'_, '_>, bytes: &[u8]) -> Result<Check, Error> {
@@ -40,10 +40,7 @@ pub(crate) fn check(job: &Job<'_, '_>, bytes: &[u8]) -> Result<Check, Error> {
         });
     }
     let reference = job.reference()?;
-    let samples = match job.options.effort {
-        crate::options::Effort::Fast => FAST_CHECK_SAMPLES,
-        _ => CHECK_SAMPLES,
-    };
+    let samples = check_samples(job.options.effort);
     // The decoded surface answers this check's queries only.
     let how = Build::for_queries(decoded.face_count(), samples);
     let other = Surface::with_build(&decoded, how)?;

@@ -154,6 +154,8 @@ impl CodingMethod for Displaced {
         // First, one file of each level count, measured and its error
         // carried to the budget (`RATE_EXPONENT`).
         let mut firsts: Vec<First> = Vec::new();
+        // The least carried error so far.
+        let mut best = f64::INFINITY;
         for levels in LEVELS {
             // After two level counts, one more only where the last level
             // still paid well (`NEXT_LEVEL_GAIN`).
@@ -171,10 +173,8 @@ impl CodingMethod for Displaced {
             smallest = smallest.min(w.bytes.len() as u64);
             let l2 = measure(&w)?;
             let carried = l2 * (w.bytes.len() as f64 / budget as f64).powf(RATE_EXPONENT);
-            let best = firsts
-                .iter()
-                .map(|f| f.carried)
-                .fold(f64::INFINITY, f64::min);
+            let before = best;
+            best = best.min(carried);
             firsts.push(First {
                 levels,
                 faces,
@@ -185,16 +185,12 @@ impl CodingMethod for Displaced {
             // Error against level count was unimodal in every cell
             // measured (bunny and horse, 0.5-8 b/v): once a level more
             // is clearly worse, more levels are not tried.
-            if carried > best * (1.0 + GIVE_UP) {
+            if carried > before * (1.0 + GIVE_UP) {
                 break;
             }
         }
         // Then the search of each level count whose first file was not
         // clearly worse than the best (`GIVE_UP`), from that file.
-        let best = firsts
-            .iter()
-            .map(|f| f.carried)
-            .fold(f64::INFINITY, f64::min);
         let mut found: Vec<(f64, Written, usize)> = Vec::new();
         let mut slope = SLOPE;
         for first in firsts {

@@ -160,7 +160,8 @@ impl<'a, 's> Job<'a, 's> {
         let how = match self.services.quick {
             true => crate::metrics::Build::for_queries(
                 mesh.face_count(),
-                super::stats::FAST_CHECK_SAMPLES + 3 * crate::simplify::QUICK_SAMPLES,
+                super::stats::check_samples(self.options.effort)
+                    + 3 * crate::simplify::QUICK_SAMPLES,
             ),
             false => crate::metrics::Build::Sah,
         };

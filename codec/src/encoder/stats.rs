@@ -402,6 +402,14 @@ pub const CHECK_SAMPLES: u64 = 60_000;
 /// on the scans: BENCHMARKS.md, "Session 2026-12-06 (eighth)").
 pub const FAST_CHECK_SAMPLES: u64 = 20_000;
 
+/// The check's samples per side at `effort`.
+pub(crate) fn check_samples(effort: crate::Effort) -> u64 {
+    match effort {
+        crate::Effort::Fast => FAST_CHECK_SAMPLES,
+        _ => CHECK_SAMPLES,
+    }
+}
+
 /// The file as decoded, measured against the input.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
