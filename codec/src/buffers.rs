@@ -138,17 +138,20 @@ pub fn decode_into_with(
         // The finest level straight into the buffers, not copied from a
         // mesh of its own (the largest one of the decode).
         let levels = options.max_level.map_or(usize::MAX, usize::from);
-        let (vertices, triangles) = crate::displaced::decode_levels_into(
+        let placed = crate::displaced::decode_levels_into(
             &file,
             &options.limits,
             levels,
             positions,
             indices,
         )?;
-        return Ok(DecodedLen {
-            vertices: vertices as u64,
-            triangles: triangles as u64,
-            exact: true,
+        return Ok(match placed {
+            crate::displaced::Placed::Written(vertices, triangles) => DecodedLen {
+                vertices: vertices as u64,
+                triangles: triangles as u64,
+                exact: true,
+            },
+            crate::displaced::Placed::Base(mesh) => copy_out(&mesh, positions, indices),
         });
     }
     let mesh = decode_container(&file, options)?;

@@ -201,54 +201,47 @@ pub(crate) fn decode_levels(
     Ok(r.mesh)
 }
 
+/// What [`decode_levels_into`] did with the caller's buffers.
+pub(crate) enum Placed {
+    /// The last level is in them: its vertex and triangle counts.
+    Written(usize, usize),
+    /// No level was decoded: the base, for the caller to copy.
+    Base(TriMesh),
+}
+
 /// [`decode_levels`] into the caller's `positions` and `indices`, which
 /// hold at least the header's counts: the last level is written there
-/// directly (`Refiner::refine_into`). Returns the vertex and triangle
-/// counts written.
+/// directly (`Refiner::refine_into`).
 pub(crate) fn decode_levels_into(
     file: &Container<'_>,
     limits: &Limits,
     max_levels: usize,
     positions: &mut [f32],
     indices: &mut [u32],
-) -> Result<(usize, usize), Error> {
+) -> Result<Placed, Error> {
     let p = parse(file, limits)?;
     let base = crate::lossless::decode(&p.base, limits)?;
     let mut r = Refiner::new(p.head, base, &file.header);
     let caps = r.caps;
     let chunks = &p.chunks[..max_levels.min(p.chunks.len())];
-    let (vertices, triangles) = match chunks.split_last() {
+    let placed = match chunks.split_last() {
         Some((last, coarser)) => {
             for chunk in coarser {
                 r.refine(chunk)?;
             }
-            r.refine_into(last, positions, indices)?
+            let (vertices, triangles) = r.refine_into(last, positions, indices)?;
+            Placed::Written(vertices, triangles)
         }
-        None => write_mesh(&r.mesh, positions, indices)?,
+        None => Placed::Base(r.mesh),
+    };
+    let vertices = match &placed {
+        Placed::Written(v, _) => *v,
+        Placed::Base(mesh) => mesh.positions.len(),
     };
     if max_levels >= p.chunks.len() && vertices as u64 != caps.0 {
         return Err(bad("fewer vertices than the header's"));
     }
-    Ok((vertices, triangles))
-}
-
-/// `mesh` into the buffers of [`decode_levels_into`] (a decode of no
-/// level: the base).
-fn write_mesh(
-    mesh: &TriMesh,
-    positions: &mut [f32],
-    indices: &mut [u32],
-) -> Result<(usize, usize), Error> {
-    let (p, i) = (mesh.positions.as_flattened(), mesh.triangles.as_flattened());
-    positions
-        .get_mut(..p.len())
-        .ok_or_else(short)?
-        .copy_from_slice(p);
-    indices
-        .get_mut(..i.len())
-        .ok_or_else(short)?
-        .copy_from_slice(i);
-    Ok((mesh.positions.len(), mesh.triangles.len()))
+    Ok(placed)
 }
 
 /// A buffer of [`decode_levels_into`] too short for what it decodes
