@@ -101,15 +101,8 @@ impl CodingMethod for Mixed {
     fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
         let budget =
             super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "mixed")?;
-        Ok(
-            encode(job, budget, ask.max_bytes)?.map(|(bytes, report)| Made {
-                bytes,
-                stats: MethodStats::Mixed(report),
-                l2_relative: None,
-                whole: false,
-                seeds: None,
-            }),
-        )
+        Ok(encode(job, budget, ask.max_bytes)?
+            .map(|file| file.made(job.options.origins, MethodStats::Mixed)))
     }
 }
 
@@ -119,7 +112,7 @@ fn encode(
     job: &Job<'_, '_>,
     budget: u64,
     max_bytes: Option<u64>,
-) -> Result<Option<(Vec<u8>, super::stats::SwingReport)>, Error> {
+) -> Result<Option<super::swing::SwingFile>, Error> {
     let (cleaned, options) = (job.cleaned, job.options);
     let mut pieces = crate::swing::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
     if pieces.len() < 2 {
@@ -232,7 +225,7 @@ fn trial(m: &Measured<'_>, bytes: u64, options: &EncodeOptions) -> Result<Verdic
         max_bytes: Some(bytes),
     };
     let swing = match super::swing::encode(&alone, alone.mesh.vertex_count(), options, ask, None) {
-        Ok((file, _)) => Some(file_distance(&file, &m.surface, TRIAL_SAMPLES)?.l2()),
+        Ok(file) => Some(file_distance(&file.bytes, &m.surface, TRIAL_SAMPLES)?.l2()),
         Err(Error::Retile(_) | Error::LimitExceeded(_) | Error::Size(_)) => None,
         Err(e) => return Err(e),
     };

@@ -10,28 +10,25 @@
 //!    the chooser and the check already hold in a tree): the nearest one,
 //!    unless a descent over the surface finds one on the sheet the vertex
 //!    was made from. The descent starts at the method's *seed* where it
-//!    gave one (the simplified method, and displaced subdivision for its
-//!    base's vertices: the survivor of the collapses that made the
-//!    vertex, `Simplifier::sources`), else at the face where the
-//!    vertex's parent was found: its lowest-numbered neighbour in the
-//!    decoded mesh, made before it (a retiled tip's gate, a subdivided
-//!    vertex's edge end, the lossless traversal's earlier vertex). It
-//!    takes the nearest point of the faces around a corner of the best
-//!    face so far while that gets nearer. Its answer stands if it is no
-//!    farther than the nearest point by more than a quarter of the
-//!    vertex's shortest edge: across a part thinner than the file's
-//!    error (a leaf, a shell, a coarse grid's cell spanning both sides)
-//!    the nearest point is on the wrong sheet, and the descent keeps the
-//!    right one; a descent stuck behind a fold is off by an edge or more,
-//!    and the nearest point is taken. A component's first vertex (no
-//!    parent, no seed) takes the nearest point: a retiled component's
-//!    first vertex is a point of the input.
-//!    For SwingWrapper the descent stands in for the retiler's own
-//!    record: the face of M (the cleaned input with its long faces split,
-//!    `retile::refine`) each tip was fitted in is not carried out of the
-//!    run (it would go through rate control, `compose`, the hole mask and
-//!    REST); a tip lies within an edge of its gate, and a test keeps
-//!    retiled tips on their sheet of a shell 1e-3 thick.
+//!    gave one: for the simplified method, and displaced subdivision for
+//!    its base's vertices, the survivor of the collapses that made the
+//!    vertex (`Simplifier::sources`); for SwingWrapper, the retiler's own
+//!    record, a corner of the input face holding the on-surface sample
+//!    each tip was fitted from (`retile::compose::seed`, numbered as the
+//!    decoder numbers the vertices once the hole mask drops some). Else it
+//!    starts at the face where the vertex's parent was found: its
+//!    lowest-numbered neighbour in the decoded mesh, made before it (a
+//!    subdivided vertex's edge end, the lossless traversal's earlier
+//!    vertex). It takes the nearest point of the faces around a corner of
+//!    the best face so far while that gets nearer. Its answer stands if it
+//!    is no farther than the nearest point by more than a quarter of the
+//!    vertex's shortest edge: across a part thinner than the file's error
+//!    (a leaf, a shell, a coarse grid's cell spanning both sides) the
+//!    nearest point is on the wrong sheet, and the descent keeps the right
+//!    one; a descent stuck behind a fold is off by an edge or more, and
+//!    the nearest point is taken. A vertex with neither seed nor parent (a
+//!    component's first, `REST`'s kept components' first) takes the
+//!    nearest point.
 //! 2. The caller's face of that point, through the positions of its
 //!    corners. Cleaning never moves a vertex (it merges coincident ones,
 //!    drops degenerate and repeated faces, reorients and splits), so a
@@ -424,7 +421,7 @@ mod file_tests {
             crossed > 0,
             "displaced: the shell is not thin enough to tell"
         );
-        // SwingWrapper: each tip from its gate's face. Its tips stay on
+        // SwingWrapper: each tip from the face it was fitted in. Its tips stay on
         // the outer side of this shell (measured down to a thickness of
         // 3e-4 with 4-bit angles), so the nearest point does not cross
         // here and only the descent's answer is checked.
@@ -498,6 +495,107 @@ mod file_tests {
         let surface = crate::metrics::Surface::new(&cleaned.mesh).unwrap();
         let nearest = super::origins(input, &cleaned.mesh, &surface, &plain, None);
         wrong(&nearest)
+    }
+
+    /// SwingWrapper's seeds are the retiler's own record: each decoded
+    /// tip lies within a quarter of an edge of a face around its seed, the
+    /// face its sample was fitted in (a seed numbered off by one vertex
+    /// would stand an edge or more away: the input is finer than the
+    /// retiling here). A hole (masked triangles, vertices the decoder
+    /// drops and renumbers) and a component too small to retile (`REST`,
+    /// after the retiled vertices, without seeds) are in the file.
+    #[test]
+    fn retiled_tips_are_seeded_where_they_were_fitted() {
+        let sphere = uv_sphere(128, 64);
+        let open: Vec<[u32; 3]> = sphere
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&v| sphere.positions[v as usize][2] < 0.8))
+            .copied()
+            .collect();
+        let small = uv_sphere(6, 4);
+        let mut positions = sphere.positions.clone();
+        positions.extend(
+            small
+                .positions
+                .iter()
+                .map(|p| p.map(|c| 0.01 * c))
+                .map(|p| [p[0] + 3.0, p[1], p[2]]),
+        );
+        let mut triangles = open;
+        let n = sphere.positions.len() as u32;
+        triangles.extend(small.triangles.iter().map(|t| t.map(|v| v + n)));
+        let input = TriMesh::new(positions, triangles);
+        let cleaned = crate::clean(&input, &Default::default()).unwrap();
+        let options = EncodeOptions::default();
+        let ask = crate::encoder::method::Ask {
+            target: SwingTarget::Bytes(700),
+            max_bytes: None,
+        };
+        let file = crate::encoder::swing::encode(
+            &cleaned,
+            cleaned.mesh.vertex_count(),
+            &options,
+            ask,
+            None,
+        )
+        .unwrap();
+        let masked: u64 = file
+            .report
+            .pieces
+            .iter()
+            .map(|p| match p.outcome {
+                crate::PieceOutcome::Retiled {
+                    masked,
+                    loop_points,
+                    ..
+                } => masked + u64::from(loop_points),
+                _ => 0,
+            })
+            .sum();
+        assert!(
+            masked > 0,
+            "the hole is masked or fanned: {:?}",
+            file.report.pieces
+        );
+        assert!(file
+            .report
+            .pieces
+            .iter()
+            .any(|p| p.outcome == crate::PieceOutcome::Lossless));
+        let plain = crate::decode(&file.bytes, &crate::DecodeOptions::plain()).unwrap();
+        let rest = plain.vertex_count() - small.vertex_count();
+        assert_eq!(file.seeds.len(), rest, "one seed per retiled vertex kept");
+        let l = file.report.rate.edge_length;
+        let mesh = &cleaned.mesh;
+        let mut around: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertex_count()];
+        for (f, t) in mesh.triangles.iter().enumerate() {
+            for &v in t {
+                around[v as usize].push(f as u32);
+            }
+        }
+        let mut seeded = 0;
+        for (p, &seed) in plain.positions.iter().zip(&file.seeds) {
+            if seed == u32::MAX {
+                continue;
+            }
+            seeded += 1;
+            let q = p.map(f64::from);
+            let d = around[seed as usize]
+                .iter()
+                .map(|&f| {
+                    let t = mesh.triangles[f as usize]
+                        .map(|v| mesh.positions[v as usize].map(f64::from));
+                    crate::metrics::triangle_distance2_f64(q, &t).sqrt()
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= 0.25 * l, "a tip {d} from its seed's faces (L {l})");
+        }
+        assert!(
+            seeded * 100 >= file.seeds.len() * 99,
+            "{seeded} of {} seeded",
+            file.seeds.len()
+        );
     }
 
     /// The point each origin names lies where its decoded vertex is,

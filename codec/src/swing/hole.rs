@@ -178,6 +178,42 @@ pub(crate) fn decode(table: &CornerTable, bytes: &[u8]) -> Result<Vec<bool>, Err
     r.finish()
 }
 
+/// The triangles the decoder drops: `mask` (`HOLE`'s bits, if any) with
+/// every triangle of a loop's fan added, which `HOLE` need not mark
+/// (`None`: nothing is dropped). The decoder drops them; the encoder asks
+/// which vertices stay ([`kept_vertices`]) to number its records as the
+/// decoder numbers the vertices.
+pub(crate) fn dropped(
+    mut mask: Option<Vec<bool>>,
+    triangles: &[[u32; 3]],
+    loops: &super::chain::Loops,
+) -> Option<Vec<bool>> {
+    if !loops.entries.is_empty() {
+        let fans = super::chain::fans_of(triangles, loops);
+        let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
+        for (m, f) in m.iter_mut().zip(fans) {
+            *m |= f;
+        }
+    }
+    mask
+}
+
+/// Which of `vertices` vertices survive [`drop_masked`] with `mask`: those
+/// a kept triangle uses. The survivors keep their order, so the decoded
+/// vertex k is the k-th `true` here.
+#[cfg(feature = "encoder")]
+pub(crate) fn kept_vertices(vertices: usize, triangles: &[[u32; 3]], mask: &[bool]) -> Vec<bool> {
+    let mut kept = vec![false; vertices];
+    for (t, _) in triangles.iter().zip(mask).filter(|(_, &m)| !m) {
+        for &v in t {
+            if let Some(k) = kept.get_mut(v as usize) {
+                *k = true;
+            }
+        }
+    }
+    kept
+}
+
 /// [`drop_masked`] of the `CLRF` pass's output: binary64 positions, each
 /// kept one rounded to binary32 on the way (one pass over the vertices
 /// instead of a conversion, then a copy).

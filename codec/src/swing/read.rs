@@ -360,7 +360,7 @@ pub(crate) fn decode(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, E
         Some(s) => Some(hole::decode(&table, s.bytes).map_err(in_section(s.offset))?),
         None => None,
     };
-    if let Some(mask) = with_fans(mask, &mesh.triangles, &list) {
+    if let Some(mask) = hole::dropped(mask, &mesh.triangles, &list) {
         mesh = hole::drop_masked(mesh, &mask)?;
     }
     append_rest(mesh, rest, limits)
@@ -387,7 +387,7 @@ fn decode_forward(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Erro
     // f32 positions, and a new number per vertex when some are dropped.
     limits.check_alloc((d.positions.len() as u64).saturating_mul(16))?;
     // Dropped: the triangles HOLE masks, and the fans of the loops.
-    let mesh = match with_fans(d.mask, &d.triangles, &loops) {
+    let mesh = match hole::dropped(d.mask, &d.triangles, &loops) {
         Some(mask) => hole::drop_masked_from(&d.positions, d.triangles, &mask)?,
         None => TriMesh {
             positions: d.positions.iter().map(|p| p.map(|c| c as f32)).collect(),
@@ -395,24 +395,6 @@ fn decode_forward(file: &Container<'_>, limits: &Limits) -> Result<TriMesh, Erro
         },
     };
     append_rest(mesh, rest, limits)
-}
-
-/// The triangles the decoder drops: `mask` (`HOLE`'s bits, if any) with
-/// every triangle of a loop's fan added, which `HOLE` need not mark
-/// (`None`: nothing is dropped).
-fn with_fans(
-    mut mask: Option<Vec<bool>>,
-    triangles: &[[u32; 3]],
-    loops: &Loops,
-) -> Option<Vec<bool>> {
-    if !loops.entries.is_empty() {
-        let fans = chain::fans_of(triangles, loops);
-        let m = mask.get_or_insert_with(|| vec![false; fans.len()]);
-        for (m, f) in m.iter_mut().zip(fans) {
-            *m |= f;
-        }
-    }
-    mask
 }
 
 /// Appends `REST`'s mesh (if any) to the retiled one, its vertex numbers

@@ -81,20 +81,37 @@ impl CodingMethod for Swing {
     }
 
     fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
-        let (bytes, report) = encode(
+        let file = encode(
             job.cleaned,
             job.input_vertices,
             job.options,
             ask,
             self.angle_bits,
         )?;
-        Ok(Some(Made {
-            bytes,
-            stats: MethodStats::Swing(report),
+        Ok(Some(file.made(job.options.origins, MethodStats::Swing)))
+    }
+}
+
+/// A SwingWrapper file, its figures, and where its tips were fitted.
+pub(crate) struct SwingFile {
+    pub bytes: Vec<u8>,
+    pub report: SwingReport,
+    /// Per vertex of the file decoded plainly, the cleaned input's vertex
+    /// at the face its tip was fitted in (`rate::Chosen::seeds`).
+    pub seeds: Vec<u32>,
+}
+
+impl SwingFile {
+    /// The file as a method's candidate, its statistics made by `stats`;
+    /// its seeds kept when the caller asked for origins.
+    pub(crate) fn made(self, origins: bool, stats: fn(SwingReport) -> MethodStats) -> Made {
+        Made {
+            bytes: self.bytes,
+            stats: stats(self.report),
             l2_relative: None,
             whole: false,
-            seeds: None,
-        }))
+            seeds: origins.then_some(self.seeds),
+        }
     }
 }
 
@@ -105,7 +122,7 @@ pub(crate) fn encode(
     options: &EncodeOptions,
     ask: Ask,
     angle_bits: Option<u8>,
-) -> Result<(Vec<u8>, SwingReport), Error> {
+) -> Result<SwingFile, Error> {
     use crate::swing::{MAX_ANGLE_BITS, MIN_ANGLE_BITS};
     if let Some(angle_bits) = angle_bits.filter(|k| !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(k))
     {
@@ -159,7 +176,7 @@ pub(crate) fn encode_pieces(
     input: &TriMesh,
     options: &EncodeOptions,
     request: Request,
-) -> Result<(Vec<u8>, SwingReport), Error> {
+) -> Result<SwingFile, Error> {
     let (angle_bits, max_bytes) = (request.angle_bits, request.max_bytes);
     use crate::swing::retile::rate;
     // Tips on creases where the input has enough of them: tried against
@@ -210,13 +227,14 @@ pub(crate) fn encode_pieces(
             .into());
         }
     }
-    Ok((
-        chosen.bytes,
-        SwingReport {
+    Ok(SwingFile {
+        bytes: chosen.bytes,
+        report: SwingReport {
             stats: chosen.stats,
             rate: chosen.report,
             pieces: chosen.pieces,
             hint,
         },
-    ))
+        seeds: chosen.seeds,
+    })
 }

@@ -72,6 +72,53 @@ pub enum PieceOutcome {
 pub struct Composed {
     pub retiled: Retiled,
     pub report: Vec<PieceReport>,
+    /// Per vertex of `retiled`: a vertex of the cleaned input at the face
+    /// its tip was fitted in (`NONE`: not known), see [`seed`].
+    pub seeds: Vec<u32>,
+}
+
+impl Composed {
+    /// [`Composed::seeds`] numbered as the decoder numbers the vertices
+    /// (the hole mask and the loops' fans drop some, `hole::dropped`);
+    /// `REST`'s vertices, after these, have none.
+    pub fn decoded_seeds(&self) -> Vec<u32> {
+        let r = &self.retiled;
+        let mask = (!r.hole_mask.is_empty()).then(|| r.hole_mask.clone());
+        match crate::swing::hole::dropped(mask, &r.triangles, &r.loops) {
+            None => self.seeds.clone(),
+            Some(mask) => {
+                let kept =
+                    crate::swing::hole::kept_vertices(r.positions.len(), &r.triangles, &mask);
+                self.seeds
+                    .iter()
+                    .zip(kept)
+                    .filter(|(_, k)| *k)
+                    .map(|(&s, _)| s)
+                    .collect()
+            }
+        }
+    }
+}
+
+/// The seed of a tip whose sample lies in face `f` of piece `p`'s mesh,
+/// its decoded position `x`: the corner of `f` nearest `x` among those
+/// that are vertices of the input (a patch's or a rebuilt fan's own
+/// vertices are not), as a vertex of the cleaned input; `NONE` if none
+/// is. Provenance starts its descent there (`encoder::provenance`).
+fn seed(p: &Piece, f: u32, x: [f64; 3]) -> u32 {
+    let Some(t) = p.mesh.triangles.get(f as usize) else {
+        return super::surface::NONE;
+    };
+    let d2 = |v: u32| {
+        let q = p.mesh.positions[v as usize];
+        (0..3)
+            .map(|k| (f64::from(q[k]) - x[k]).powi(2))
+            .sum::<f64>()
+    };
+    t.iter()
+        .filter_map(|&v| p.cleaned.get(v as usize).map(|&c| (d2(v), v, c)))
+        .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+        .map_or(super::surface::NONE, |(_, _, c)| c)
 }
 
 /// Retiles every piece at `opt.edge_length` (the first retiled piece
@@ -98,6 +145,7 @@ pub fn retile_pieces(
     };
     let mut fixed: Option<f64> = None;
     let mut report = Vec::with_capacity(pieces.len());
+    let mut seeds = Vec::new();
     let mut rest: Vec<&TriMesh> = Vec::new();
     // The finest step each kept simplification asks for.
     let mut kept_step: Option<f64> = None;
@@ -123,7 +171,7 @@ pub fn retile_pieces(
         }
         if p.area >= TINY_TRIANGLES * tri_area {
             match retile_tries(p, opt, fixed, budget) {
-                Ok((r, cover)) => {
+                Ok((r, cover, placed)) => {
                     let (mask, lost) = piece_mask(&r, &cover, p.holes)?;
                     let fan = r.loops.points(0);
                     outcome = PieceOutcome::Retiled {
@@ -133,6 +181,12 @@ pub fn retile_pieces(
                         loop_points: fan,
                     };
                     fixed.get_or_insert(r.edge_length);
+                    seeds.extend(
+                        placed
+                            .iter()
+                            .zip(&r.positions)
+                            .map(|(&f, &x)| seed(p, f, x)),
+                    );
                     append(&mut out, r, mask);
                 }
                 Err(f) if f == Failure::Limit || p.area >= SMALL_TRIANGLES * tri_area => {
@@ -175,6 +229,7 @@ pub fn retile_pieces(
     Ok(Composed {
         retiled: out,
         report,
+        seeds,
     })
 }
 
@@ -189,7 +244,7 @@ fn retile_tries(
     opt: &RetileOptions,
     fixed: Option<f64>,
     budget: &Budget,
-) -> Result<(Retiled, Vec<mask::Cover>), Failure> {
+) -> Result<(Retiled, Vec<mask::Cover>, Vec<u32>), Failure> {
     let mut result = Err(Failure::BadInput);
     for k in 0..PIECE_TRIES {
         // The last start may close a gate that nothing else closes with

@@ -68,6 +68,10 @@ pub struct Piece {
     pub original: TriMesh,
     /// Area of `mesh` (patches included).
     pub area: f64,
+    /// The vertex of the cleaned input each of `original`'s vertices is
+    /// (they come first in `mesh` too; patches' and rebuilt fans' own
+    /// vertices follow).
+    pub cleaned: Vec<u32>,
     /// Set by the automatic mode when the simplified method serves this
     /// component better than retiling: its simplification, which goes to
     /// `REST` unretiled, and the quantization whose resolution over the
@@ -138,6 +142,7 @@ fn piece(mesh: &TriMesh, faces: &[u32]) -> Result<Piece, TopologyError> {
         genus,
         original,
         area,
+        cleaned: used,
         keep: None,
     })
 }

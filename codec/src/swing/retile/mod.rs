@@ -137,8 +137,9 @@ pub use crate::error::RetileFailure as Failure;
 /// which this one must use as it is (the decoder has one radius per
 /// file); `handles`: M has genus > 0; the run's work is charged to
 /// `budget`. Returns the piece as a one-component [`Retiled`] without mask,
-/// and per triangle the hole patch that covers most of its triangloid (a
-/// loop's fan wholly its hole's).
+/// per triangle the hole patch that covers most of its triangloid (a
+/// loop's fan wholly its hole's), and per vertex the face of `mesh` its
+/// on-surface sample lies in (`placement_faces`).
 fn retile_piece(
     mesh: &TriMesh,
     table: &CornerTable,
@@ -147,7 +148,7 @@ fn retile_piece(
     fixed: Option<f64>,
     handles: bool,
     budget: &Budget,
-) -> Result<(Retiled, Vec<mask::Cover>), Failure> {
+) -> Result<(Retiled, Vec<mask::Cover>, Vec<u32>), Failure> {
     if mesh.face_count() == 0
         || !(opt.edge_length.is_finite() && opt.edge_length > 0.0)
         || opt
@@ -269,6 +270,7 @@ fn retile_piece(
     let loops = crate::swing::chain::Loops {
         entries: fan.map(|(_, t)| (0, t)).into_iter().collect(),
     };
+    let placed = r.placement_faces();
     let retiled = Retiled {
         angle_bits: opt.angle_bits,
         first: vec![first],
@@ -284,10 +286,24 @@ fn retile_piece(
         loops,
         loop_codes: r.loop_codes,
     };
-    Ok((retiled, cover))
+    Ok((retiled, cover, placed))
 }
 
 impl Retiler<'_> {
+    /// Per M′ vertex, the face of M (the piece's mesh before refinement)
+    /// that holds its on-surface sample V, the point its tip was fitted
+    /// from (`NONE` where no sample was recorded): where the input's
+    /// attributes are read for it (`encoder::provenance`).
+    fn placement_faces(&self) -> Vec<u32> {
+        self.msample
+            .iter()
+            .map(|&m| match self.s.corner_of.get(m as usize) {
+                Some(&c) if m != NONE => self.s.base_face(surface::face(c)),
+                _ => NONE,
+            })
+            .collect()
+    }
+
     /// Per M′ triangle: the hole patch holding most of its triangloid's
     /// area, and that share of the area.
     fn cover(&self) -> Vec<mask::Cover> {

@@ -342,7 +342,7 @@ fn probe() {
                 p.holes,
                 p.genus,
                 p.area / (l * l * 3f64.sqrt() / 4.0),
-                r.map(|(r, _)| r.triangles.len())
+                r.map(|(r, _, _)| r.triangles.len())
             );
         }
     }

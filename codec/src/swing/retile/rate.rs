@@ -111,10 +111,16 @@ pub struct Chosen {
     pub report: RateReport,
     /// What happened to each component.
     pub pieces: Vec<PieceReport>,
+    /// Per vertex of the file decoded plainly, a vertex of the cleaned
+    /// input at the face of the input its tip was fitted in (`NONE`: not
+    /// known; the list may end before `REST`'s vertices): where
+    /// `encoder::provenance` starts.
+    pub seeds: Vec<u32>,
 }
 
-/// One written file: bytes, figures, and each component's fate.
-type Run = (Vec<u8>, SwingStats, Vec<PieceReport>);
+/// One written file: bytes, figures, each component's fate, and its
+/// seeds ([`Chosen::seeds`]).
+type Run = (Vec<u8>, SwingStats, Vec<PieceReport>, Vec<u32>);
 
 /// One run; a run stopped by the encoder's limits ends the encode.
 fn run(
@@ -139,6 +145,7 @@ fn run(
     };
     match retile_pieces(pieces, &opt, budget) {
         Ok(c) => {
+            let seeds = c.decoded_seeds();
             let (bytes, stats) = crate::swing::write(
                 &c.retiled,
                 if knobs.front_contexts {
@@ -148,7 +155,7 @@ fn run(
                 },
                 knobs.framing,
             )?;
-            Ok(Ok((bytes, stats, c.report)))
+            Ok(Ok((bytes, stats, c.report, seeds)))
         }
         Err(Failure::Limit) => Err(budget.error().map_or(
             Error::from(crate::error::RetileError {
@@ -171,7 +178,7 @@ pub fn at_length(pieces: &[Piece], l: f64, knobs: Knobs, budget: &Budget) -> Res
     let mut fails = 0u32;
     for _ in 0..MAX_RUNS {
         match run(pieces, next, knobs, fails % 4, budget)? {
-            Ok((bytes, stats, report)) => {
+            Ok((bytes, stats, report, seeds)) => {
                 attempts.push(Attempt {
                     edge_length: next,
                     outcome: Ok(bytes.len() as u64),
@@ -185,6 +192,7 @@ pub fn at_length(pieces: &[Piece], l: f64, knobs: Knobs, budget: &Budget) -> Res
                     bytes,
                     stats,
                     pieces: report,
+                    seeds,
                     report: RateReport {
                         requested_bytes: None,
                         edge_length: next,
@@ -587,7 +595,7 @@ fn search(
         }
     }
     let slope = measured.unwrap_or(slope);
-    let (edge_length, (bytes, stats, pieces)) = best
+    let (edge_length, (bytes, stats, pieces, seeds)) = best
         .filter(|(_, b)| left || b.0.len() as u64 <= cap)
         .ok_or_else(|| infeasible(&attempts))?;
     let first_failed = attempts.first().is_some_and(|a| a.outcome.is_err());
@@ -612,6 +620,7 @@ fn search(
         bytes,
         stats,
         pieces,
+        seeds,
     })
 }
 

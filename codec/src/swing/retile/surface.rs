@@ -136,6 +136,12 @@ impl Surface {
         self.base_normal[self.origin[f as usize] as usize]
     }
 
+    /// The face of M that face `f` is a piece of.
+    #[inline]
+    pub fn base_face(&self, f: u32) -> u32 {
+        self.origin[f as usize]
+    }
+
     /// The filled hole face `f` patches, or `NONE` for the input's own
     /// surface: that of the face of M it is a piece of.
     #[inline]

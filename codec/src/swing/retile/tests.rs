@@ -73,7 +73,7 @@ pub(super) fn retile(
         handles,
         &super::Budget::unlimited(),
     )
-    .map(|(r, _)| r)
+    .map(|(r, _, _)| r)
 }
 
 fn run(mesh: &TriMesh, l: f64) -> Result<Retiled, Failure> {
