@@ -1394,3 +1394,117 @@ fn lossless_attr_v1_2_reencodes_to_the_same_bytes() {
         "re-encoding the golden textured torus no longer gives golden/lossless-attr-v1.2.swm"
     );
 }
+
+// --- Format 1.2: ATTR over a displaced file's finest level ---
+
+/// The golden open ellipsoid with a colour per vertex, a linear function
+/// of its position, `(0.5 + 0.5x, 0.5 + y, 0.5 + 2z)` in binary32 (each
+/// component within 0 … 1 on the ellipsoid): format-spec/08-attributes.md's
+/// golden mesh "over a decoded mesh".
+fn golden_coloured_ellipsoid() -> swm::AttributedMesh {
+    let mesh = golden_open_ellipsoid();
+    let colours = mesh
+        .positions
+        .iter()
+        .flat_map(|p| [0.5 + 0.5 * p[0], 0.5 + p[1], 0.5 + 2.0 * p[2]])
+        .collect();
+    let stream = swm::AttributeStream::new(
+        swm::AttributeKind::Color(0),
+        3,
+        colours,
+        mesh.triangles.clone(),
+    );
+    swm::AttributedMesh::new(mesh, vec![stream])
+}
+
+/// The coloured ellipsoid coded by displaced subdivision at 2,500 bytes,
+/// colours included.
+fn golden_displaced_attr_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Displaced {
+            target: swm::SwingTarget::Bytes(2500),
+            max_bytes: None,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+const DISPLACED_ATTR_V1_2: &[u8] = include_bytes!("../format-spec/golden/displaced-attr-v1.2.swm");
+
+/// The test vector of format-spec/08-attributes.md ("Golden file").
+const DISPLACED_ATTR_V1_2_FNV1A64: u64 = 0xB507_506E_0E4C_A808;
+
+/// Writes the golden file (run once, by hand:
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_displaced_attr_v1_2_golden`).
+#[test]
+#[ignore]
+fn write_displaced_attr_v1_2_golden() {
+    let encoded = swm::encode_attributed(
+        &golden_coloured_ellipsoid(),
+        &golden_displaced_attr_options(),
+    )
+    .unwrap();
+    let decoded = swm::decode_attributed(&encoded.bytes, &DecodeOptions::default()).unwrap();
+    let dir = if std::env::var_os("SWM_WRITE_GOLDEN").is_some_and(|v| v == "1") {
+        std::path::PathBuf::from(format!(
+            "{}/../format-spec/golden",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+    } else {
+        std::env::temp_dir()
+    };
+    std::fs::write(dir.join("displaced-attr-v1.2.swm"), &encoded.bytes).unwrap();
+    let info = swm::inspect(&encoded.bytes, &Default::default()).unwrap();
+    println!(
+        "{} bytes, {} vertices, {} triangles, values {:?}, levels {:?}, sections {:?}, hash {:#018X}",
+        encoded.bytes.len(),
+        decoded.mesh.positions.len(),
+        decoded.mesh.triangles.len(),
+        decoded.streams.iter().map(|s| s.value_count()).collect::<Vec<_>>(),
+        info.levels,
+        info.stats.sections,
+        attributed_hash(&decoded)
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads `ATTR`
+/// over a mode-2 file as format-spec/08-attributes.md specifies.
+#[test]
+fn displaced_attr_v1_2_decodes_to_its_test_vector() {
+    let info = swm::inspect(DISPLACED_ATTR_V1_2, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Displaced));
+    assert_eq!(info.attributes.len(), 1);
+    let m = swm::decode_attributed(DISPLACED_ATTR_V1_2, &DecodeOptions::default())
+        .expect("golden file displaced-attr-v1.2.swm must decode");
+    assert_eq!(
+        attributed_hash(&m),
+        DISPLACED_ATTR_V1_2_FNV1A64,
+        "decoded mesh differs from format-spec/08-attributes.md's test vector"
+    );
+    let plain = swm::decode(DISPLACED_ATTR_V1_2, &DecodeOptions::default()).unwrap();
+    assert_eq!(plain, m.mesh);
+    // Cut to a coarser level: the mesh of that level, no streams.
+    let cut = swm::cut_levels(
+        DISPLACED_ATTR_V1_2,
+        info.levels.len() - 1,
+        &Default::default(),
+    )
+    .unwrap();
+    let coarse = swm::decode_attributed(&cut, &DecodeOptions::default()).unwrap();
+    assert!(coarse.streams.is_empty());
+    assert!(coarse.mesh.triangles.len() * 4 == m.mesh.triangles.len());
+}
+
+/// The encoder still writes the golden bytes from the coloured ellipsoid.
+#[test]
+fn displaced_attr_v1_2_reencodes_to_the_same_bytes() {
+    let encoded = swm::encode_attributed(
+        &golden_coloured_ellipsoid(),
+        &golden_displaced_attr_options(),
+    )
+    .unwrap();
+    assert_eq!(
+        encoded.bytes, DISPLACED_ATTR_V1_2,
+        "re-encoding the golden coloured ellipsoid no longer gives golden/displaced-attr-v1.2.swm"
+    );
+}

@@ -91,7 +91,7 @@ static DISPLACED: ModeDecoder = ModeDecoder {
     inspect: |file, limits, len| {
         let (levels, qp) = crate::displaced::levels_and_qp(file, limits)?;
         let h = &file.header;
-        let stats = LosslessStats {
+        let mut stats = LosslessStats {
             vertices: h.vertex_count.into(),
             triangles: h.triangle_count.into(),
             components: h.component_count.into(),
@@ -99,6 +99,9 @@ static DISPLACED: ModeDecoder = ModeDecoder {
             file_bytes: len,
             ..Default::default()
         };
+        if let Some(attr) = file.find(crate::container::Tag::ATTR) {
+            stats.attributes = crate::lossless::attributes::inspect(attr.bytes)?;
+        }
         Ok(Inspected {
             qp,
             stats,
@@ -130,6 +133,12 @@ pub(crate) fn decode_container(
     options: &DecodeOptions,
 ) -> Result<TriMesh, Error> {
     let mesh = (for_mode(file.header.mode).decode)(file, options)?;
+    // A mesh-only decode skips `ATTR`'s chunks, but reads its stream
+    // headers as `inspect` does: a file one of them refuses, the other
+    // refuses too.
+    if let Some(attr) = file.find(crate::container::Tag::ATTR) {
+        crate::lossless::attributes::inspect(attr.bytes)?;
+    }
     let post = crate::post::hint::resolve(file, options.sharpen, options.bend_steps);
     sharpen_and_bend(mesh, post, &options.limits)
 }
@@ -140,8 +149,30 @@ pub(crate) fn decode_attributed(
     options: &DecodeOptions,
 ) -> Result<crate::AttributedMesh, Error> {
     let file = parse_container(bytes, &options.limits)?;
-    if file.header.mode == Mode::Lossless && file.find(crate::container::Tag::ATTR).is_some() {
-        return crate::lossless::decode_attributed(&file, &options.limits);
+    if let Some(attr) = file.find(crate::container::Tag::ATTR) {
+        match file.header.mode {
+            Mode::Lossless => return crate::lossless::decode_attributed(&file, &options.limits),
+            // Over the plain decode of every level (format-spec/08, "Over
+            // a decoded mesh"): a decode stopped at a coarser level
+            // (`max_level`) has no attributes, and as for mode 0 the
+            // streams come with the mesh they were coded over, not
+            // post-processed.
+            Mode::Displaced => {
+                let mesh = (for_mode(file.header.mode).decode)(&file, options)?;
+                if mesh.positions.len() as u64 == u64::from(file.header.vertex_count) {
+                    return crate::lossless::attributes::over_mesh::decode(
+                        attr.bytes,
+                        mesh,
+                        &options.limits,
+                    );
+                }
+                let post = crate::post::hint::resolve(&file, options.sharpen, options.bend_steps);
+                return sharpen_and_bend(mesh, post, &options.limits).map(Into::into);
+            }
+            // No encoder writes `ATTR` in a SwingWrapper file; a decoder
+            // reads its mesh only.
+            Mode::Swing => {}
+        }
     }
     decode_container(&file, options).map(Into::into)
 }

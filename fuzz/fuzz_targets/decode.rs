@@ -5,8 +5,8 @@
 //! even, the defaults (what a viewer does); odd, EdgeSharpener and one
 //! Bender step under tight limits, which reach the post-processing code and
 //! the limit checks on Bender's fourfold output. Bit 1 set also decodes
-//! the attribute streams (`swm::decode_attributed`, a lossless file's
-//! `ATTR`): an error, or a mesh whose streams pass
+//! the attribute streams (`swm::decode_attributed`, a lossless or
+//! displaced file's `ATTR`): an error, or a mesh whose streams pass
 //! `AttributedMesh::validate` and whose mesh is `decode`'s.
 #![no_main]
 

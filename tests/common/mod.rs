@@ -242,6 +242,10 @@ pub fn samples() -> &'static [Sample] {
                 name: "lossless dense (CLRD, GEOF)",
                 bytes: lossless_dense,
             },
+            Sample {
+                name: "displaced+ATTR",
+                bytes: include_bytes!("../../format-spec/golden/displaced-attr-v1.2.swm").to_vec(),
+            },
         ]
     })
 }

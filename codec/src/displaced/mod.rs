@@ -155,7 +155,12 @@ fn parse<'a>(file: &Container<'a>, limits: &Limits) -> Result<Parsed<'a>, Error>
         .checked_shl(2 * chunks.len() as u32)
         .filter(|&t| t >> (2 * chunks.len()) == u64::from(bh.triangle_count));
     if expected != Some(u64::from(h.triangle_count)) {
-        return Err(bad("triangle count is not the base's times 4^levels"));
+        let declared = u64::from(h.triangle_count);
+        return Err(crate::lossless::mismatch(
+            "triangles",
+            declared,
+            expected.unwrap_or(u64::MAX),
+        ));
     }
     Ok(Parsed { head, base, chunks })
 }
@@ -195,8 +200,9 @@ pub(crate) fn decode_levels(
     for chunk in p.chunks.iter().take(max_levels) {
         r.refine(chunk)?;
     }
-    if max_levels >= p.chunks.len() && r.mesh.positions.len() as u64 != r.caps.0 {
-        return Err(bad("fewer vertices than the header's"));
+    let found = r.mesh.positions.len() as u64;
+    if max_levels >= p.chunks.len() && found != r.caps.0 {
+        return Err(crate::lossless::mismatch("vertices", r.caps.0, found));
     }
     Ok(r.mesh)
 }
@@ -239,7 +245,7 @@ pub(crate) fn decode_levels_into(
         Placed::Base(mesh) => mesh.positions.len(),
     };
     if max_levels >= p.chunks.len() && vertices as u64 != caps.0 {
-        return Err(bad("fewer vertices than the header's"));
+        return Err(crate::lossless::mismatch("vertices", caps.0, vertices as u64));
     }
     Ok(placed)
 }
@@ -405,7 +411,42 @@ pub(crate) fn levels_and_qp(
         .section(Tag::HEAD)
         .and_then(|h| h.first().copied())
         .unwrap_or(0);
+    // As strict as `decode` about the header's vertex count (issue 18):
+    // the base is decoded, and each level adds one vertex per edge.
+    let base = crate::lossless::decode(&p.base, limits)?;
+    let found = vertices_after(&base, p.chunks.len());
+    let declared = u64::from(file.header.vertex_count);
+    if found != declared {
+        return Err(crate::lossless::mismatch("vertices", declared, found));
+    }
     Ok((p.chunks.iter().map(|c| c.len()).collect(), qp))
+}
+
+/// The vertices of `base` after `levels` levels: each level adds one per
+/// edge (`subdivide::Edges`), and a level's edges are twice the last's
+/// plus three per triangle (each edge split in two, three inside each
+/// triangle) when no triangle repeats a vertex; otherwise the levels'
+/// connectivity is split and counted.
+fn vertices_after(base: &TriMesh, levels: usize) -> u64 {
+    let mut v = base.positions.len() as u64;
+    let repeats = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+    if base.triangles.iter().any(repeats) {
+        let mut triangles = base.triangles.clone();
+        for _ in 0..levels {
+            let edges = Edges::new(&triangles);
+            triangles = subdivide::split(&triangles, &edges, v as u32);
+            v += edges.len() as u64;
+        }
+        return v;
+    }
+    let mut e = Edges::new(&base.triangles).len() as u64;
+    let mut t = base.triangles.len() as u64;
+    for _ in 0..levels {
+        v = v.saturating_add(e);
+        e = e.saturating_mul(2).saturating_add(t.saturating_mul(3));
+        t = t.saturating_mul(4);
+    }
+    v
 }
 
 /// The same file with only its first `levels` levels: its `DISP` cut
@@ -425,8 +466,11 @@ pub fn cut_levels(bytes: &[u8], levels: usize, limits: &Limits) -> Result<Vec<u8
         crate::varint::put(&mut disp, c.len() as u64);
         disp.extend_from_slice(c);
     }
+    // `ATTR` is coded over the finest level's mesh: a coarser file has
+    // none (format-spec/08-attributes.md).
     let owned: Vec<(Tag, Vec<u8>)> = file
         .sections()
+        .filter(|s| s.tag != Tag::ATTR || keep == p.chunks.len())
         .map(|s| {
             (
                 s.tag,

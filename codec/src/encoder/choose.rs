@@ -63,7 +63,7 @@ enum State {
 pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chosen, Error> {
     // An input with attribute streams is coded only by methods that keep
     // them: the others are not tried, and say why.
-    let keeps = |e: &Entry| job.streams().is_empty() || e.method.carries_attributes();
+    let keeps = |e: &Entry| job.streams().is_empty() || e.method.carries_attributes(job.streams());
     let mut states: Vec<Option<State>> = list
         .iter()
         .map(|e| (!keeps(e)).then_some(State::Failed(CandidateFailure::DropsAttributes)))

@@ -72,6 +72,10 @@ const GIVE_UP: f64 = 0.10;
 /// each probe a file of the most scalars and a measure: about a third
 /// of the method's work at those rates.
 const NEXT_LEVEL_GAIN: f64 = 0.30;
+/// Whole encodes of a file with attributes at most: the first at the
+/// whole budget, then at the geometry budget where the sum is predicted
+/// to meet the budget (two on smooth values, the tests' spheres).
+const ATTRIBUTE_PASSES: usize = 5;
 
 /// The displaced-subdivision method and its settings.
 #[derive(Clone, Copy, Debug)]
@@ -116,9 +120,98 @@ impl CodingMethod for Displaced {
         "--mode displaced forces it"
     }
 
+    /// Normals, colours and generic streams, resampled at its vertices
+    /// (`resample`); not texture coordinates.
+    fn carries_attributes(&self, streams: &[crate::AttributeStream]) -> bool {
+        super::resample::carries(streams)
+    }
+
     fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
         let budget =
             super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "displaced")?;
+        if job.streams().is_empty() {
+            return self.within(job, budget).map(Some);
+        }
+        // With attributes: the file at the whole budget tells how far
+        // its streams take the sum past it. The next geometry budget is
+        // where the sum meets the budget on the line, in log-log, through
+        // the nearest files on either side of it once there are some
+        // (else the last two; in proportion after the first): the
+        // streams' bytes grow with the vertices, faster than the
+        // geometry's where the values are rough, and not smoothly (the
+        // level count changes).
+        let cap = ask.max_bytes.unwrap_or(u64::MAX);
+        let aim = (budget.min(cap) as f64).ln();
+        let mut geometry = budget;
+        let mut best: Option<Made> = None;
+        let off = |m: &Made| ((m.bytes.len() as f64).ln() - aim).abs();
+        // (ln geometry budget, ln total) of each file made.
+        let mut tried: Vec<(f64, f64)> = Vec::new();
+        for _ in 0..ATTRIBUTE_PASSES {
+            let Some(m) = self.attributed(job, geometry)? else {
+                return Ok(None);
+            };
+            let total = m.bytes.len() as u64;
+            let on_size = (total as f64 - budget as f64).abs() <= TOLERANCE * budget as f64;
+            tried.push(((geometry as f64).ln(), (total as f64).ln()));
+            if total <= cap && best.as_ref().is_none_or(|b| off(&m) < off(b)) {
+                best = Some(m);
+            }
+            if total <= cap && on_size {
+                break;
+            }
+            let below = tried
+                .iter()
+                .filter(|p| p.1 < aim)
+                .max_by(|a, b| a.1.total_cmp(&b.1));
+            let above = tried
+                .iter()
+                .filter(|p| p.1 >= aim)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let (p0, p1) = match (below, above) {
+                (Some(&a), Some(&b)) => (a, b),
+                _ if tried.len() >= 2 => (tried[tried.len() - 2], tried[tried.len() - 1]),
+                _ => (tried[0], tried[0]),
+            };
+            let slope = match p1.0 - p0.0 {
+                d if d != 0.0 => ((p1.1 - p0.1) / d).clamp(0.5, 4.0),
+                _ => 1.0,
+            };
+            let next = (p1.0 + (aim - p1.1) / slope).exp().max(1.0) as u64;
+            if next == geometry {
+                break;
+            }
+            geometry = next;
+        }
+        let smallest = tried.iter().map(|p| p.1.exp().round() as u64).min();
+        best.map(Some).ok_or_else(|| {
+            SizeError {
+                requested: budget,
+                smallest: smallest.unwrap_or(u64::MAX),
+            }
+            .into()
+        })
+    }
+}
+
+impl Displaced {
+    /// [`within`](Self::within) at `geometry` bytes, its file carrying
+    /// the job's streams (`resample`); `None` when its mesh makes no
+    /// corner table.
+    fn attributed(&self, job: &Job<'_, '_>, geometry: u64) -> Result<Option<Made>, Error> {
+        let mut made = self.within(job, geometry)?;
+        let seeds = made.seeds.take().unwrap_or_default();
+        let Some((bytes, _)) = super::resample::with_attributes(job, &made.bytes, Some(&seeds))?
+        else {
+            return Ok(None);
+        };
+        made.bytes = bytes;
+        made.seeds = job.options.origins.then_some(seeds);
+        Ok(Some(made))
+    }
+
+    /// Its file of geometry alone at about `budget` bytes.
+    fn within(&self, job: &Job<'_, '_>, budget: u64) -> Result<Made, Error> {
         let s = job.simplifier();
         // The reference tree answers the measures' nearest points and the
         // fitting's line crossings alike (no tree of its own for the
@@ -252,11 +345,11 @@ impl CodingMethod for Displaced {
         // The base's vertices stand for the survivors of its collapses;
         // the levels' vertices descend from their edges' ends
         // (`provenance`).
-        let seeds = match job.options.origins {
+        let seeds = match job.options.origins || !job.streams().is_empty() {
             true => Some(self.base_seeds(job, w.base_target, w.qp, levels)?),
             false => None,
         };
-        Ok(Some(Made {
+        Ok(Made {
             bytes: w.bytes,
             stats: MethodStats::Displaced(stats),
             l2_relative: Some(l2),
@@ -264,11 +357,9 @@ impl CodingMethod for Displaced {
             // is nothing more to code.
             whole: w.base_faces >= s.faces() as usize,
             seeds,
-        }))
+        })
     }
-}
 
-impl Displaced {
     /// The seed of each base vertex of the file whose base was simplified
     /// to `target` faces and coded at `qp` (in the decoder's order, as
     /// `write` codes it): the simplified method's rule.

@@ -39,7 +39,7 @@ impl CodingMethod for Lossless {
         true
     }
 
-    fn carries_attributes(&self) -> bool {
+    fn carries_attributes(&self, _streams: &[crate::AttributeStream]) -> bool {
         true
     }
 

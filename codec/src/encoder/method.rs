@@ -53,6 +53,11 @@ pub(crate) struct Services<'a> {
 }
 
 impl<'a> Services<'a> {
+    /// How the input's attribute streams are quantized.
+    pub fn quantization(&self) -> crate::AttributeQuantization {
+        self.quantization
+    }
+
     /// Nothing made yet; `quick`: the simplifier is meshoptimizer's
     /// (effort `fast`) rather than the quadric collapse sequence.
     pub fn new(
@@ -255,7 +260,7 @@ pub(crate) trait CodingMethod: Sync {
     /// format 1.2). An input with streams is coded only by methods that
     /// do: the others are recorded as not tried
     /// ([`CandidateFailure::DropsAttributes`](super::stats::CandidateFailure)).
-    fn carries_attributes(&self) -> bool {
+    fn carries_attributes(&self, _streams: &[crate::AttributeStream]) -> bool {
         false
     }
 

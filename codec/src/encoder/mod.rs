@@ -20,6 +20,7 @@ pub(crate) mod method;
 pub(crate) mod mixed;
 pub(crate) mod provenance;
 pub(crate) mod request;
+pub(crate) mod resample;
 pub(crate) mod simplified;
 pub(crate) mod smooth;
 pub(crate) mod stats;
@@ -29,6 +30,8 @@ pub(crate) mod target;
 mod tests;
 #[cfg(test)]
 mod tests_attributed;
+#[cfg(test)]
+mod tests_resampled;
 
 use crate::options::{EncodeMode, EncodeOptions, SwingTarget};
 use crate::{Error, TriMesh};
@@ -44,8 +47,9 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
 /// [`crate::encode_attributed`]). The lossless mode keeps them; the
 /// automatic and simplified modes keep them too, running only methods
 /// whose files carry them (`CodingMethod::carries_attributes`); a mode
-/// that names a method that cannot (SwingWrapper, displaced) drops them
-/// and says so ([`AttributeReport`]). No streams: [`encode`]'s bytes.
+/// that names a method that cannot (SwingWrapper; displaced subdivision
+/// for texture coordinates) drops them and says so ([`AttributeReport`]).
+/// No streams: [`encode`]'s bytes.
 pub(crate) fn encode_attributed(
     mesh: &crate::AttributedMesh,
     options: &EncodeOptions,
@@ -62,8 +66,14 @@ pub(crate) fn encode_attributed(
             return Ok(encoded);
         }
         EncodeMode::Swing { .. } => Some(stats::Method::Swing),
-        EncodeMode::Displaced { .. } => Some(stats::Method::Displaced),
-        EncodeMode::Auto { .. } | EncodeMode::Simplified { .. } => None,
+        // Normals, colours and generic streams resampled at its vertices;
+        // texture coordinates it cannot keep (`resample`).
+        EncodeMode::Displaced { .. } if !resample::carries(&mesh.streams) => {
+            Some(stats::Method::Displaced)
+        }
+        EncodeMode::Auto { .. } | EncodeMode::Simplified { .. } | EncodeMode::Displaced { .. } => {
+            None
+        }
     };
     if let Some(method) = dropped_by {
         let mut encoded = encode(&mesh.mesh, options)?;

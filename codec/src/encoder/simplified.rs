@@ -56,7 +56,7 @@ impl CodingMethod for Simplified {
         true
     }
 
-    fn carries_attributes(&self) -> bool {
+    fn carries_attributes(&self, _streams: &[crate::AttributeStream]) -> bool {
         true
     }
 

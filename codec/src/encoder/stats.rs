@@ -285,8 +285,8 @@ pub struct AttributeReport {
 #[non_exhaustive]
 pub enum AttributesDropped {
     /// The mode named a method whose file cannot carry them
-    /// (SwingWrapper, displaced subdivision); the automatic mode runs
-    /// only methods that can.
+    /// (SwingWrapper; displaced subdivision, texture coordinates); the
+    /// automatic mode runs only methods that can.
     Method(Method),
     /// The input's normals follow its geometry (within `rms_degrees`
     /// RMS, `encoder::smooth`): a decoder recomputes them from the
@@ -307,6 +307,10 @@ pub enum AttributesDropped {
 impl core::fmt::Display for AttributesDropped {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
+            AttributesDropped::Method(Method::Displaced) => write!(
+                f,
+                "the displaced method's file cannot carry texture coordinates"
+            ),
             AttributesDropped::Method(m) => write!(
                 f,
                 "the {} method's file cannot carry per-corner attributes",

@@ -31,6 +31,7 @@
 mod encode;
 mod frame;
 mod octahedral;
+pub(crate) mod over_mesh;
 mod predict;
 mod residual;
 mod spec;
