@@ -437,3 +437,58 @@ fn an_edge_length_on_a_textured_mesh_says_what_it_asks_for() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `swm decode --sharpen` or `--bend N` on a file with attribute streams
+/// post-processes the mesh as asked, and since that changes the mesh the
+/// streams were coded over, leaves them out with one warning.
+#[test]
+fn post_processing_asked_for_leaves_the_streams_out_and_says_so() {
+    let dir = scratch("attributes-post");
+    let file = dir.join("painted.ply");
+    std::fs::write(&file, ply_with_normals_and_colours()).unwrap();
+    let out = encode(&file, &["--mode", "lossless"]);
+    assert!(out.status.success());
+    let swm_file = file.with_extension("swm");
+    let plain = dir.join("plain.obj");
+    let out = swm(&[
+        "decode",
+        swm_file.to_str().unwrap(),
+        "-o",
+        plain.to_str().unwrap(),
+    ]);
+    assert!(warnings(&out).is_empty(), "{:?}", warnings(&out));
+    // Colours are the fourth to sixth number of an OBJ `v` line.
+    let coloured = |text: &str| {
+        text.lines()
+            .any(|l| l.starts_with("v ") && l.split(' ').count() == 7)
+    };
+    assert!(coloured(&std::fs::read_to_string(&plain).unwrap()));
+    let bent = dir.join("bent.obj");
+    let out = swm(&[
+        "decode",
+        swm_file.to_str().unwrap(),
+        "-o",
+        bent.to_str().unwrap(),
+        "--bend",
+        "1",
+    ]);
+    assert!(out.status.success());
+    assert_eq!(
+        warnings(&out),
+        [format!(
+            "swm: warning: {}: the file's attributes are not written (--sharpen and --bend change the mesh they were coded over)",
+            swm_file.display()
+        )]
+    );
+    let text = std::fs::read_to_string(&bent).unwrap();
+    assert!(!coloured(&text));
+    let bytes = std::fs::read(&swm_file).unwrap();
+    let options = swm::DecodeOptions {
+        bend_steps: Some(1),
+        ..Default::default()
+    };
+    let mesh = swm::decode(&bytes, &options).unwrap();
+    let vertices = text.lines().filter(|l| l.starts_with("v ")).count();
+    assert_eq!(vertices, mesh.vertex_count());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -245,7 +245,11 @@ pub(crate) fn decode_levels_into(
         Placed::Base(mesh) => mesh.positions.len(),
     };
     if max_levels >= p.chunks.len() && vertices as u64 != caps.0 {
-        return Err(crate::lossless::mismatch("vertices", caps.0, vertices as u64));
+        return Err(crate::lossless::mismatch(
+            "vertices",
+            caps.0,
+            vertices as u64,
+        ));
     }
     Ok(placed)
 }
