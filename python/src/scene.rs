@@ -123,8 +123,11 @@ pub fn encode_scene<'py>(
             ..Default::default()
         },
         // As `swm encode`: the primitives coded losslessly with their
-        // attributes in a lossy mode take --qp's bits (12 unless given).
+        // attributes in a lossy mode take --qp's bits (12 unless given);
+        // with a size, a rate or an error bound they are coded at their
+        // share, attributes and all.
         attributes_qp: crate::bits(qp.unwrap_or(12)),
+        lossy_attributes: size.is_some() || bpv.is_some() || max_error.is_some(),
         fallback,
         format,
         limits,

@@ -585,14 +585,15 @@ def encode_scene(
     ``"gltf"`` (JSON with its buffer embedded as a ``data:`` URI).
 
     The options are :func:`encode`'s, with its defaults and rules, and
-    apply as ``swm encode`` applies them to a scene: a primitive with
-    normals, texture coordinates or colours is coded losslessly with
-    them (positions on ``qp`` bits, 12 by default, attributes on ``qn``,
-    ``qt``, ``qg``); one of positions only by ``mode`` at its share of
-    the target (``size`` is the budget of all the swm files, shared in
-    proportion to each primitive's area; ``bpv`` counts the positions of
-    those primitives; ``max_error`` and ``edge_length`` apply to each
-    primitive as it is). There is no ``max_size``. ``fallback=True``
+    apply as ``swm encode`` applies them to a scene: with ``size``,
+    ``bpv`` or ``max_error`` every primitive is coded by ``mode`` at its
+    share of the target, with its normals, texture coordinates and
+    colours (on ``qn``, ``qt``, ``qg`` bits; ``size`` is the budget of
+    all the swm files, shared in proportion to each primitive's area;
+    ``bpv`` counts the positions; ``max_error`` and ``edge_length``
+    apply to each primitive as it is); without them a primitive with
+    attributes is coded losslessly with them (positions on ``qp`` bits,
+    12 by default) and one of positions only at the default rate. There is no ``max_size``. ``fallback=True``
     keeps an uncompressed copy of each coded primitive beside its swm
     file, so that viewers without swm still draw it (the extension is
     then only in ``extensionsUsed``).

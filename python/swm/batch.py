@@ -41,10 +41,10 @@ What a run guarantees:
   ``swm encode``'s too (the effort level of the automatic and simplified
   searches; the smallest file within an error). Options the mode has no
   use for are a usage error. A scene takes them as ``swm encode`` does
-  (:func:`swm.encode_scene`): primitives with normals, texture
-  coordinates or colours are coded losslessly with them, the others at
-  their share of the target (``--size`` is then the budget of the
-  scene's swm files); ``--max-size`` does not apply to scenes (a usage
+  (:func:`swm.encode_scene`): every primitive at its share of the
+  target, attributes and all (``--size`` is then the budget of the
+  scene's swm files; without a size, rate or error bound, primitives
+  with attributes are coded losslessly with them); ``--max-size`` does not apply to scenes (a usage
   error when the inputs hold one). A mesh is read with its texture
   coordinates, normals and colours (:func:`swm.read` with
   ``attributes=True``) and encoded with them (``--mode swing`` cannot

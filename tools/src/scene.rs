@@ -59,6 +59,12 @@ pub fn encode(args: &Args, format: SceneFormat) -> Result<(), CliError> {
     let options = SceneOptions {
         encode: encode_options(args),
         attributes_qp: args.qp(),
+        // The default rate counts positions only: without a target of
+        // the user's, textured primitives keep their own triangles.
+        lossy_attributes: args.size.is_some()
+            || args.bpv.is_some()
+            || args.max_error.is_some()
+            || args.max_error_units.is_some(),
         fallback: args.gltf_fallback,
         format,
         limits: swm::Limits::default(),

@@ -2,16 +2,24 @@
 //! an swm file inside `SWM_mesh_compression`, one size budget split
 //! between them (format-spec/09-gltf.md).
 //!
-//! Which coder: a primitive with attributes (NORMAL, TEXCOORD_n,
-//! COLOR_n) is coded losslessly with them (`encode_attributed`, its own
-//! triangles, attributes quantized as `EncodeOptions::attributes` says),
-//! since the lossy methods do not keep attributes; a primitive of
-//! positions only is coded by the requested mode.
+//! Which coder: every primitive by the requested mode, with its
+//! attributes (NORMAL, TEXCOORD_n, COLOR_n; `encode_attributed`,
+//! quantized as `EncodeOptions::attributes` says): the automatic mode
+//! runs only methods whose files keep them (the simplified method with
+//! its seams, displaced subdivision for normals and colours). Normals
+//! are coded even where they follow the geometry (the primitive had a
+//! NORMAL accessor, and keeps one), and a share too small for a file
+//! with the streams gets the smallest file that keeps them (a material
+//! needs its texture coordinates). A mode whose file cannot carry them
+//! (`--mode swing`; displaced with texture coordinates) codes such a
+//! primitive losslessly instead, at `SceneOptions::attributes_qp`, and
+//! so does `SceneOptions::lossy_attributes` off (the command line's
+//! choice when no size, rate or error bound is given).
 //!
 //! The split of a size (`--size`: the budget of all the swm files;
 //! `--bpv`: the lossless files plus the rate over the distinct positions
-//! of the primitives coded at a size): the lossless primitives' files
-//! come first, as they are; the rest of the budget goes to the other
+//! of the primitives coded at a size): lossless primitives' files come
+//! first, as they are; the rest of the budget goes to the other
 //! primitives by the rule the method per component uses for the
 //! components of one mesh (`encoder::mixed`): share
 //! `b_i = F + (B − n·F)·a_i / Σa`, where `a_i` is the primitive's area
@@ -53,9 +61,17 @@ pub struct SceneOptions {
     /// is the whole scene's, split as the module header says), and the
     /// attribute quantization, effort and limits for all.
     pub encode: EncodeOptions,
-    /// Bits per coordinate of the primitives coded losslessly with their
-    /// attributes when `encode.mode` is lossy. Default 12.
+    /// Bits per coordinate of a primitive with attributes that
+    /// `encode.mode` names a method for that cannot carry them (SwingWrapper;
+    /// displaced subdivision with texture coordinates), coded losslessly
+    /// with them instead. Default 12.
     pub attributes_qp: u8,
+    /// Code primitives with attributes by `encode.mode` at their share
+    /// (true), or losslessly at [`attributes_qp`](Self::attributes_qp)
+    /// (false: what `swm encode scene.glb` does without a size, a rate
+    /// or an error bound, since the default rate counts positions
+    /// only). Default true.
+    pub lossy_attributes: bool,
     /// Keep uncompressed data beside each swm file (the extension is then
     /// only in `extensionsUsed`, and viewers without swm draw the
     /// decoded mesh's plain copy). Default off.
@@ -71,6 +87,7 @@ impl Default for SceneOptions {
         SceneOptions {
             encode: EncodeOptions::default(),
             attributes_qp: 12,
+            lossy_attributes: true,
             fallback: false,
             format: SceneFormat::Glb,
             limits: Limits::default(),
@@ -330,8 +347,20 @@ fn code(
     options: &SceneOptions,
 ) -> Result<(Vec<Outcome>, Option<u64>), Error> {
     let mode = &options.encode.mode;
+    // Streams the named method's file cannot carry: coded losslessly.
+    let uncarried = |m: &AttributedMesh| -> bool {
+        let uvs = (m.streams.iter()).any(|s| matches!(s.kind, crate::AttributeKind::TexCoord(_)));
+        !m.streams.is_empty()
+            && match mode {
+                EncodeMode::Swing { .. } => true,
+                EncodeMode::Displaced { .. } => uvs,
+                _ => false,
+            }
+    };
     let lossless = |m: &AttributedMesh| -> bool {
-        matches!(mode, EncodeMode::Lossless { .. }) || !m.streams.is_empty()
+        matches!(mode, EncodeMode::Lossless { .. })
+            || uncarried(m)
+            || (!options.lossy_attributes && !m.streams.is_empty())
     };
     let mut out: Vec<Outcome> = Vec::with_capacity(read.len());
     let mut spent = 0u64;
@@ -384,17 +413,36 @@ fn code(
         };
         let mut o = EncodeOptions {
             mode: aimed(mode, target),
+            // The primitive had its NORMAL accessor, and keeps one.
+            keep_smooth_normals: true,
             ..options.encode.clone()
         };
         // A decoder of the extension decodes plain: no hint to measure.
         o.swing.post_hint = false;
-        let encoded = match crate::encode(&m.mesh, &o) {
+        let encode = |o: &EncodeOptions| match m.streams.is_empty() {
+            true => crate::encode(&m.mesh, o),
+            false => crate::encode_attributed(m, o),
+        };
+        let mut encoded = match encode(&o) {
             Err(Error::Size(e)) => {
                 o.mode = aimed(mode, SwingTarget::Bytes(e.smallest));
-                crate::encode(&m.mesh, &o)
+                encode(&o)
             }
             other => other,
         };
+        // A share too small for the streams: the smallest file with them.
+        let no_room =
+            encoded
+                .as_ref()
+                .ok()
+                .and_then(|e| match e.stats.attributes.dropped_because {
+                    Some(crate::AttributesDropped::NoRoom { smallest }) => Some(smallest),
+                    _ => None,
+                });
+        if let Some(smallest) = no_room {
+            o.mode = aimed(mode, SwingTarget::Bytes(smallest));
+            encoded = encode(&o);
+        }
         out[i] = failed(encoded)?.map(|e| (e.bytes, e.stats.chosen(), share));
     }
     Ok((out, budget))
