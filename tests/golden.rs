@@ -299,10 +299,10 @@ fn golden_swing_options() -> EncodeOptions {
 /// only when `SWM_WRITE_GOLDEN=1` asks for it (a golden file is made once,
 /// by hand); otherwise to a temporary folder, so that `cargo test --
 /// --include-ignored` never rewrites the committed files (issue 48).
-fn write_golden(name: &str, mesh: &TriMesh, options: &EncodeOptions) {
-    let encoded = swm::encode(mesh, options).unwrap();
-    let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
-    let dir = if std::env::var_os("SWM_WRITE_GOLDEN").is_some_and(|v| v == "1") {
+/// Where the `write_*` tests write: format-spec/golden with
+/// `SWM_WRITE_GOLDEN=1`, else a scratch folder.
+fn golden_dir() -> std::path::PathBuf {
+    if std::env::var_os("SWM_WRITE_GOLDEN").is_some_and(|v| v == "1") {
         std::path::PathBuf::from(format!(
             "{}/../format-spec/golden",
             env!("CARGO_MANIFEST_DIR")
@@ -311,8 +311,34 @@ fn write_golden(name: &str, mesh: &TriMesh, options: &EncodeOptions) {
         let dir = std::env::temp_dir().join(format!("swm-golden-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         dir
-    };
-    let path = dir.join(name);
+    }
+}
+
+/// [`write_golden`] for a mesh with attribute streams: also prints each
+/// stream's value count and the hash continued over them.
+fn write_attributed_golden(name: &str, mesh: &swm::AttributedMesh, options: &EncodeOptions) {
+    let encoded = swm::encode_attributed(mesh, options).unwrap();
+    let decoded = swm::decode_attributed(&encoded.bytes, &DecodeOptions::default()).unwrap();
+    let path = golden_dir().join(name);
+    std::fs::write(&path, &encoded.bytes).unwrap();
+    let info = swm::inspect(&encoded.bytes, &Default::default()).unwrap();
+    let values: Vec<usize> = decoded.streams.iter().map(|s| s.value_count()).collect();
+    println!("{}", path.display());
+    println!(
+        "{} bytes, {} vertices, {} triangles, values {values:?}, levels {:?}, sections {:?}, hash {:#018X}",
+        encoded.bytes.len(),
+        decoded.mesh.positions.len(),
+        decoded.mesh.triangles.len(),
+        info.levels,
+        info.stats.sections,
+        attributed_hash(&decoded)
+    );
+}
+
+fn write_golden(name: &str, mesh: &TriMesh, options: &EncodeOptions) {
+    let encoded = swm::encode(mesh, options).unwrap();
+    let decoded = swm::decode(&encoded.bytes, &DecodeOptions::default()).unwrap();
+    let path = golden_dir().join(name);
     std::fs::write(&path, &encoded.bytes).unwrap();
     println!("{}", path.display());
     println!(
@@ -1345,24 +1371,10 @@ const LOSSLESS_ATTR_V1_2_FNV1A64: u64 = 0xF2D1_1078_3D1F_3C4E;
 #[test]
 #[ignore]
 fn write_lossless_attr_v1_2_golden() {
-    let encoded = swm::encode_attributed(&golden_textured_torus(), &golden_attr_options()).unwrap();
-    let decoded = swm::decode_attributed(&encoded.bytes, &DecodeOptions::default()).unwrap();
-    let dir = if std::env::var_os("SWM_WRITE_GOLDEN").is_some_and(|v| v == "1") {
-        std::path::PathBuf::from(format!(
-            "{}/../format-spec/golden",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-    } else {
-        std::env::temp_dir()
-    };
-    std::fs::write(dir.join("lossless-attr-v1.2.swm"), &encoded.bytes).unwrap();
-    let values: Vec<usize> = decoded.streams.iter().map(|s| s.value_count()).collect();
-    println!(
-        "{} bytes, {} vertices, {} triangles, values {values:?}, hash {:#018X}",
-        encoded.bytes.len(),
-        decoded.mesh.positions.len(),
-        decoded.mesh.triangles.len(),
-        attributed_hash(&decoded)
+    write_attributed_golden(
+        "lossless-attr-v1.2.swm",
+        &golden_textured_torus(),
+        &golden_attr_options(),
     );
 }
 
@@ -1439,31 +1451,10 @@ const DISPLACED_ATTR_V1_2_FNV1A64: u64 = 0xB507_506E_0E4C_A808;
 #[test]
 #[ignore]
 fn write_displaced_attr_v1_2_golden() {
-    let encoded = swm::encode_attributed(
+    write_attributed_golden(
+        "displaced-attr-v1.2.swm",
         &golden_coloured_ellipsoid(),
         &golden_displaced_attr_options(),
-    )
-    .unwrap();
-    let decoded = swm::decode_attributed(&encoded.bytes, &DecodeOptions::default()).unwrap();
-    let dir = if std::env::var_os("SWM_WRITE_GOLDEN").is_some_and(|v| v == "1") {
-        std::path::PathBuf::from(format!(
-            "{}/../format-spec/golden",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-    } else {
-        std::env::temp_dir()
-    };
-    std::fs::write(dir.join("displaced-attr-v1.2.swm"), &encoded.bytes).unwrap();
-    let info = swm::inspect(&encoded.bytes, &Default::default()).unwrap();
-    println!(
-        "{} bytes, {} vertices, {} triangles, values {:?}, levels {:?}, sections {:?}, hash {:#018X}",
-        encoded.bytes.len(),
-        decoded.mesh.positions.len(),
-        decoded.mesh.triangles.len(),
-        decoded.streams.iter().map(|s| s.value_count()).collect::<Vec<_>>(),
-        info.levels,
-        info.stats.sections,
-        attributed_hash(&decoded)
     );
 }
 

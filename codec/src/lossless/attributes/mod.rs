@@ -37,7 +37,7 @@ mod residual;
 mod spec;
 mod stream;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 use crate::prelude::*;
 

@@ -227,14 +227,23 @@ fn hostile_attr_bytes_are_errors_never_panics() {
     let bytes = crate::encode_attributed(&textured_sphere(8, 5), &lossless(10))
         .unwrap()
         .bytes;
-    let file = crate::container::parse_container(&bytes, &Default::default()).unwrap();
+    hostile_attr_is_refused(&bytes, 0x9E37_79B9_7F4A_7C15, 3000);
+}
+
+/// Damages the `ATTR` payload of `bytes` (a valid file with one) and
+/// decodes each copy with its streams, the CRC fixed so the damage
+/// reaches the section: each byte inverted in turn, then single bits at
+/// random (`seed`) up to `tries` in all, must give an error or a valid
+/// mesh, never a panic; every truncation of the payload an error.
+pub(crate) fn hostile_attr_is_refused(bytes: &[u8], seed: u64, tries: usize) {
+    let file = crate::container::parse_container(bytes, &Default::default()).unwrap();
     let attr = file.find(crate::container::Tag::ATTR).unwrap();
     let start = attr.bytes.as_ptr() as usize - bytes.as_ptr() as usize;
     let len = attr.bytes.len();
     let options = DecodeOptions::default();
-    let mut rng = crate::mesh::test_rng::Rng(0x9E37_79B9_7F4A_7C15);
-    for i in 0..3000 {
-        let mut b = bytes.clone();
+    let mut rng = crate::mesh::test_rng::Rng(seed);
+    for i in 0..tries {
+        let mut b = bytes.to_vec();
         let at = start
             + if i < len {
                 i
@@ -250,7 +259,7 @@ fn hostile_attr_bytes_are_errors_never_panics() {
     }
     // Every truncation of the section's payload.
     for cut in 0..len {
-        let mut b = bytes.clone();
+        let mut b = bytes.to_vec();
         b.drain(start + cut..start + len);
         assert!(crate::decode_attributed(&b, &options).is_err());
     }
