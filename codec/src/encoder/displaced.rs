@@ -72,6 +72,10 @@ const GIVE_UP: f64 = 0.10;
 /// each probe a file of the most scalars and a measure: about a third
 /// of the method's work at those rates.
 const NEXT_LEVEL_GAIN: f64 = 0.30;
+/// Bits of geometry per decoded vertex a displaced file spends, for the
+/// first guess of a file with attributes (bunny at 2 b/v: 3.4, a base
+/// and two levels; more with fewer levels).
+const GEOMETRY_BITS: f64 = 4.0;
 /// Whole encodes of a file with attributes at most: the first at the
 /// whole budget, then at the geometry budget where the sum is predicted
 /// to meet the budget (two on smooth values, the tests' spheres).
@@ -132,8 +136,12 @@ impl CodingMethod for Displaced {
         if job.streams().is_empty() {
             return self.within(job, budget).map(Some);
         }
-        // With attributes: the file at the whole budget tells how far
-        // its streams take the sum past it. The next geometry budget is
+        // With attributes: the first file's geometry budget leaves room
+        // for the streams at what they cost coded over the input
+        // (`resample::input_bits`) against `GEOMETRY_BITS` per decoded
+        // vertex of geometry; that file tells how far the sum misses
+        // the budget (the streams cost more per vertex on a coarser
+        // mesh, whose neighbours differ more). The next geometry budget is
         // where the sum meets the budget on the line, in log-log, through
         // the nearest files on either side of it once there are some
         // (else the last two; in proportion after the first): the
@@ -142,7 +150,10 @@ impl CodingMethod for Displaced {
         // level count changes).
         let cap = ask.max_bytes.unwrap_or(u64::MAX);
         let aim = (budget.min(cap) as f64).ln();
-        let mut geometry = budget;
+        let mut geometry = match super::resample::input_bits(job)? {
+            Some(a) => ((budget as f64) / (1.0 + a / GEOMETRY_BITS)).max(1.0) as u64,
+            None => budget,
+        };
         let mut best: Option<Made> = None;
         let off = |m: &Made| ((m.bytes.len() as f64).ln() - aim).abs();
         // (ln geometry budget, ln total) of each file made.

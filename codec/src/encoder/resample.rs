@@ -106,3 +106,16 @@ pub(crate) fn with_attributes(
         attr.len(),
     )))
 }
+
+/// Bits per vertex the job's streams cost coded as `ATTR` over the
+/// cleaned input itself (`None` when it makes no corner table): what a
+/// method sizing a file with them starts from.
+pub(crate) fn input_bits(job: &Job<'_, '_>) -> Result<Option<f64>, Error> {
+    let mesh = &job.cleaned.mesh;
+    let coded = crate::lossless::attributes::over_mesh::encode(
+        mesh,
+        job.streams(),
+        &job.services.quantization(),
+    )?;
+    Ok(coded.map(|(attr, _)| 8.0 * attr.len() as f64 / mesh.vertex_count().max(1) as f64))
+}
