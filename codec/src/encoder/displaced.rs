@@ -76,10 +76,6 @@ const NEXT_LEVEL_GAIN: f64 = 0.30;
 /// first guess of a file with attributes (bunny at 2 b/v: 3.4, a base
 /// and two levels; more with fewer levels).
 const GEOMETRY_BITS: f64 = 4.0;
-/// Whole encodes of a file with attributes at most: the first at the
-/// whole budget, then at the geometry budget where the sum is predicted
-/// to meet the budget (two on smooth values, the tests' spheres).
-const ATTRIBUTE_PASSES: usize = 5;
 
 /// The displaced-subdivision method and its settings.
 #[derive(Clone, Copy, Debug)]
@@ -136,71 +132,9 @@ impl CodingMethod for Displaced {
         if job.streams().is_empty() {
             return self.within(job, budget).map(Some);
         }
-        // With attributes: the first file's geometry budget leaves room
-        // for the streams at what they cost coded over the input
-        // (`resample::input_bits`) against `GEOMETRY_BITS` per decoded
-        // vertex of geometry; that file tells how far the sum misses
-        // the budget (the streams cost more per vertex on a coarser
-        // mesh, whose neighbours differ more). The next geometry budget is
-        // where the sum meets the budget on the line, in log-log, through
-        // the nearest files on either side of it once there are some
-        // (else the last two; in proportion after the first): the
-        // streams' bytes grow with the vertices, faster than the
-        // geometry's where the values are rough, and not smoothly (the
-        // level count changes).
-        let cap = ask.max_bytes.unwrap_or(u64::MAX);
-        let aim = (budget.min(cap) as f64).ln();
-        let mut geometry = match super::resample::input_bits(job)? {
-            Some(a) => ((budget as f64) / (1.0 + a / GEOMETRY_BITS)).max(1.0) as u64,
-            None => budget,
-        };
-        let mut best: Option<Made> = None;
-        let off = |m: &Made| ((m.bytes.len() as f64).ln() - aim).abs();
-        // (ln geometry budget, ln total) of each file made.
-        let mut tried: Vec<(f64, f64)> = Vec::new();
-        for _ in 0..ATTRIBUTE_PASSES {
-            let Some(m) = self.attributed(job, geometry)? else {
-                return Ok(None);
-            };
-            let total = m.bytes.len() as u64;
-            let on_size = (total as f64 - budget as f64).abs() <= TOLERANCE * budget as f64;
-            tried.push(((geometry as f64).ln(), (total as f64).ln()));
-            if total <= cap && best.as_ref().is_none_or(|b| off(&m) < off(b)) {
-                best = Some(m);
-            }
-            if total <= cap && on_size {
-                break;
-            }
-            let below = tried
-                .iter()
-                .filter(|p| p.1 < aim)
-                .max_by(|a, b| a.1.total_cmp(&b.1));
-            let above = tried
-                .iter()
-                .filter(|p| p.1 >= aim)
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            let (p0, p1) = match (below, above) {
-                (Some(&a), Some(&b)) => (a, b),
-                _ if tried.len() >= 2 => (tried[tried.len() - 2], tried[tried.len() - 1]),
-                _ => (tried[0], tried[0]),
-            };
-            let slope = match p1.0 - p0.0 {
-                d if d != 0.0 => ((p1.1 - p0.1) / d).clamp(0.5, 4.0),
-                _ => 1.0,
-            };
-            let next = (p1.0 + (aim - p1.1) / slope).exp().max(1.0) as u64;
-            if next == geometry {
-                break;
-            }
-            geometry = next;
-        }
-        let smallest = tried.iter().map(|p| p.1.exp().round() as u64).min();
-        best.map(Some).ok_or_else(|| {
-            SizeError {
-                requested: budget,
-                smallest: smallest.unwrap_or(u64::MAX),
-            }
-            .into()
+        // With attributes: geometry and streams sized together.
+        super::resample::sized(job, budget, ask.max_bytes, GEOMETRY_BITS, |geometry| {
+            self.attributed(job, geometry)
         })
     }
 }
