@@ -449,10 +449,14 @@ fn encode<'py>(
     )?;
     // The lossless, automatic and simplified modes code attributes (the
     // automatic mode weighs only methods whose files carry them); a
-    // retiled file cannot, nor a displaced one texture coordinates, and
-    // the library would drop them: refused here rather than lost
-    // silently.
-    if attributes.is_some() && matches!(mode, swm::EncodeMode::Swing { .. }) {
+    // retiled or displaced file cannot, and the library would drop them:
+    // refused here rather than lost silently.
+    if attributes.is_some()
+        && matches!(
+            mode,
+            swm::EncodeMode::Swing { .. } | swm::EncodeMode::Displaced { .. }
+        )
+    {
         return Err(PyValueError::new_err(
             "attributes are coded by mode=\"auto\" or \"lossless\"; a swing or displaced file cannot carry them",
         ));
@@ -464,15 +468,6 @@ fn encode<'py>(
         Some(dict) => Some(attributes::from_dict(dict, &mesh)?),
         None => None,
     };
-    let uvs = |s: &Vec<swm::AttributeStream>| {
-        s.iter()
-            .any(|s| matches!(s.kind, swm::AttributeKind::TexCoord(_)))
-    };
-    if matches!(mode, swm::EncodeMode::Displaced { .. }) && streams.as_ref().is_some_and(uvs) {
-        return Err(PyValueError::new_err(
-            "texture coordinates are coded by mode=\"auto\" or \"lossless\"; a swing or displaced file cannot carry them",
-        ));
-    }
     let options = swm::EncodeOptions {
         mode,
         effort,

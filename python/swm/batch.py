@@ -48,9 +48,8 @@ What a run guarantees:
   error when the inputs hold one). A mesh is read with its texture
   coordinates, normals and colours (:func:`swm.read` with
   ``attributes=True``) and encoded with them (``--mode swing`` cannot
-  carry them, nor ``--mode displaced`` texture coordinates: the
-  ``dropped`` column says so, as it names every stream a file does not
-  keep, and why). ``--qn``, ``--qt`` and ``--qg`` are the
+  carry them: the ``dropped`` column says so, as it names every stream a
+  file does not keep, and why). ``--qn``, ``--qt`` and ``--qg`` are the
   attribute quantization of ``swm encode``; ``--gltf-fallback`` keeps an
   uncompressed copy of each coded primitive of a scene, for viewers
   without swm, as ``swm encode --gltf-fallback``.
@@ -341,21 +340,16 @@ def compress(job: Job) -> Dict[str, Any]:
                 dropped.append(f"{', '.join(lost)} not in the file")
         else:
             start = time.perf_counter()
-            # The swing method's file cannot carry attributes, nor the
-            # displaced method's texture coordinates: it codes the
-            # surface alone, and the row says what it left out.
-            mode = job.options.get("mode")
-            uvs = any(k.startswith("uv") for k in streams or {})
-            why = {"swing": "the swing method's file cannot carry them",
-                   "displaced": "the displaced method's file cannot carry texture coordinates"}
-            bare = mode == "swing" or (mode == "displaced" and uvs)
+            # The swing method's file cannot carry attributes: it codes
+            # the surface alone, and the row says what it left out.
+            swing = job.options.get("mode") == "swing"
             try:
                 data, report = swm.encode(vertices, faces, **job.options, report=True,
-                                          attributes=None if bare else streams)
+                                          attributes=None if swing else streams)
                 method = report["method"]
                 a = report["attributes"]
-                if bare and streams:
-                    dropped.append(f"{', '.join(streams)} not kept: {why[mode]}")
+                if swing and streams:
+                    dropped.append(f"{', '.join(streams)} not kept: the swing method's file cannot carry them")
                 elif a["dropped"] and a["dropped_because"] is not None:
                     dropped.append(f"{', '.join(a['dropped'])} not kept: {a['dropped_because']['message']}")
             except swm.RetileError:

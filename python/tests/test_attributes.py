@@ -154,9 +154,6 @@ def test_bad_attributes_are_refused():
     v, f, attrs = tube()
     with pytest.raises(ValueError, match="swing or displaced"):
         swm.encode(v, f, mode="swing", attributes=attrs)
-    # A displaced file keeps colours and normals, not texture coordinates.
-    with pytest.raises(ValueError, match="texture coordinates are coded"):
-        swm.encode(v, f, mode="displaced", size=2000, attributes=attrs)
     for bad in ("uv0", "normal", "colors01", "generic"):
         with pytest.raises(ValueError, match="unknown attribute"):
             swm.encode(v, f, mode="lossless", attributes={bad: attrs["uv"]})
@@ -359,16 +356,3 @@ def test_read_attributes_of_the_shared_corpus(shared_corpus: Path, swm_bin, tmp_
         run_cli(swm_bin, "encode", shared_corpus / name, "-o", tmp_path / "m.swm", "--mode", "lossless")
         assert swm.encode(v, f, attributes=attrs, mode="lossless") == (tmp_path / "m.swm").read_bytes(), name
 
-
-def test_displaced_keeps_colours_where_each_vertex_stands():
-    """A colour that is a linear function of the position comes back, at
-    each decoded vertex of a displaced file, as the input's colour there."""
-    v, f, _ = tube()
-    colors = (0.5 + 0.4 * v).astype(np.float32)
-    data, report = swm.encode(
-        v, f, mode="displaced", size=1500, attributes={"colors": colors}, report=True
-    )
-    assert report["method"] == "displaced"
-    dv, df, dattrs = swm.decode(data, attributes=True)
-    assert sorted(dattrs) == ["colors"]
-    assert np.abs(dattrs["colors"] - (0.5 + 0.4 * dv)).max() < 0.03
