@@ -164,9 +164,15 @@ fn cases() -> &'static Path {
             // A displaced file cut at its first level, as `--max-level 1`
             // decodes it (other modes ignore the option: the plain PLY).
             decode(&format!("{name}.l1.ply"), &["--max-level", "1"]);
+            // Attribute streams the file holds (a displaced file's `ATTR`).
+            let streams = swm::decode_attributed(bytes, &Default::default())
+                .unwrap()
+                .streams
+                .len();
             entries.push(serde_json::json!({
                 "name": name,
                 "mode": mode,
+                "streams": streams,
                 "version": format!("{}.{}", header.major, header.minor),
                 "swm": format!("{name}.swm"),
                 "ply": format!("{name}.ply"),

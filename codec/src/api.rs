@@ -42,12 +42,13 @@ pub fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded, Error>
 /// coordinates, colours, generic), each quantized as
 /// `options.attributes` says and coded with its seams in the section
 /// `ATTR` (format 1.2), in any mode whose file can carry them: the
-/// lossless mode, the simplified mode and the automatic mode, which then
-/// weighs only the methods that carry them (the simplified method: a
-/// simplification that never collapses across a seam,
-/// `simplify::attributed`, coded losslessly; the size budget counts the
-/// `ATTR` bytes). A mode that names SwingWrapper or displaced
-/// subdivision drops them. What was kept, what was dropped and why, and
+/// lossless mode, the simplified mode, displaced subdivision (normals,
+/// colours and generic streams, resampled at its vertices) and the
+/// automatic mode, which then weighs only the methods that carry them
+/// (the simplified method: a simplification that never collapses across
+/// a seam, `simplify::attributed`, coded losslessly; the size budget
+/// counts the `ATTR` bytes). A mode that names SwingWrapper, or
+/// displaced subdivision for texture coordinates, drops them. What was kept, what was dropped and why, and
 /// the texture coordinates' error, are in
 /// [`EncodeStats::attributes`](crate::EncodeStats). A mesh without
 /// streams gives the same bytes as [`encode`]. Deterministic, as
@@ -63,13 +64,18 @@ pub fn encode_attributed(
     crate::encoder::encode_attributed(mesh, options)
 }
 
-/// Decodes a `.swm` file with its attribute streams: those of a
-/// lossless file's `ATTR` section (format 1.2), none for a file without
-/// one or of another mode. The mesh is [`decode`]'s (vertex and value
-/// order are the decoder's); corners at one vertex share a value
-/// exactly when they did in the encoder's input. Post-processing
-/// (`options.sharpen`, `bend_steps`) changes the triangles, so with
-/// streams it is not run. Hostile bytes are handled as by [`decode`].
+/// Decodes a `.swm` file with its attribute streams: those of its
+/// `ATTR` section (format 1.2: a lossless file's, or a displaced file's
+/// over its finest level), none for a file without one. The mesh is
+/// [`decode`]'s plain mesh (vertex and value order are the decoder's);
+/// corners at one vertex share a value exactly when they did in the
+/// encoder's input. The file's post-processing hint is not followed,
+/// since Sharpen&Bend changes the mesh the streams were coded over; and
+/// post-processing asked for by name (`options.sharpen` on,
+/// `bend_steps` above 0) is run, and the mesh then comes without its
+/// streams, as [`decode`] gives it (`swm decode` warns). A decode
+/// stopped at a coarser level (`max_level`) has no streams either.
+/// Hostile bytes are handled as by [`decode`].
 pub fn decode_attributed(
     bytes: &[u8],
     options: &DecodeOptions,

@@ -149,14 +149,19 @@ pub(crate) fn decode_attributed(
     options: &DecodeOptions,
 ) -> Result<crate::AttributedMesh, Error> {
     let file = parse_container(bytes, &options.limits)?;
+    // Post-processing asked for by name changes the mesh the streams
+    // were coded over: it is run, and the streams are left out.
+    let asked = options.sharpen == Some(true) || options.bend_steps.is_some_and(|b| b > 0);
+    if asked {
+        return decode_container(&file, options).map(Into::into);
+    }
     if let Some(attr) = file.find(crate::container::Tag::ATTR) {
         match file.header.mode {
             Mode::Lossless => return crate::lossless::decode_attributed(&file, &options.limits),
             // Over the plain decode of every level (format-spec/08, "Over
             // a decoded mesh"): a decode stopped at a coarser level
             // (`max_level`) has no attributes, and as for mode 0 the
-            // streams come with the mesh they were coded over, not
-            // post-processed.
+            // streams come with the mesh they were coded over.
             Mode::Displaced => {
                 let mesh = (for_mode(file.header.mode).decode)(&file, options)?;
                 if mesh.positions.len() as u64 == u64::from(file.header.vertex_count) {

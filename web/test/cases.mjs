@@ -37,7 +37,7 @@ export function manifest(dir) {
   return JSON.parse(readFileSync(join(dir, 'manifest.json'), 'utf8'));
 }
 
-/** Positions and indices of a binary little-endian PLY as `swm decode` writes it. */
+/** Positions and indices of a binary little-endian PLY as `swm decode` writes it (with or without per-vertex attributes). */
 export function readPly(bytes) {
   const end = bytes.indexOf('end_header\n');
   if (end < 0) throw new Error('PLY without end_header');
@@ -45,11 +45,19 @@ export function readPly(bytes) {
   if (!header.includes('format binary_little_endian 1.0')) throw new Error('not a binary little-endian PLY');
   const vertices = Number(/element vertex (\d+)/.exec(header)[1]);
   const faces = Number(/element face (\d+)/.exec(header)[1]);
+  // A vertex is x, y, z (float) first, then whatever else the file
+  // holds (normals, colours): its stride is the sum of its properties.
+  const size = { char: 1, uchar: 1, int8: 1, uint8: 1, short: 2, ushort: 2, int16: 2, uint16: 2,
+    int: 4, uint: 4, int32: 4, uint32: 4, float: 4, float32: 4, double: 8, float64: 8 };
+  const vertexPart = header.split('element vertex')[1].split('element face')[0];
+  const stride = [...vertexPart.matchAll(/property (\w+) \w+/g)].reduce((n, m) => n + size[m[1]], 0);
   const view = new DataView(bytes.buffer, bytes.byteOffset + end + 'end_header\n'.length);
   const positions = new Float32Array(3 * vertices);
-  for (let i = 0; i < positions.length; i++) positions[i] = view.getFloat32(4 * i, true);
+  for (let v = 0; v < vertices; v++) {
+    for (let k = 0; k < 3; k++) positions[3 * v + k] = view.getFloat32(stride * v + 4 * k, true);
+  }
   const indices = new Uint32Array(3 * faces);
-  let at = 12 * vertices;
+  let at = stride * vertices;
   for (let f = 0; f < faces; f++) {
     if (view.getUint8(at) !== 3) throw new Error(`PLY face ${f} is not a triangle`);
     for (let k = 0; k < 3; k++) indices[3 * f + k] = view.getUint32(at + 1 + 4 * k, true);
