@@ -133,9 +133,18 @@ pub(crate) fn decode_container(
     options: &DecodeOptions,
 ) -> Result<TriMesh, Error> {
     let mesh = (for_mode(file.header.mode).decode)(file, options)?;
-    // A mesh-only decode skips `ATTR`'s chunks, but reads its stream
-    // headers as `inspect` does: a file one of them refuses, the other
-    // refuses too.
+    mesh_only(file, mesh, options)
+}
+
+/// The mesh-only decode's end, after the mode's decode gave `mesh`: it
+/// skips `ATTR`'s chunks but reads its stream headers as `inspect` does
+/// (a file one of them refuses, the other refuses too), then runs the
+/// post-processing.
+fn mesh_only(
+    file: &Container<'_>,
+    mesh: TriMesh,
+    options: &DecodeOptions,
+) -> Result<TriMesh, Error> {
     if let Some(attr) = file.find(crate::container::Tag::ATTR) {
         crate::lossless::attributes::inspect(attr.bytes)?;
     }
@@ -171,8 +180,7 @@ pub(crate) fn decode_attributed(
                         &options.limits,
                     );
                 }
-                let post = crate::post::hint::resolve(&file, options.sharpen, options.bend_steps);
-                return sharpen_and_bend(mesh, post, &options.limits).map(Into::into);
+                return mesh_only(&file, mesh, options).map(Into::into);
             }
             // No encoder writes `ATTR` in a SwingWrapper file; a decoder
             // reads its mesh only.

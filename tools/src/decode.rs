@@ -104,21 +104,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // lossless or displaced file); a file without any decodes to the
     // plain mesh. Post-processing asked for by name changes the mesh the
     // streams were coded over: the mesh is post-processed, and the
-    // streams are not written, with a warning.
+    // streams are not written; the warning says so.
     let asked = sharpen == Some(true) || args.bend.is_some_and(|b| b > 0);
     let streams = asked
         && swm::container::parse_container(&bytes, &options.limits)
             .is_ok_and(|f| f.find(swm::container::Tag::ATTR).is_some());
-    let attributed = if streams {
+    if streams {
         eprintln!(
             "swm: warning: {}: the file's attributes are not written (--sharpen and --bend change the mesh they were coded over)",
             args.input.display()
         );
-        swm::decode(&bytes, &options).map(swm::AttributedMesh::from)
-    } else {
-        swm::decode_attributed(&bytes, &options)
     }
-    .map_err(|e| CliError::new(&args.input, e))?;
+    // The library's rule: post-processing asked for runs, and then the
+    // mesh comes without its streams.
+    let attributed =
+        swm::decode_attributed(&bytes, &options).map_err(|e| CliError::new(&args.input, e))?;
     let seconds = start.elapsed().as_secs_f64();
     let report = if crate::pipe::is_stdio(&args.output) {
         let mut out = Vec::new();

@@ -146,8 +146,7 @@ impl Displaced {
     fn attributed(&self, job: &Job<'_, '_>, geometry: u64) -> Result<Option<Made>, Error> {
         let mut made = self.within(job, geometry)?;
         let seeds = made.seeds.take().unwrap_or_default();
-        let Some((bytes, _)) = super::resample::with_attributes(job, &made.bytes, Some(&seeds))?
-        else {
+        let Some(bytes) = super::resample::with_attributes(job, &made.bytes, Some(&seeds))? else {
             return Ok(None);
         };
         made.bytes = bytes;

@@ -74,13 +74,13 @@ pub(crate) fn resampled(
 
 /// The method's file `bytes` with `ATTR` appended: the job's streams
 /// resampled at the vertices of its plain decode (origins from `seeds`
-/// where the method gave them), and the bytes of `ATTR`'s payload.
-/// `None` when its decoded mesh makes no corner table.
+/// where the method gave them). `None` when its decoded mesh makes no
+/// corner table.
 pub(crate) fn with_attributes(
     job: &Job<'_, '_>,
     bytes: &[u8],
     seeds: Option<&[u32]>,
-) -> Result<Option<(Vec<u8>, usize)>, Error> {
+) -> Result<Option<Vec<u8>>, Error> {
     let decoded = crate::decoder::decode(bytes, &crate::options::DecodeOptions::plain())?;
     let origins = super::provenance::origins(
         &job.cleaned.mesh,
@@ -101,10 +101,7 @@ pub(crate) fn with_attributes(
     let file = parse_container(bytes, &Limits::default())?;
     let mut sections: Vec<(Tag, &[u8])> = file.sections().map(|s| (s.tag, s.bytes)).collect();
     sections.push((Tag::ATTR, &attr));
-    Ok(Some((
-        write_container(&file.header, &sections)?,
-        attr.len(),
-    )))
+    Ok(Some(write_container(&file.header, &sections)?))
 }
 
 /// Bits per vertex the job's streams cost coded as `ATTR` over the
