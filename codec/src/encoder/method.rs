@@ -182,6 +182,19 @@ impl<'a, 's> Job<'a, 's> {
         }
     }
 
+    /// [`reference`](Self::reference) when it is exactly
+    /// `Surface::new(&cleaned.mesh)` (the same triangles, the same tree,
+    /// so the same samples and distances to the bit), for a service that
+    /// would otherwise build that surface again (SwingWrapper's hint:
+    /// on horse a tree over 97k triangles per encode); `None` when it is
+    /// not (a quick tree at `fast`, or fans rebuilt for the simplifier).
+    pub fn cleaned_surface(&self) -> Result<Option<&'a Surface>, Error> {
+        if self.services.quick || !self.simplifier().measures_against_its_mesh() {
+            return Ok(None);
+        }
+        self.reference().map(Some)
+    }
+
     /// The L2 distance between the input as given and what the file
     /// `bytes` decodes to, relative to the input's diagonal, as
     /// `swm distance` measures it (Metro's samples: every vertex, points

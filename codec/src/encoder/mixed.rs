@@ -211,7 +211,7 @@ fn encode(
         None,
         max_bytes.or(Some(budget)),
     )?;
-    let encoded = super::swing::encode_pieces(&pieces, &cleaned.mesh, options, request)?;
+    let encoded = super::swing::encode_pieces(&pieces, &cleaned.mesh, options, request, None)?;
     Ok(Some(encoded))
 }
 
@@ -224,11 +224,12 @@ fn trial(m: &Measured<'_>, bytes: u64, options: &EncodeOptions) -> Result<Verdic
         target: SwingTarget::Bytes(bytes),
         max_bytes: Some(bytes),
     };
-    let swing = match super::swing::encode(&alone, alone.mesh.vertex_count(), options, ask, None) {
-        Ok(file) => Some(file_distance(&file.bytes, &m.surface, TRIAL_SAMPLES)?.l2()),
-        Err(Error::Retile(_) | Error::LimitExceeded(_) | Error::Size(_)) => None,
-        Err(e) => return Err(e),
-    };
+    let swing =
+        match super::swing::encode(&alone, alone.mesh.vertex_count(), options, ask, None, None) {
+            Ok(file) => Some(file_distance(&file.bytes, &m.surface, TRIAL_SAMPLES)?.l2()),
+            Err(Error::Retile(_) | Error::LimitExceeded(_) | Error::Size(_)) => None,
+            Err(e) => return Err(e),
+        };
     Ok(match (swing, simplified) {
         (Some(w), Some(f)) if f.l2 < w => Verdict::Simplified(f),
         (Some(w), _) => Verdict::Swing(w),

@@ -538,6 +538,7 @@ mod file_tests {
             &options,
             ask,
             None,
+            None,
         )
         .unwrap();
         let masked: u64 = file

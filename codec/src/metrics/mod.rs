@@ -386,6 +386,36 @@ enum Work {
 const VERTEX_CHUNK: usize = 4096;
 const EDGE_CHUNK: usize = 2048;
 const FACE_CHUNK: usize = 512;
+/// A face chunk holding more samples than this measures them in blocks
+/// of [`SPLIT_BLOCK`] points, [`SPLIT_SLICE`] to a task. The sums are
+/// the same bits (each distance is exact whatever the warm start, and
+/// they are added in the chunk's order); only a far query's answer
+/// (the hint's triangle, within 2^-30 of the minimum, see `bvh`) can
+/// differ, and the split depends on the counts alone, never on the
+/// thread count.
+const SPLIT_SAMPLES: u64 = 8192;
+const SPLIT_BLOCK: usize = 16_384;
+const SPLIT_SLICE: usize = 1024;
+
+/// Each point's distance to `to` (`None` for an empty tree), in order,
+/// slices of the points on rayon's threads.
+fn measured_in_parallel(points: &[[f64; 3]], to: &Surface) -> Vec<Option<f64>> {
+    let parts: Vec<Vec<Option<f64>>> = points
+        .par_chunks(SPLIT_SLICE)
+        .map_init(Scratch::default, |scratch, slice| {
+            let mut hint = None;
+            slice
+                .iter()
+                .map(|&p| {
+                    let hit = to.bvh.nearest(p, hint, scratch)?;
+                    hint = Some(hit.slot);
+                    Some(hit.distance2.sqrt())
+                })
+                .collect()
+        })
+        .collect();
+    parts.into_iter().flatten().collect()
+}
 
 fn chunks(n: usize, size: usize, f: fn(usize, usize) -> Work) -> impl Iterator<Item = Work> {
     (0..n.div_ceil(size)).map(move |i| f(i * size, ((i + 1) * size).min(n)))
@@ -453,6 +483,29 @@ pub fn one_sided(from: &Surface, to: &Surface, faces: u64, options: &DistanceOpt
                         let (p, q) = (from.positions[u as usize], from.positions[v as usize]);
                         edge_points(p, q, n, &mut measure);
                     }
+                }
+                Work::Faces(a, b) if face_counts[a..b].iter().sum::<u64>() > SPLIT_SAMPLES => {
+                    // A few large faces holding many samples (the decoded
+                    // side of a small file: one chunk, one thread, for all
+                    // of them): their points in blocks, each measured on
+                    // every thread and added in order.
+                    let mut block = Vec::with_capacity(SPLIT_BLOCK);
+                    let mut flush = |block: &mut Vec<[f64; 3]>| {
+                        for d in measured_in_parallel(block, to).into_iter().flatten() {
+                            sums.add(d);
+                        }
+                        block.clear();
+                    };
+                    for (f, &n) in face_counts.iter().enumerate().take(b).skip(a) {
+                        let mut rng = SplitMix::new(options.seed, from.face_ids[f] as u64);
+                        face_points(&from.triangle(f), n, &mut rng, |p| {
+                            block.push(p);
+                            if block.len() == SPLIT_BLOCK {
+                                flush(&mut block);
+                            }
+                        });
+                    }
+                    flush(&mut block);
                 }
                 Work::Faces(a, b) => {
                     for (f, &n) in face_counts.iter().enumerate().take(b).skip(a) {

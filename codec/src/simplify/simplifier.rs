@@ -427,6 +427,12 @@ impl<'a> Simplifier<'a> {
         &self.work
     }
 
+    /// Whether [`reference`](Self::reference) is the mesh it was made
+    /// from, as it was given (no fan rebuilt).
+    pub fn measures_against_its_mesh(&self) -> bool {
+        matches!(self.work, Cow::Borrowed(_))
+    }
+
     /// The input simplified to at most `target` faces (the input itself
     /// when it has no more), before its refit ([`refit`](Self::refit)):
     /// what the size search probes. Deterministic.

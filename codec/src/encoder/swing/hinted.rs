@@ -128,9 +128,18 @@ pub(crate) fn finish(
     request: Request,
     creases: bool,
     budget: &Budget,
+    reference: Option<&Surface>,
 ) -> Result<(Chosen, HintReport), Error> {
-    let reference = Surface::new(input)?;
-    let (a, hint_a) = hinted(pieces, first, knobs, request, budget, &reference)?;
+    // `reference` is `Surface::new(input)` when the caller has it.
+    let made;
+    let reference = match reference {
+        Some(r) => r,
+        None => {
+            made = Surface::new(input)?;
+            &made
+        }
+    };
+    let (a, hint_a) = hinted(pieces, first, knobs, request, budget, reference)?;
     let first_len = a.bytes.len() as u64;
     let fits = |c: &Chosen| match request.target {
         Ok(t) => c.bytes.len() as u64 <= request.limit(t).max(first_len),
@@ -146,7 +155,7 @@ pub(crate) fn finish(
             ..knobs
         };
         let prior = Some(best.0.prior);
-        match try_file(pieces, with, request, budget, &reference, prior)? {
+        match try_file(pieces, with, request, budget, reference, prior)? {
             Some((b, mut h)) if fits(&b) && h.l2_after() < best.1.l2_after() => {
                 h.crease_tips = true;
                 best = (b, h);
@@ -194,7 +203,7 @@ pub(crate) fn finish(
             Err(e) => return Err(e),
         };
         k0.get_or_insert(b.stats.angle_bits);
-        let (b, mut hint_b) = hinted(pieces, b, knobs, attempt, budget, &reference)?;
+        let (b, mut hint_b) = hinted(pieces, b, knobs, attempt, budget, reference)?;
         if fits(&b) && hint_b.l2_after() < best.1.l2_after() {
             hint_b.tips_on_surface = true;
             hint_b.crease_tips = knobs.crease_tips;

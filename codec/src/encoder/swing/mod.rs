@@ -87,6 +87,7 @@ impl CodingMethod for Swing {
             job.options,
             ask,
             self.angle_bits,
+            job.cleaned_surface()?,
         )?;
         Ok(Some(file.made(job.options.origins, MethodStats::Swing)))
     }
@@ -122,6 +123,7 @@ pub(crate) fn encode(
     options: &EncodeOptions,
     ask: Ask,
     angle_bits: Option<u8>,
+    reference: Option<&crate::metrics::Surface>,
 ) -> Result<SwingFile, Error> {
     use crate::swing::{MAX_ANGLE_BITS, MIN_ANGLE_BITS};
     if let Some(angle_bits) = angle_bits.filter(|k| !(MIN_ANGLE_BITS..=MAX_ANGLE_BITS).contains(k))
@@ -136,7 +138,7 @@ pub(crate) fn encode(
     }
     let request = request(ask.target, input_vertices, angle_bits, ask.max_bytes)?;
     let pieces = crate::swing::retile::fill::pieces(&cleaned.mesh, &cleaned.table)?;
-    encode_pieces(&pieces, &cleaned.mesh, options, request)
+    encode_pieces(&pieces, &cleaned.mesh, options, request, reference)
 }
 
 /// What a SwingWrapper encode must answer, its numbers checked: bytes
@@ -176,6 +178,7 @@ pub(crate) fn encode_pieces(
     input: &TriMesh,
     options: &EncodeOptions,
     request: Request,
+    reference: Option<&crate::metrics::Surface>,
 ) -> Result<SwingFile, Error> {
     let (angle_bits, max_bytes) = (request.angle_bits, request.max_bytes);
     use crate::swing::retile::rate;
@@ -207,6 +210,7 @@ pub(crate) fn encode_pieces(
             request,
             creased && measured,
             &budget,
+            reference,
         )?;
         chosen = c;
         hint = Some(h);
