@@ -51,6 +51,7 @@ fn items_of(tris: &[Tri]) -> Vec<Item> {
                 centroid: core::array::from_fn(|k| 0.5 * bounds.min[k] + 0.5 * bounds.max[k]),
                 bounds,
                 id: i as u32,
+                bins: [0; 3],
             }
         })
         .collect()
@@ -167,6 +168,10 @@ struct Item {
     bounds: Aabb,
     centroid: [f32; 3],
     id: u32,
+    /// Its bin on each axis in the split under way (`split` writes them
+    /// as it bins and reads the chosen axis's as it partitions: the
+    /// division feeding the side's branch was the partition's stall).
+    bins: [u8; 3],
 }
 
 /// A range of items still to be built into a subtree.
@@ -221,9 +226,10 @@ fn split(items: &mut [Item], centroids: &Aabb) -> [Side; 2] {
     // is binned too, all in bin 0, but never split).
     let mut count = [[0usize; BINS]; 3];
     let mut bounds = [[Aabb::EMPTY; BINS]; 3];
-    for it in items.iter() {
+    for it in items.iter_mut() {
         for k in 0..3 {
             let b = bin_of(it.centroid[k], k);
+            it.bins[k] = b as u8;
             count[k][b] += 1;
             bounds[k][b].grow(&it.bounds);
         }
@@ -242,9 +248,16 @@ fn split(items: &mut [Item], centroids: &Aabb) -> [Side; 2] {
         let mut left = Aabb::EMPTY;
         let mut left_count = 0;
         for b in 1..BINS {
+            // An empty bin leaves both sides as they were, so the split
+            // after it costs what the split before it did, which a
+            // strict `<` already ranked first: skipped, the same choice
+            // (most bins of a small range are empty).
+            if count[b - 1] == 0 {
+                continue;
+            }
             left.grow(&bounds[b - 1]);
             left_count += count[b - 1];
-            if left_count == 0 || left_count == n {
+            if left_count == n {
                 continue;
             }
             let cost =
@@ -272,28 +285,28 @@ fn split(items: &mut [Item], centroids: &Aabb) -> [Side; 2] {
     for (bin, bounds) in bounds[k].iter().enumerate() {
         side[(bin >= b) as usize].grow(bounds);
     }
-    let (mut left, mut right) = (Aabb::EMPTY, Aabb::EMPTY);
+    let mut centroids = [Aabb::EMPTY; 2];
     let mut i = 0;
     for j in 0..n {
         let c = &items[j].centroid;
-        if bin_of(c[k], k) < b {
-            left.grow_point(c);
+        if usize::from(items[j].bins[k]) < b {
+            centroids[0].grow_point(c);
             items.swap(i, j);
             i += 1;
         } else {
-            right.grow_point(c);
+            centroids[1].grow_point(c);
         }
     }
     [
         Side {
             count: i,
             bounds: side[0],
-            centroids: left,
+            centroids: centroids[0],
         },
         Side {
             count: n - i,
             bounds: side[1],
-            centroids: right,
+            centroids: centroids[1],
         },
     ]
 }
