@@ -203,6 +203,19 @@ pub struct EncodeOptions {
     /// geometry's own) are not coded, as a decoder recomputes them from
     /// the decoded surface, and the report says so. Default `false`.
     pub keep_smooth_normals: bool,
+    /// When the size asked for (a `Bytes` or `BitsPerVertex` target) is
+    /// below the smallest file the mode can write, write that smallest
+    /// file instead of failing with [`Error::Size`](crate::Error::Size);
+    /// [`EncodeStats::smallest_instead`](crate::EncodeStats) then says
+    /// what was asked. The second search runs in the same encode (the
+    /// cleaning, the reference surface and the collapse sequence are made
+    /// once). A cap (`max_bytes`) below that smallest file still fails.
+    /// An input with attribute streams
+    /// ([`encode_attributed`](crate::encode_attributed)) below its
+    /// smallest file both with them and without is encoded again once,
+    /// at the size of the smallest file that keeps them. Default `false`
+    /// (`swm encode --or-smallest`).
+    pub or_smallest: bool,
 }
 
 #[cfg(feature = "encoder")]

@@ -329,6 +329,15 @@ fn encode_report<'py>(
         None => out.set_item("simplified", py.None())?,
     }
     out.set_item("attributes", attribute_report(py, &stats.attributes)?)?;
+    match &stats.smallest_instead {
+        Some(e) => {
+            let d = PyDict::new(py);
+            d.set_item("requested", e.requested)?;
+            d.set_item("smallest", e.smallest)?;
+            out.set_item("smallest_instead", d)?;
+        }
+        None => out.set_item("smallest_instead", py.None())?,
+    }
     // As `swm encode --json`'s `check`: the file decoded and measured
     // against the input as `swm distance` measures it.
     match &stats.check {
@@ -408,7 +417,7 @@ fn attribute_report<'py>(
 #[pyo3(signature = (vertices, faces, *, bpv=None, size=None, edge_length=None,
                     mode="auto", max_size=None, angle_bits=None, qp=None, report=false,
                     effort="default", max_error=None, attributes=None, qn=None, qt=None,
-                    qg=None, keep_normals=false))]
+                    qg=None, keep_normals=false, or_smallest=false))]
 #[allow(clippy::too_many_arguments)]
 fn encode<'py>(
     py: Python<'py>,
@@ -429,6 +438,7 @@ fn encode<'py>(
     qt: Option<i64>,
     qg: Option<i64>,
     keep_normals: bool,
+    or_smallest: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let effort = effort_of(effort)?;
     // Out-of-range bits first, as the command line's parser refuses them
@@ -473,6 +483,7 @@ fn encode<'py>(
         effort,
         attributes: attribute_bits,
         keep_smooth_normals: keep_normals,
+        or_smallest,
         ..Default::default()
     };
     let encoded = py

@@ -150,6 +150,7 @@ def encode(
     qt: Optional[int] = None,
     qg: Optional[int] = None,
     keep_normals: bool = False,
+    or_smallest: bool = False,
 ) -> bytes: ...
 
 
@@ -173,6 +174,7 @@ def encode(
     qt: Optional[int] = None,
     qg: Optional[int] = None,
     keep_normals: bool = False,
+    or_smallest: bool = False,
 ) -> Tuple[bytes, EncodeReport]: ...
 
 
@@ -196,6 +198,7 @@ def encode(
     qt: Optional[int] = None,
     qg: Optional[int] = None,
     keep_normals: bool = False,
+    or_smallest: bool = False,
 ) -> Union[bytes, Tuple[bytes, EncodeReport]]: ...
 
 
@@ -218,6 +221,7 @@ def encode(
     qt: Optional[int] = None,
     qg: Optional[int] = None,
     keep_normals: bool = False,
+    or_smallest: bool = False,
 ) -> Union[bytes, Tuple[bytes, EncodeReport]]:
     """Cleans and encodes a mesh into the bytes of a ``.swm`` file.
 
@@ -252,7 +256,9 @@ def encode(
       then refused. ``edge_length`` and ``angle_bits`` are refused.
 
     A size no file can meet raises :class:`SizeError` (which names the
-    smallest possible size); options the mode has no use for raise
+    smallest possible size), unless ``or_smallest=True``, which writes
+    that smallest file instead (the report's ``smallest_instead`` then
+    holds ``requested`` and ``smallest``, as ``swm encode --or-smallest``); options the mode has no use for raise
     ``ValueError``. With ``report=True`` the result is ``(bytes, report)``,
     ``report`` a dict: ``method``, what made the file (``"swing"``,
     ``"simplified"``, ``"mixed"``, a method per component, or
@@ -328,6 +334,7 @@ def encode(
         qt=qt,
         qg=qg,
         keep_normals=keep_normals,
+        or_smallest=or_smallest,
     )
 
 

@@ -51,6 +51,7 @@ def encode(
     qt: Optional[int] = None,
     qg: Optional[int] = None,
     keep_normals: bool = False,
+    or_smallest: bool = False,
 ) -> bytes: ...
 @overload
 def encode(
@@ -72,6 +73,7 @@ def encode(
     qt: Optional[int] = None,
     qg: Optional[int] = None,
     keep_normals: bool = False,
+    or_smallest: bool = False,
 ) -> Tuple[bytes, EncodeReport]: ...
 @overload
 def encode(
@@ -93,6 +95,7 @@ def encode(
     qt: Optional[int] = None,
     qg: Optional[int] = None,
     keep_normals: bool = False,
+    or_smallest: bool = False,
 ) -> Union[bytes, Tuple[bytes, EncodeReport]]: ...
 def decode(
     data: bytes,

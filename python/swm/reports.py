@@ -73,6 +73,7 @@ class EncodeReport(TypedDict):
     simplified: Optional[Dict[str, Any]]
     check: Optional[Dict[str, Any]]
     attributes: AttributeReport
+    smallest_instead: Optional[Dict[str, int]]
 
 
 class _PrimitiveBase(TypedDict):

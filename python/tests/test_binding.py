@@ -308,7 +308,7 @@ def test_lossless_with_a_size_simplifies_to_fit(torus):
     exact, report = swm.encode(v, f, mode="lossless", report=True)
     # Nothing to check either: every triangle, each vertex within half a step.
     assert report == {"method": "lossless", "choice": None, "simplified": None, "check": None,
-                      "attributes": NO_ATTRIBUTES}
+                      "attributes": NO_ATTRIBUTES, "smallest_instead": None}
     assert len(swm.decode(exact)[1]) == len(f)
     assert exact == swm.encode(v, f, mode="lossless", qp=12) != swm.encode(v, f, mode="lossless", qp=14)
 
@@ -316,7 +316,8 @@ def test_lossless_with_a_size_simplifies_to_fit(torus):
 def test_swing_mode_report(torus):
     data, report = swm.encode(*torus, mode="swing", bpv=3, report=True)
     check = report.pop("check")
-    assert report == {"method": "swing", "choice": None, "simplified": None, "attributes": NO_ATTRIBUTES}
+    assert report == {"method": "swing", "choice": None, "simplified": None, "attributes": NO_ATTRIBUTES,
+                      "smallest_instead": None}
     # The file as decoded, measured against the torus as swm distance would.
     dv, df = swm.decode(data)
     assert (check["decoded_vertices"], check["decoded_triangles"]) == (len(dv), len(df))
@@ -343,12 +344,30 @@ def test_a_size_too_small_raises_size_error(swm_bin, generated_corpus, tmp_path,
     m = re.fullmatch(r"no file of 10 bytes can hold this mesh: the smallest possible is (\d+) bytes", str(error))
     assert m, str(error)
     assert error.requested == 10 and error.smallest == int(m.group(1)) > 10
-    # The CLI's message, which adds its own way out (a flag Python has
-    # not); and the smallest size named is one that works.
+    # The CLI's message, which adds its own way out (or_smallest= here);
+    # and the smallest size named is one that works.
     said = cli_error(swm_bin, "encode", mesh, "-o", tmp_path / "x.swm", *cli_args)
     assert said == str(error) + " (--or-smallest writes it)"
     data = swm.encode(*swm.read(mesh), mode="lossless", size=error.smallest)
     assert len(data) <= error.smallest
+
+
+def test_or_smallest_writes_the_smallest_file_and_says_so(swm_bin, generated_corpus, tmp_path):
+    mesh = generated_corpus / "torus.obj"
+    with pytest.raises(swm.SizeError) as e:
+        swm.encode(*swm.read(mesh), size=10)
+    data, report = swm.encode(*swm.read(mesh), size=10, or_smallest=True, report=True)
+    assert report["smallest_instead"] == {"requested": 10, "smallest": e.value.smallest}
+    assert len(data) <= e.value.smallest * 1.03
+    # The same bytes as the CLI's --or-smallest, and as asking for that size.
+    out = tmp_path / "s.swm"
+    subprocess.run([swm_bin, "encode", mesh, "-o", out, "--size", "10", "--or-smallest"], check=True, capture_output=True)
+    assert out.read_bytes() == data
+    _, fits = swm.encode(*swm.read(mesh), size=200_000, or_smallest=True, report=True)
+    assert fits["smallest_instead"] is None
+    # A cap below the smallest file still raises.
+    with pytest.raises(swm.SizeError):
+        swm.encode(*swm.read(mesh), size=10, max_size=10, or_smallest=True)
 
 
 # -- arrays: dtypes, shapes, layouts ----------------------------------------

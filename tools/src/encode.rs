@@ -412,9 +412,6 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
         _ => (!m.streams.is_empty()).then_some(m),
     };
-    let options = encode_options(args);
-    progress.phase("encoding");
-    let start = Instant::now();
     // No target given: the default rate is a convenience, not a request,
     // so a mesh too small for it gets its smallest file and a note.
     let defaulted = args.size.is_none()
@@ -422,38 +419,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         && args.edge_length.is_none()
         && !bounded
         && args.mode != ModeArg::Lossless;
+    let options = swm::EncodeOptions {
+        // Allowed to write more than asked: the smallest file there is
+        // (the encoder searches again in the same encode).
+        or_smallest: args.or_smallest || defaulted,
+        ..encode_options(args)
+    };
+    progress.phase("encoding");
+    let start = Instant::now();
     let encoded = match attributed.as_ref() {
         Some(m) => swm::encode_attributed(m, &options),
         None => swm::encode(&mesh, &options),
     };
     let encoded = match encoded {
-        // Allowed to write more than asked: the smallest file there is.
-        Err(swm::Error::Size(e)) if args.or_smallest || defaulted => {
-            let Some(mode) = at_size(&options.mode, e.smallest) else {
-                return Err(CliError::new(&args.input, swm::Error::Size(e)));
-            };
-            let options = swm::EncodeOptions { mode, ..options };
-            let encoded = match attributed.as_ref() {
-                Some(m) => swm::encode_attributed(m, &options),
-                None => swm::encode(&mesh, &options),
-            }
-            .map_err(|e| CliError::new(&args.input, e))?;
-            let why = if args.or_smallest {
-                "--or-smallest"
-            } else {
-                "no size was given; the default is 2 bits per vertex"
-            };
-            eprintln!(
-                "swm: note: {}: no file of {} bytes can hold this mesh; the smallest, {} bytes, was written ({why})",
-                args.input.display(),
-                e.requested,
-                encoded.bytes.len()
-            );
-            encoded
-        }
         // An explicit size below the smallest file: an error that says
         // how to get that file.
-        Err(swm::Error::Size(e)) => {
+        Err(swm::Error::Size(e)) if !options.or_smallest => {
             return Err(crate::error::fail(
                 &args.input,
                 format!("{e} (--or-smallest writes it)"),
@@ -461,6 +442,19 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
         other => other.map_err(|e| CliError::new(&args.input, e))?,
     };
+    if let Some(e) = &encoded.stats.smallest_instead {
+        let why = if args.or_smallest {
+            "--or-smallest"
+        } else {
+            "no size was given; the default is 2 bits per vertex"
+        };
+        eprintln!(
+            "swm: note: {}: no file of {} bytes can hold this mesh; the smallest, {} bytes, was written ({why})",
+            args.input.display(),
+            e.requested,
+            encoded.bytes.len()
+        );
+    }
     // Streams dropped for want of room: a loss, said on standard error
     // (an error with --strict).
     if let Some(why @ swm::AttributesDropped::NoRoom { .. }) =
@@ -984,33 +978,5 @@ impl From<EffortArg> for swm::Effort {
             EffortArg::Default => swm::Effort::Default,
             EffortArg::Max => swm::Effort::Max,
         }
-    }
-}
-
-/// `mode` with its size or rate replaced by `bytes`, if it has one and no
-/// cap below `bytes` (`--or-smallest`).
-fn at_size(mode: &swm::EncodeMode, bytes: u64) -> Option<swm::EncodeMode> {
-    let target = swm::SwingTarget::Bytes(bytes);
-    let fits = |cap: &Option<u64>| cap.is_none_or(|c| bytes <= c);
-    match *mode {
-        swm::EncodeMode::Auto { max_bytes, .. } if fits(&max_bytes) => {
-            Some(swm::EncodeMode::Auto { target, max_bytes })
-        }
-        swm::EncodeMode::Simplified { max_bytes, .. } if fits(&max_bytes) => {
-            Some(swm::EncodeMode::Simplified { target, max_bytes })
-        }
-        swm::EncodeMode::Displaced { max_bytes, .. } if fits(&max_bytes) => {
-            Some(swm::EncodeMode::Displaced { target, max_bytes })
-        }
-        swm::EncodeMode::Swing {
-            angle_bits,
-            max_bytes,
-            ..
-        } if fits(&max_bytes) => Some(swm::EncodeMode::Swing {
-            target,
-            angle_bits,
-            max_bytes,
-        }),
-        _ => None,
     }
 }

@@ -91,6 +91,7 @@ pub(crate) fn encode_attributed(
             check: None,
             origins: Vec::new(),
             attributes: Default::default(),
+            smallest_instead: None,
         },
     })
 }

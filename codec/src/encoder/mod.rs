@@ -99,14 +99,42 @@ pub(crate) fn encode_attributed(
     };
     let mut encoded = match coded.streams.is_empty() {
         true => encode(&mesh.mesh, options)?,
-        false => match encode_with(&mesh.mesh, Some(coded), options) {
+        // The streams' attempt answers the request or fails: when it is
+        // below their smallest file, the surface alone comes first (and
+        // then, with `or_smallest`, its smallest file).
+        false => match encode_with(
+            &mesh.mesh,
+            Some(coded),
+            &EncodeOptions {
+                or_smallest: false,
+                ..options.clone()
+            },
+        ) {
             // A size below the smallest file that keeps the streams: the
             // surface alone, and the report says why (a request is for
             // bytes; `--strict` makes the loss an error).
             // When the surface alone does not fit either, the error is the
             // streams' (its smallest file keeps them).
             Err(Error::Size(e)) => {
-                let mut encoded = match encode(&mesh.mesh, options) {
+                let strict = EncodeOptions {
+                    or_smallest: false,
+                    ..options.clone()
+                };
+                let mut encoded = match encode(&mesh.mesh, &strict) {
+                    // Below both smallest files, with `or_smallest`: the
+                    // request made again at the streams' smallest size,
+                    // once (what a user who did not ask for a size, or
+                    // asked for too few bytes, expects: the streams kept
+                    // where they can be, else the surface at that size).
+                    Err(Error::Size(_)) if options.or_smallest => {
+                        let Some(mode) = at_size(options.mode, e.smallest) else {
+                            return Err(e.into());
+                        };
+                        let again = EncodeOptions { mode, ..strict };
+                        let mut encoded = encode_attributed(mesh, &again)?;
+                        encoded.stats.smallest_instead = Some(e);
+                        return Ok(encoded);
+                    }
                     Err(Error::Size(_)) => return Err(e.into()),
                     other => other?,
                 };
@@ -177,6 +205,7 @@ fn encode_with(
                 check: None,
                 origins: Vec::new(),
                 attributes: AttributeReport::default(),
+                smallest_instead: None,
             },
         };
         Ok((encoded, made.seeds))
@@ -195,7 +224,9 @@ fn encode_with(
             target,
             angle_bits,
             max_bytes,
-        } => forced(&swing::Swing { angle_bits }, Ask { target, max_bytes })?,
+        } => sized(options, Ask { target, max_bytes }, |ask| {
+            forced(&swing::Swing { angle_bits }, ask)
+        })?,
         EncodeMode::Simplified { target, max_bytes } => {
             let ask = Ask { target, max_bytes };
             let search = match options.effort {
@@ -216,21 +247,27 @@ fn encode_with(
                     target::smallest_within(&job, bound, max_bytes, &list)?,
                 )?
             } else {
-                forced(&simplified::Simplified { search }, ask)?
+                sized(options, ask, |ask| {
+                    forced(&simplified::Simplified { search }, ask)
+                })?
             }
         }
         EncodeMode::Displaced { target, max_bytes } => {
-            forced(&displaced::Displaced::DEFAULT, Ask { target, max_bytes })?
+            sized(options, Ask { target, max_bytes }, |ask| {
+                forced(&displaced::Displaced::DEFAULT, ask)
+            })?
         }
         EncodeMode::Auto { target, max_bytes } => {
             let list = effort::methods(options.effort, cleaned.mesh.triangles.len());
-            let chosen = match target {
-                SwingTarget::MaxError(bound) => {
-                    target::smallest_within(&job, bound, max_bytes, &list)?
-                }
-                _ => choose::choose(&job, Ask { target, max_bytes }, &list)?,
-            };
-            finish(&cleaned, chosen)?
+            match target {
+                SwingTarget::MaxError(bound) => finish(
+                    &cleaned,
+                    target::smallest_within(&job, bound, max_bytes, &list)?,
+                )?,
+                _ => sized(options, Ask { target, max_bytes }, |ask| {
+                    finish(&cleaned, choose::choose(&job, ask, &list)?)
+                })?,
+            }
         }
     };
     // Every lossy file is decoded and measured once more, as
@@ -252,6 +289,65 @@ fn encode_with(
 /// The seeds of a file's origins (`method::Made::seeds`).
 type Seeds = Option<Vec<u32>>;
 
+/// `mode` with its size or rate replaced by `bytes`, if it has one and
+/// no cap below `bytes`.
+fn at_size(mode: EncodeMode, bytes: u64) -> Option<EncodeMode> {
+    let target = SwingTarget::Bytes(bytes);
+    let fits = |cap: Option<u64>| cap.is_none_or(|c| bytes <= c);
+    match mode {
+        EncodeMode::Auto { max_bytes, .. } if fits(max_bytes) => {
+            Some(EncodeMode::Auto { target, max_bytes })
+        }
+        EncodeMode::Simplified { max_bytes, .. } if fits(max_bytes) => {
+            Some(EncodeMode::Simplified { target, max_bytes })
+        }
+        EncodeMode::Displaced { max_bytes, .. } if fits(max_bytes) => {
+            Some(EncodeMode::Displaced { target, max_bytes })
+        }
+        EncodeMode::Swing {
+            angle_bits,
+            max_bytes,
+            ..
+        } if fits(max_bytes) => Some(EncodeMode::Swing {
+            target,
+            angle_bits,
+            max_bytes,
+        }),
+        _ => None,
+    }
+}
+
+/// `run` at `ask`; with [`EncodeOptions::or_smallest`], a size request
+/// below the smallest file is run again at that smallest size (any cap
+/// allowing), in the same job, and the file says so
+/// (`EncodeStats::smallest_instead`).
+fn sized(
+    options: &EncodeOptions,
+    ask: Ask,
+    run: impl Fn(Ask) -> Result<(Encoded, Seeds), Error>,
+) -> Result<(Encoded, Seeds), Error> {
+    let is_size = matches!(
+        ask.target,
+        SwingTarget::Bytes(_) | SwingTarget::BitsPerVertex(_)
+    );
+    match run(ask) {
+        Err(Error::Size(e))
+            if options.or_smallest
+                && is_size
+                && ask.max_bytes.is_none_or(|cap| e.smallest <= cap) =>
+        {
+            let again = Ask {
+                target: SwingTarget::Bytes(e.smallest),
+                ..ask
+            };
+            let (mut encoded, seeds) = run(again)?;
+            encoded.stats.smallest_instead = Some(e);
+            Ok((encoded, seeds))
+        }
+        other => other,
+    }
+}
+
 /// The chooser's file as the encoder's result, and its seeds.
 fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<(Encoded, Seeds), Error> {
     let encoded = Encoded {
@@ -263,6 +359,7 @@ fn finish(cleaned: &crate::Cleaned, chosen: choose::Chosen) -> Result<(Encoded, 
             check: None,
             origins: Vec::new(),
             attributes: AttributeReport::default(),
+            smallest_instead: None,
         },
     };
     Ok((encoded, chosen.seeds))

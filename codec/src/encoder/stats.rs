@@ -261,6 +261,10 @@ pub struct EncodeStats {
     /// ([`encode_attributed`](crate::encode_attributed)): empty for an
     /// input without any.
     pub attributes: AttributeReport,
+    /// The request the file could not meet, when
+    /// [`EncodeOptions::or_smallest`](crate::EncodeOptions) wrote the
+    /// smallest file instead: the size asked for and that smallest size.
+    pub smallest_instead: Option<crate::SizeError>,
 }
 
 /// What an encode did with the input's attribute streams (issue 47):

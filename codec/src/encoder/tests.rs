@@ -112,3 +112,63 @@ fn a_method_is_one_module_and_one_line_in_the_list() {
     assert_eq!(without.candidates.len(), 1);
     assert_eq!(without.candidates[0].method, Method::Simplified);
 }
+
+#[test]
+fn or_smallest_writes_the_file_of_the_smallest_size_in_the_same_encode() {
+    let mesh = crate::mesh::test_shapes::uv_sphere(12, 12);
+    for mode in [
+        crate::EncodeMode::Auto {
+            target: SwingTarget::Bytes(10),
+            max_bytes: None,
+        },
+        crate::EncodeMode::Simplified {
+            target: SwingTarget::Bytes(10),
+            max_bytes: None,
+        },
+    ] {
+        let strict = EncodeOptions {
+            mode,
+            effort: crate::Effort::Fast,
+            ..Default::default()
+        };
+        let Err(Error::Size(e)) = crate::encode(&mesh, &strict) else {
+            panic!("10 bytes cannot hold a sphere");
+        };
+        let or_smallest = EncodeOptions {
+            or_smallest: true,
+            ..strict.clone()
+        };
+        let written = crate::encode(&mesh, &or_smallest).unwrap();
+        assert_eq!(written.stats.smallest_instead, Some(e));
+        // The same file as asking for that size outright.
+        let at = EncodeOptions {
+            mode: super::at_size(mode, e.smallest).unwrap(),
+            ..strict.clone()
+        };
+        assert_eq!(written.bytes, crate::encode(&mesh, &at).unwrap().bytes);
+        // A request that fits is untouched, and a cap below still fails.
+        let fits = EncodeOptions {
+            mode: super::at_size(mode, 4 * e.smallest).unwrap(),
+            ..or_smallest.clone()
+        };
+        assert_eq!(
+            crate::encode(&mesh, &fits).unwrap().stats.smallest_instead,
+            None
+        );
+        let capped = EncodeOptions {
+            mode: match mode {
+                crate::EncodeMode::Auto { target, .. } => crate::EncodeMode::Auto {
+                    target,
+                    max_bytes: Some(10),
+                },
+                crate::EncodeMode::Simplified { target, .. } => crate::EncodeMode::Simplified {
+                    target,
+                    max_bytes: Some(10),
+                },
+                other => other,
+            },
+            ..or_smallest.clone()
+        };
+        assert!(matches!(crate::encode(&mesh, &capped), Err(Error::Size(_))));
+    }
+}
