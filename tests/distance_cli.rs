@@ -278,3 +278,116 @@ fn distances_do_not_depend_on_the_units() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A flat n x n grid in the xy plane as OBJ text, its texture coordinates
+/// the positions scaled to [0, 1] with `shift` added to u, or none.
+fn uv_grid_obj(n: usize, shift: Option<f64>) -> String {
+    let mut s = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            s += &format!("v {} {} 0\n", i as f64 / n as f64, j as f64 / n as f64);
+        }
+    }
+    if let Some(d) = shift {
+        for j in 0..=n {
+            for i in 0..=n {
+                s += &format!("vt {} {}\n", i as f64 / n as f64 + d, j as f64 / n as f64);
+            }
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i + 1;
+            let (b, c, d) = (a + 1, a + n + 1, a + n + 2);
+            if shift.is_some() {
+                s += &format!("f {a}/{a} {b}/{b} {d}/{d}\nf {a}/{a} {d}/{d} {c}/{c}\n");
+            } else {
+                s += &format!("f {a} {b} {d}\nf {a} {d} {c}\n");
+            }
+        }
+    }
+    s
+}
+
+#[test]
+fn texcoords_measure_the_uv_shift_in_texels() {
+    let dir = scratch("distance-texcoords");
+    let grid = dir.join("grid.obj");
+    let shifted = dir.join("shifted.obj");
+    let bare = dir.join("bare.obj");
+    std::fs::write(&grid, uv_grid_obj(16, Some(0.0))).unwrap();
+    std::fs::write(&shifted, uv_grid_obj(16, Some(0.01))).unwrap();
+    std::fs::write(&bare, uv_grid_obj(16, None)).unwrap();
+
+    let same = json(&swm(&[
+        "distance",
+        s(&grid),
+        s(&grid),
+        "--texcoords",
+        "--json",
+    ]));
+    let t = &same["texcoords"];
+    assert!(t["rms_texels"].as_f64().unwrap() <= 1e-3, "{same}");
+    assert!(t["max_texels"].as_f64().unwrap() <= 1e-3, "{same}");
+    assert_eq!(t["texture_size"].as_u64(), Some(1024), "{same}");
+    assert!(t["samples"].as_u64().unwrap() > 0, "{same}");
+
+    // Moved by 0.01 in u: 0.01 * 1024 = 10.24 texels everywhere, the
+    // geometry unchanged.
+    let expected = 0.01 * 1024.0;
+    let v = json(&swm(&[
+        "distance",
+        s(&grid),
+        s(&shifted),
+        "--texcoords",
+        "--json",
+    ]));
+    let t = &v["texcoords"];
+    for key in ["rms_texels", "max_texels"] {
+        let x = t[key].as_f64().unwrap();
+        assert!((x - expected).abs() < 0.05 * expected, "{key} {x}: {v}");
+    }
+    assert!(v["l2_relative"].as_f64().unwrap() <= 1e-9, "{v}");
+    // At another texture size the texels scale with it.
+    let v = json(&swm(&[
+        "distance",
+        s(&grid),
+        s(&shifted),
+        "--texcoords",
+        "--texture-size",
+        "2048",
+        "--json",
+    ]));
+    let x = v["texcoords"]["rms_texels"].as_f64().unwrap();
+    assert!((x - 2.0 * expected).abs() < 0.1 * expected, "{v}");
+    assert_eq!(v["texcoords"]["texture_size"].as_u64(), Some(2048), "{v}");
+    // The text report says it on one line.
+    let text = ok(&swm(&["distance", s(&grid), s(&shifted), "--texcoords"]));
+    let line = text
+        .lines()
+        .find(|l| l.contains("texture coordinates:"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        line.contains("texels") && line.contains("1024x1024"),
+        "{line}"
+    );
+    // Without --texcoords, no key.
+    let v = json(&swm(&["distance", s(&grid), s(&shifted), "--json"]));
+    assert!(v.get("texcoords").is_none(), "{v}");
+
+    // A mesh without texture coordinates, on either side: one line naming it.
+    for (a, b) in [(&grid, &bare), (&bare, &grid)] {
+        let out = swm(&["distance", s(a), s(b), "--texcoords"]);
+        assert_eq!(out.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with(&format!("swm: error: {}:", bare.display()))
+                && err.contains("texture coordinates"),
+            "{err}"
+        );
+    }
+    // --texture-size needs --texcoords.
+    let out = swm(&["distance", s(&grid), s(&grid), "--texture-size", "512"]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -1,5 +1,7 @@
-//! `swm distance A B [--samples N] [--sampling metro|faces] [--json]`: how far mesh B lies from
-//! mesh A, as Metro measures it (see `swm::metrics`).
+//! `swm distance A B [--samples N] [--sampling metro|faces] [--texcoords
+//! [--texture-size N]] [--json]`: how far mesh B lies from mesh A, as Metro
+//! measures it (see `swm::metrics`), and with `--texcoords` how far B's
+//! texture coordinates are from A's, in texels (`swm::metrics::texcoord`).
 //!
 //! A is the reference: relative values divide by A's bounding-box
 //! diagonal, and "forward" means samples on A measured against B
@@ -43,17 +45,74 @@ pub struct Args {
     /// samples, mean, rms and max.
     #[arg(long)]
     json: bool,
+    /// Also measure B's texture coordinates (set 0) against A's, in texels
+    /// of a square texture (`--texture-size`): at points over B's surface,
+    /// B's coordinate against A's at the nearest point of A. Both meshes
+    /// must have texture coordinates.
+    #[arg(long)]
+    texcoords: bool,
+    /// The side of the square texture, in texels, the `--texcoords` error
+    /// is stated in.
+    #[arg(long, default_value_t = 1024, requires = "texcoords",
+          value_parser = clap::value_parser!(u32).range(1..))]
+    texture_size: u32,
+}
+
+/// The texture coordinate error of `--texcoords`, at the asked texture size.
+struct Texcoords {
+    rms_texels: f64,
+    max_texels: f64,
+    texture_size: u32,
+    samples: u64,
 }
 
 pub fn run(args: &Args) -> Result<(), CliError> {
-    // Each file is read and prepared on its own so an error names it.
-    let prepare = |path: &PathBuf| {
-        swm::io::read_mesh(path)
-            .and_then(|m| Surface::new(&m))
-            .map_err(|e| CliError::new(path, e))
+    // Each file is read and prepared on its own so an error names it. With
+    // `--texcoords` the attribute streams are kept; the mesh is the same
+    // one either way (`swm::io::read_attributed_mesh_with`).
+    let prepare = |path: &PathBuf| -> Result<(Surface, Option<swm::AttributedMesh>), CliError> {
+        let err = |e| CliError::new(path, e);
+        if args.texcoords {
+            let limits = swm::Limits::default();
+            let (m, _) = swm::io::read_attributed_mesh_with(path, None, &limits).map_err(err)?;
+            if m.stream(swm::AttributeKind::TexCoord(0)).is_none() {
+                return Err(crate::error::fail(
+                    path,
+                    "no texture coordinates (--texcoords needs them in both meshes)",
+                ));
+            }
+            let surface = Surface::new(&m.mesh).map_err(err)?;
+            Ok((surface, Some(m)))
+        } else {
+            let m = swm::io::read_mesh(path).map_err(err)?;
+            Ok((Surface::new(&m).map_err(err)?, None))
+        }
     };
     let (a, b) = rayon::join(|| prepare(&args.reference), || prepare(&args.other));
-    let (a, b) = (a?, b?);
+    let ((a, a_mesh), (b, b_mesh)) = (a?, b?);
+    let texcoords = match (&a_mesh, &b_mesh) {
+        (Some(am), Some(bm)) => {
+            let e = swm::metrics::texcoord::texcoord_error(am, &a, bm).ok_or_else(|| {
+                crate::error::fail(
+                    &args.other,
+                    "texture coordinates not comparable with the reference's \
+                     (different component counts, or no faces measured)",
+                )
+            })?;
+            // The library states texels at a fixed size
+            // (`swm::metrics::texcoord::TEXTURE_SIZE`, 1024, carried in
+            // `texture_size`): the error in texture-coordinate units times
+            // the size, so another size scales it by N / that size.
+            let scale = f64::from(args.texture_size) / e.texture_size;
+            Some(Texcoords {
+                rms_texels: e.rms_texels * scale,
+                max_texels: e.max_texels * scale,
+                texture_size: args.texture_size,
+                samples: e.samples,
+            })
+        }
+        _ => None,
+    };
     let metro = args.sampling == Sampling::Metro;
     let options = DistanceOptions {
         face_samples: args.samples,
@@ -65,7 +124,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .map_err(|e| CliError::new(&args.reference, e))?;
     if args.json {
         let side = |s: &OneSided| json!({ "samples": s.samples, "mean": s.mean, "rms": s.rms, "max": s.max });
-        let v = json!({
+        let mut v = json!({
             "l2": d.l2(),
             "hausdorff": d.hausdorff(),
             "mean": d.mean(),
@@ -75,6 +134,14 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "forward": side(&d.forward),
             "backward": side(&d.backward),
         });
+        if let Some(t) = &texcoords {
+            v["texcoords"] = json!({
+                "rms_texels": t.rms_texels,
+                "max_texels": t.max_texels,
+                "texture_size": t.texture_size,
+                "samples": t.samples,
+            });
+        }
         crate::report::print_json(&v);
         return Ok(());
     }
@@ -107,6 +174,15 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             s.mean,
             s.rms,
             s.max
+        );
+    }
+    if let Some(t) = &texcoords {
+        say!(
+            "  texture coordinates: RMS {:.3} texels, max {:.3} texels (at {n}x{n}, {} points)",
+            t.rms_texels,
+            t.max_texels,
+            t.samples,
+            n = t.texture_size
         );
     }
     Ok(())
