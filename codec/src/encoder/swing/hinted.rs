@@ -109,7 +109,7 @@ impl Request {
 
     /// The largest file that answers a size request: within rate
     /// control's tolerance above it, and never over the cap.
-    fn limit(&self, b: u64) -> u64 {
+    pub(crate) fn limit(&self, b: u64) -> u64 {
         let tolerated = (b as f64 * (1.0 + rate::TOLERANCE)).floor() as u64;
         self.max_bytes.map_or(tolerated, |cap| cap.min(tolerated))
     }
