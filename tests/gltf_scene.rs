@@ -495,6 +495,77 @@ fn a_size_is_split_and_gltf_output_with_fallback_decodes_the_same() {
     assert!(pdoc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"].is_u64());
 }
 
+/// A scene whose largest primitive by area is two triangles: the
+/// budget its share leaves unspent goes to the detailed one (the split
+/// is filled like water), so the scene spends what it was given.
+#[test]
+fn a_share_one_primitive_cannot_use_goes_to_the_others() {
+    let dir = scratch("gltf-scene-water");
+    let mut b = Builder::default();
+    let quad: Vec<f32> = vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+    let p0 = b.floats(&quad, "VEC3", Some(34962), true);
+    let i0 = b.indices(&[[0, 1, 2], [0, 2, 3]]);
+    // A bumpy ball: a regular sphere codes whole in a few bytes a face.
+    let ball = swm_corpus::icosphere(1.0, 5);
+    let mut seed = 12345u32;
+    let pos: Vec<f32> = (ball.positions.iter())
+        .flat_map(|p| {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            let r = 1.0 + 0.05 * (seed >> 8) as f32 / (1u32 << 24) as f32;
+            p.map(|c| c * r)
+        })
+        .collect();
+    let p1 = b.floats(&pos, "VEC3", Some(34962), true);
+    let i1 = b.indices(&ball.triangles);
+    let doc = json!({
+        "asset": { "version": "2.0" },
+        "scene": 0,
+        "scenes": [{ "nodes": [0, 1] }],
+        "nodes": [
+            { "name": "floor", "mesh": 0, "scale": [40.0, 40.0, 1.0] },
+            { "name": "ball", "mesh": 1 }
+        ],
+        "meshes": [
+            { "primitives": [{ "attributes": { "POSITION": p0 }, "indices": i0 }] },
+            { "primitives": [{ "attributes": { "POSITION": p1 }, "indices": i1 }] }
+        ],
+        "accessors": b.accessors,
+        "bufferViews": b.views,
+        "buffers": [{ "byteLength": b.bin.len() }]
+    });
+    let input = dir.join("scene.glb");
+    std::fs::write(&input, glb(&doc, &b.bin)).unwrap();
+    let size = 8_000u64;
+    let report = json(&swm(&[
+        "encode",
+        s(&input),
+        "-o",
+        s(&dir.join("out.glb")),
+        "--size",
+        &size.to_string(),
+        "--json",
+    ]));
+    let prims = report["primitives"].as_array().unwrap();
+    let bytes: Vec<u64> = prims.iter().map(|p| p["bytes"].as_u64().unwrap()).collect();
+    let shares: Vec<u64> = prims.iter().map(|p| p["share"].as_u64().unwrap()).collect();
+    // The floor is whole in a few dozen bytes; the ball gets the rest.
+    assert_eq!(prims[0]["triangles"], 2);
+    assert!(
+        prims[1]["triangles"].as_u64().unwrap() < prims[1]["input_triangles"].as_u64().unwrap()
+    );
+    let spent: u64 = bytes.iter().sum();
+    assert!(
+        spent * 10 >= size * 9 && spent <= size * 103 / 100,
+        "{spent} of {size}: {prims:?}"
+    );
+    // Shares: what the floor took, and the rest of the budget.
+    assert_eq!(shares[0], bytes[0]);
+    assert!(
+        shares.iter().sum::<u64>() <= size && shares.iter().sum::<u64>() + 2 >= size,
+        "{shares:?}"
+    );
+}
+
 /// The Khronos glTF-Validator's error count for each file (npm package
 /// `gltf-validator`, installed by `.ci/setup-gltf-validator`), and its
 /// report's messages; `None` (a reported skip) without Node or the package.

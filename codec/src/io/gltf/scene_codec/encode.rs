@@ -27,7 +27,10 @@
 //! when no node of the scene does), the area a uniform retiling's
 //! triangle count follows, and `F` the bytes of a file's own frame. A
 //! primitive whose share is below its smallest file gets that smallest
-//! file (and says so). An error bound or an edge length applies to every
+//! file (and says so). The split is filled like water: a primitive whose
+//! file is at most 90% of its share keeps it, its share becomes what it
+//! took, and the others are coded again at their shares of what is left
+//! (at most [`SPLIT_ROUNDS`] rounds). An error bound or an edge length applies to every
 //! primitive as it is, relative to each one's own bounding box.
 //!
 //! Invariants: the output's accessors of a coded primitive are filled
@@ -53,6 +56,9 @@ use std::path::Path;
 /// Bytes a file of its own spends on its frame and header, added to each
 /// primitive's share (as `encoder::mixed::FRAME`).
 const FRAME: u64 = 40;
+/// Rounds of the budget's split at most (`code`): each codes the
+/// primitives still open again.
+const SPLIT_ROUNDS: u32 = 3;
 
 /// What [`encode_scene`] is asked.
 #[derive(Clone, Debug, PartialEq)]
@@ -393,19 +399,12 @@ fn code(
         return Ok((out, budget));
     }
     let weights = areas(input, read, &lossy)?;
-    let total: f64 = weights.iter().sum();
-    let left = budget.map(|b| b.saturating_sub(spent));
-    let n = lossy.len() as u64;
-    for (j, &i) in lossy.iter().enumerate() {
-        let Ok(m) = &read[i].2 else { continue };
-        let share = left.map(|b| {
-            let w = if total > 0.0 {
-                weights[j] / total
-            } else {
-                1.0 / n as f64
-            };
-            FRAME + (b.saturating_sub(n * FRAME) as f64 * w) as u64
-        });
+    // Each lossy primitive coded at `share` bytes (or at the mode's own
+    // target without a budget).
+    let code_at = |i: usize, share: Option<u64>| -> Result<Outcome, Error> {
+        let Ok(m) = &read[i].2 else {
+            return Ok(Err(Uncoded::NoTriangles));
+        };
         let target = match (share, target(mode)) {
             (Some(s), _) => SwingTarget::Bytes(s),
             (None, Some(t)) => t,
@@ -443,7 +442,56 @@ fn code(
             o.mode = aimed(mode, SwingTarget::Bytes(smallest));
             encoded = encode(&o);
         }
-        out[i] = failed(encoded)?.map(|e| (e.bytes, e.stats.chosen(), share));
+        Ok(failed(encoded)?.map(|e| (e.bytes, e.stats.chosen(), share)))
+    };
+    // The split, filled like water: the budget left goes to the
+    // primitives still open in proportion to their areas; one whose file
+    // comes out well under its share (it is whole at the finest grid, or
+    // its method found nothing better to spend on) keeps that file and
+    // its share becomes what it took, and the others are coded again at
+    // their shares of what is left, at most `SPLIT_ROUNDS` times. Without
+    // this, a scene whose largest primitive by area is a small mesh left
+    // most of its budget unspent (the shared-corpus scene at 108 KB: 30
+    // KB written, the bunny coarse at 5.8 KB).
+    let mut open: Vec<usize> = (0..lossy.len()).collect();
+    let mut left = budget.map(|b| b.saturating_sub(spent));
+    for round in 1..=SPLIT_ROUNDS {
+        let total: f64 = open.iter().map(|&j| weights[j]).sum();
+        let n = open.len() as u64;
+        let mut coded = Vec::with_capacity(open.len());
+        for &j in &open {
+            let share = left.map(|b| {
+                let w = if total > 0.0 {
+                    weights[j] / total
+                } else {
+                    1.0 / n as f64
+                };
+                FRAME + (b.saturating_sub(n * FRAME) as f64 * w) as u64
+            });
+            coded.push(code_at(lossy[j], share)?);
+        }
+        let under = |o: &Outcome| match o {
+            Ok((bytes, _, Some(share))) => 10 * bytes.len() as u64 <= 9 * share,
+            _ => false,
+        };
+        let all_under = coded.iter().all(under);
+        if round == SPLIT_ROUNDS || all_under || !coded.iter().any(under) {
+            for (&j, o) in open.iter().zip(coded) {
+                out[lossy[j]] = o;
+            }
+            break;
+        }
+        let mut still = Vec::with_capacity(open.len());
+        for (&j, o) in open.iter().zip(coded) {
+            if under(&o) {
+                let took = o.as_ref().map_or(0, |r| r.0.len() as u64);
+                left = left.map(|b| b.saturating_sub(took));
+                out[lossy[j]] = o.map(|(bytes, method, _)| (bytes, method, Some(took)));
+            } else {
+                still.push(j);
+            }
+        }
+        open = still;
     }
     Ok((out, budget))
 }
