@@ -160,8 +160,7 @@ pub(crate) fn decode_attributed(
     let file = parse_container(bytes, &options.limits)?;
     // Post-processing asked for by name changes the mesh the streams
     // were coded over: it is run, and the streams are left out.
-    let asked = options.sharpen == Some(true) || options.bend_steps.is_some_and(|b| b > 0);
-    if asked {
+    if options.post_processing_asked() {
         return decode_container(&file, options).map(Into::into);
     }
     if let Some(attr) = file.find(crate::container::Tag::ATTR) {

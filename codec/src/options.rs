@@ -365,4 +365,13 @@ impl DecodeOptions {
             ..Default::default()
         }
     }
+
+    /// Whether post-processing is asked for by name (EdgeSharpener on,
+    /// or Bender steps), whatever the file's hint. Such a mesh is not the
+    /// one a file's attribute streams were coded over, so
+    /// [`decode_attributed`](crate::decode_attributed) gives it without
+    /// them; every front door applies this one rule.
+    pub fn post_processing_asked(&self) -> bool {
+        self.sharpen == Some(true) || self.bend_steps.is_some_and(|b| b > 0)
+    }
 }

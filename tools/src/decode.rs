@@ -105,8 +105,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // plain mesh. Post-processing asked for by name changes the mesh the
     // streams were coded over: the mesh is post-processed, and the
     // streams are not written; the warning says so.
-    let asked = sharpen == Some(true) || args.bend.is_some_and(|b| b > 0);
-    let streams = asked
+    let streams = options.post_processing_asked()
         && swm::container::parse_container(&bytes, &options.limits)
             .is_ok_and(|f| f.find(swm::container::Tag::ATTR).is_some());
     if streams {
