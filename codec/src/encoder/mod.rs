@@ -97,29 +97,21 @@ pub(crate) fn encode_attributed(
         }
         None => mesh,
     };
+    // The streams' attempt and the surface's answer the request or fail
+    // (`or_smallest` is applied below, once both have failed).
+    let strict = EncodeOptions {
+        or_smallest: false,
+        ..options.clone()
+    };
     let mut encoded = match coded.streams.is_empty() {
         true => encode(&mesh.mesh, options)?,
-        // The streams' attempt answers the request or fails: when it is
-        // below their smallest file, the surface alone comes first (and
-        // then, with `or_smallest`, its smallest file).
-        false => match encode_with(
-            &mesh.mesh,
-            Some(coded),
-            &EncodeOptions {
-                or_smallest: false,
-                ..options.clone()
-            },
-        ) {
+        false => match encode_with(&mesh.mesh, Some(coded), &strict) {
             // A size below the smallest file that keeps the streams: the
             // surface alone, and the report says why (a request is for
             // bytes; `--strict` makes the loss an error).
             // When the surface alone does not fit either, the error is the
             // streams' (its smallest file keeps them).
             Err(Error::Size(e)) => {
-                let strict = EncodeOptions {
-                    or_smallest: false,
-                    ..options.clone()
-                };
                 let mut encoded = match encode(&mesh.mesh, &strict) {
                     // Below both smallest files, with `or_smallest`: the
                     // request made again at the streams' smallest size,

@@ -422,13 +422,12 @@ fn code(
             true => crate::encode(&m.mesh, o),
             false => crate::encode_attributed(m, o),
         };
-        let mut encoded = match encode(&o) {
-            Err(Error::Size(e)) => {
-                o.mode = aimed(mode, SwingTarget::Bytes(e.smallest));
-                encode(&o)
-            }
-            other => other,
-        };
+        // A share below the smallest file: that file, searched again in
+        // the same encode (`EncodeOptions::or_smallest`).
+        let mut encoded = encode(&EncodeOptions {
+            or_smallest: true,
+            ..o.clone()
+        });
         // A share too small for the streams: the smallest file with them.
         let no_room =
             encoded
@@ -474,8 +473,7 @@ fn code(
             Ok((bytes, _, Some(share))) => 10 * bytes.len() as u64 <= 9 * share,
             _ => false,
         };
-        let all_under = coded.iter().all(under);
-        if round == SPLIT_ROUNDS || all_under || !coded.iter().any(under) {
+        if round == SPLIT_ROUNDS || coded.iter().all(under) || !coded.iter().any(under) {
             for (&j, o) in open.iter().zip(coded) {
                 out[lossy[j]] = o;
             }
