@@ -18,9 +18,12 @@
 //! is smooth. A crease with split normals puts its corners tens of
 //! degrees off, so a part with hard edges keeps them.
 
-use crate::vertex_normals;
 use crate::{AttributeKind, AttributedMesh};
 use glam::DVec3;
+use rayon::prelude::*;
+
+/// Triangles per block of the angle sum (its order is fixed by them).
+const BLOCK: usize = 8192;
 
 /// The largest RMS angle (degrees) between a mesh's normals and its
 /// geometry's that counts as following the geometry. Scanner and
@@ -39,21 +42,38 @@ pub(crate) fn smooth_normals(mesh: &AttributedMesh) -> Option<f64> {
     if stream.dims != 3 {
         return None;
     }
-    let geometric = vertex_normals(&mesh.mesh);
-    let (mut sum, mut n) = (0.0f64, 0u64);
-    for (t, c) in mesh.mesh.triangles.iter().zip(&stream.corners) {
-        for k in 0..3 {
-            let g = DVec3::from(geometric.get(t[k] as usize)?.map(f64::from));
-            let at = c[k] as usize * 3;
-            let v = stream.values.get(at..at + 3)?;
-            let v = DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
-            if g == DVec3::ZERO || v == DVec3::ZERO {
-                continue;
+    let geometric = crate::mesh::vertex_normals_par(&mesh.mesh);
+    // Summed per block of triangles on all cores, the blocks' sums added
+    // in order: the same figure at any thread count.
+    let corners = mesh
+        .mesh
+        .triangles
+        .par_chunks(BLOCK)
+        .zip(stream.corners.par_chunks(BLOCK));
+    let blocks: Option<Vec<(f64, u64)>> = corners
+        .map(|(ts, cs)| {
+            let (mut sum, mut n) = (0.0f64, 0u64);
+            for (t, c) in ts.iter().zip(cs) {
+                for k in 0..3 {
+                    let g = DVec3::from(geometric.get(t[k] as usize)?.map(f64::from));
+                    let at = c[k] as usize * 3;
+                    let v = stream.values.get(at..at + 3)?;
+                    let v = DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
+                    if g == DVec3::ZERO || v == DVec3::ZERO {
+                        continue;
+                    }
+                    let angle = g.angle_between(v).to_degrees();
+                    sum += angle * angle;
+                    n += 1;
+                }
             }
-            let angle = g.angle_between(v).to_degrees();
-            sum += angle * angle;
-            n += 1;
-        }
+            Some((sum, n))
+        })
+        .collect();
+    let (mut sum, mut n) = (0.0f64, 0u64);
+    for (s, k) in blocks? {
+        sum += s;
+        n += k;
     }
     if n == 0 {
         return None;

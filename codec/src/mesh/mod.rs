@@ -27,6 +27,8 @@ pub use attributes::{AttributeKind, AttributeStream, AttributedMesh};
 pub(crate) use corner::corners_by_vertex;
 pub use corner::CornerTable;
 pub use ids::{CornerId, FaceId, VertexId};
+#[cfg(feature = "encoder")]
+pub(crate) use normals::vertex_normals_par;
 pub use normals::{vertex_normals, vertex_normals_into};
 pub use topology::{Component, MeshStats};
 pub use trimesh::TriMesh;
