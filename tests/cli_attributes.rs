@@ -412,6 +412,50 @@ fn a_size_below_the_smallest_file_with_the_streams_keeps_the_surface_and_says_so
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// beetle's crease normals (12.1° RMS off its geometry's own) at 454
+/// bytes would leave its surface 443e-4 of the diagonal off: the file
+/// without them is written, with a warning that says why and how to keep
+/// them; `--strict` refuses, `--keep-normals` keeps them, and a size
+/// with room for both keeps them.
+#[test]
+fn normals_that_crowd_the_surface_out_are_dropped_with_a_warning() {
+    let Some(corpus) = shared_corpus() else {
+        return;
+    };
+    let dir = scratch("attributes-costly-normals");
+    let file = dir.join("beetle.obj");
+    std::fs::copy(corpus.join("beetle.obj"), &file).unwrap();
+    let out = encode(&file, &["--size", "454"]);
+    let warned = warnings(&out);
+    assert!(
+        warned.iter().any(|w| w.contains("the input's normals are not kept (the normals (12.1 degrees RMS off the geometry's) cost the surface more than they give at this size")
+            && w.ends_with("--keep-normals keeps them)")),
+        "{warned:?}"
+    );
+    let decoded = swm::decode_attributed(
+        &std::fs::read(file.with_extension("swm")).unwrap(),
+        &Default::default(),
+    )
+    .unwrap();
+    assert!(decoded.streams.is_empty());
+    let v = json(&encode(&file, &["--size", "454", "--json"]));
+    assert_eq!(v["attribute_report"]["dropped"], json!(["normals"]));
+    let l2 = v["check"]["l2_relative"].as_f64().unwrap();
+    let kept = json(&encode(
+        &file,
+        &["--size", "454", "--keep-normals", "--json"],
+    ));
+    assert_eq!(kept["attribute_report"]["kept"], json!(["normals"]));
+    assert!(l2 * 4.0 < kept["check"]["l2_relative"].as_f64().unwrap());
+    std::fs::remove_file(file.with_extension("swm")).unwrap();
+    let out = encode(&file, &["--size", "454", "--strict"]);
+    assert!(!out.status.success());
+    assert!(!file.with_extension("swm").exists(), "nothing written");
+    let v = json(&encode(&file, &["--size", "4600", "--json"]));
+    assert_eq!(v["attribute_report"]["kept"], json!(["normals"]));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// An edge length asks for SwingWrapper, which keeps no texture
 /// coordinates: the automatic mode says so and names both ways out, and
 /// forcing the method encodes (dropping them, with a warning).

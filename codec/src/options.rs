@@ -197,11 +197,14 @@ pub struct EncodeOptions {
     /// ([`encode_attributed`](crate::encode_attributed)). Default:
     /// Draco's defaults, see [`AttributeQuantization`].
     pub attributes: AttributeQuantization,
-    /// Keep an input's normals in a lossy file even where they follow
-    /// the geometry (`encode_attributed`): by default such normals
-    /// (within `encoder::smooth::SMOOTH_NORMAL_DEGREES` RMS of the
-    /// geometry's own) are not coded, as a decoder recomputes them from
-    /// the decoded surface, and the report says so. Default `false`.
+    /// Keep an input's normals in a lossy file wherever the size allows
+    /// them (`encode_attributed`): by default normals that follow the
+    /// geometry (within `encoder::smooth::SMOOTH_NORMAL_DEGREES` RMS of
+    /// its own) are not coded, as a decoder recomputes them from the
+    /// decoded surface, and others are dropped where they cost the
+    /// surface more than they give at the size asked for
+    /// ([`AttributesDropped::CostlyNormals`](crate::AttributesDropped));
+    /// the report says so. Default `false`.
     pub keep_smooth_normals: bool,
     /// When the size asked for (a `Bytes` or `BitsPerVertex` target) is
     /// below the smallest file the mode can write, write that smallest

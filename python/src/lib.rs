@@ -380,6 +380,14 @@ fn attribute_report<'py>(
                     d.set_item("reason", "smooth_normals")?;
                     d.set_item("rms_degrees", rms_degrees)?;
                 }
+                swm::AttributesDropped::CostlyNormals {
+                    rms_degrees,
+                    l2_kept,
+                } => {
+                    d.set_item("reason", "costly_normals")?;
+                    d.set_item("rms_degrees", rms_degrees)?;
+                    d.set_item("l2_kept", l2_kept)?;
+                }
                 swm::AttributesDropped::NoRoom { smallest } => {
                     d.set_item("reason", "no_room")?;
                     d.set_item("smallest", smallest)?;

@@ -281,6 +281,9 @@ def encode(
     dict whose ``reason`` is ``"smooth_normals"`` (the normals follow the
     geometry within ``rms_degrees`` RMS, so a lossy file leaves them to
     the decoder to recompute; ``keep_normals=True`` keeps them),
+    ``"costly_normals"`` (normals of their own that, at this size, cost
+    the surface more than they give; ``l2_kept`` is the L2 of the file
+    that kept them; ``keep_normals=True`` keeps them),
     ``"no_room"`` (the size is below ``smallest``, the smallest file
     that keeps them) or ``"method"`` (a ``method`` whose file cannot
     carry them), with the library's sentence in ``message``;

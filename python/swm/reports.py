@@ -33,6 +33,12 @@ class AttributesDropped(_DroppedBase, total=False):
       (within ``rms_degrees`` RMS): decoders recompute them from the
       decoded surface, so a lossy file does not code them
       (``keep_normals=True`` codes them);
+    * ``"costly_normals"``: the input's normals do not follow its
+      geometry (``rms_degrees`` RMS off it), but at the size asked for
+      they cost the surface more than they give: the file that kept them
+      was ``l2_kept`` (relative L2) off the input, more than the file
+      without them plus their error at 1e-4 of the diagonal a degree
+      (``keep_normals=True`` keeps them);
     * ``"no_room"``: the size asked for is below ``smallest``, the
       smallest file that keeps them, so the file codes the surface alone;
     * ``"method"``: the ``method`` that made the file cannot carry them
@@ -44,6 +50,7 @@ class AttributesDropped(_DroppedBase, total=False):
     """
 
     rms_degrees: float
+    l2_kept: float
     smallest: int
     method: str
 

@@ -356,3 +356,20 @@ def test_read_attributes_of_the_shared_corpus(shared_corpus: Path, swm_bin, tmp_
         run_cli(swm_bin, "encode", shared_corpus / name, "-o", tmp_path / "m.swm", "--mode", "lossless")
         assert swm.encode(v, f, attributes=attrs, mode="lossless") == (tmp_path / "m.swm").read_bytes(), name
 
+
+
+def test_normals_that_crowd_the_surface_out(shared_corpus: Path, swm_bin, tmp_path: Path):
+    """beetle's crease normals at 454 bytes: the file without them, the
+    reason and its figures in the report, the CLI's bytes; kept when
+    asked to."""
+    v, f, attrs = swm.read(shared_corpus / "beetle.obj", attributes=True)
+    data, report = swm.encode(v, f, attributes=attrs, size=454, report=True)
+    why = report["attributes"]["dropped_because"]
+    assert report["attributes"]["dropped"] == ["normals"]
+    assert why["reason"] == "costly_normals"
+    assert 10.0 < why["rms_degrees"] < 15.0
+    assert why["l2_kept"] > 4 * report["check"]["l2_relative"]
+    run_cli(swm_bin, "encode", shared_corpus / "beetle.obj", "-o", tmp_path / "b.swm", "--size", "454")
+    assert data == (tmp_path / "b.swm").read_bytes()
+    _, kept = swm.encode(v, f, attributes=attrs, size=454, keep_normals=True, report=True)
+    assert kept["attributes"]["kept"] == ["normals"]

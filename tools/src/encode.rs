@@ -455,15 +455,20 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             encoded.bytes.len()
         );
     }
-    // Streams dropped for want of room: a loss, said on standard error
-    // (an error with --strict).
-    if let Some(why @ swm::AttributesDropped::NoRoom { .. }) =
-        encoded.stats.attributes.dropped_because
-    {
+    // Streams dropped for want of room, or normals that would crowd the
+    // surface out: a loss, said on standard error (an error with
+    // --strict).
+    let lost = match encoded.stats.attributes.dropped_because {
+        Some(why @ swm::AttributesDropped::NoRoom { .. }) => Some(why.to_string()),
+        Some(why @ swm::AttributesDropped::CostlyNormals { .. }) => {
+            Some(format!("{why}; --keep-normals keeps them"))
+        }
+        _ => None,
+    };
+    if let Some(why) = lost {
         let names: Vec<String> = (encoded.stats.attributes.dropped.iter())
             .map(|&k| crate::report::attribute_name(k))
             .collect();
-        let why = why.to_string();
         progress.suspend(|| warn_dropped(&args.input, &names, &why, args.strict))?;
     }
     let seconds = start.elapsed().as_secs_f64();

@@ -111,6 +111,9 @@ pub fn attributes_line(a: &swm::AttributeReport) -> String {
         Some(why @ swm::AttributesDropped::SmoothNormals { .. }) => line.push_str(&format!(
             "; normals not coded: {why} (--keep-normals codes them)"
         )),
+        Some(why @ swm::AttributesDropped::CostlyNormals { .. }) => line.push_str(&format!(
+            "; normals not kept: {why} (--keep-normals keeps them)"
+        )),
         Some(why @ swm::AttributesDropped::NoRoom { .. }) => {
             let names: Vec<String> = a.dropped.iter().map(|&k| attribute_name(k)).collect();
             line.push_str(&format!("; {} not kept: {why}", names.join(", ")))

@@ -84,11 +84,13 @@ pub(crate) fn encode_attributed(
         };
         return Ok(encoded);
     }
-    // Normals the geometry gives back are left to the decoder (`smooth`).
-    let smooth = match options.keep_smooth_normals {
+    // Normals the geometry gives back are left to the decoder (`smooth`);
+    // the others' distance from the geometry is what dropping them costs.
+    let off = match options.keep_smooth_normals {
         true => None,
-        false => smooth::smooth_normals(mesh),
+        false => smooth::normals_off(mesh),
     };
+    let smooth = off.filter(|&rms| rms <= smooth::SMOOTH_NORMAL_DEGREES);
     let rest;
     let coded = match smooth {
         Some(_) => {
@@ -142,6 +144,9 @@ pub(crate) fn encode_attributed(
             other => other?,
         },
     };
+    if let (Some(off), None) = (off, smooth) {
+        encoded = without_costly_normals(coded, encoded, off, &strict)?;
+    }
     if let Some(rms_degrees) = smooth {
         let report = &mut encoded.stats.attributes;
         report.dropped.push(crate::AttributeKind::Normal);
@@ -152,6 +157,67 @@ pub(crate) fn encode_attributed(
         }
     }
     Ok(encoded)
+}
+
+/// `kept`, or the file without the normals at the same size when those
+/// cost the surface more than they give (`smooth`): a lossy file at a
+/// size that kept normals `off` degrees RMS from the geometry's own.
+fn without_costly_normals(
+    coded: &crate::AttributedMesh,
+    kept: Encoded,
+    off: f64,
+    options: &EncodeOptions,
+) -> Result<Encoded, Error> {
+    let sized = match options.mode {
+        EncodeMode::Auto { target, .. }
+        | EncodeMode::Simplified { target, .. }
+        | EncodeMode::Displaced { target, .. } => !matches!(target, SwingTarget::MaxError(_)),
+        _ => false,
+    };
+    let normals = kept
+        .stats
+        .attributes
+        .kept
+        .contains(&crate::AttributeKind::Normal);
+    let Some(l2_kept) = kept.stats.check.and_then(|c| c.l2_relative) else {
+        return Ok(kept);
+    };
+    if !sized || !normals || !smooth::may_cost_more_than_they_give(l2_kept, off) {
+        return Ok(kept);
+    }
+    // The second file within the level's time bar: at `default` it is
+    // searched at `fast` (a second `default` encode doubled fandisk's
+    // with crease normals at 0.5 b/v, 237 -> 518 ms against a 500 ms
+    // bar); `max` spends what it takes.
+    let effort = match options.effort {
+        crate::Effort::Max => crate::Effort::Max,
+        _ => crate::Effort::Fast,
+    };
+    let options = &EncodeOptions {
+        effort,
+        ..options.clone()
+    };
+    let rest = smooth::without_normals(coded);
+    let other = match rest.streams.is_empty() {
+        true => encode(&rest.mesh, options),
+        false => encode_with(&rest.mesh, Some(&rest), options),
+    };
+    let mut other = match other {
+        Ok(other) => other,
+        Err(Error::Size(_)) => return Ok(kept),
+        Err(e) => return Err(e),
+    };
+    let l2_without = other.stats.check.and_then(|c| c.l2_relative);
+    if !l2_without.is_some_and(|l2| smooth::cost_more_than_they_give(l2_kept, l2, off)) {
+        return Ok(kept);
+    }
+    let report = &mut other.stats.attributes;
+    report.dropped.push(crate::AttributeKind::Normal);
+    report.dropped_because = Some(AttributesDropped::CostlyNormals {
+        rms_degrees: off as f32,
+        l2_kept: l2_kept as f32,
+    });
+    Ok(other)
 }
 
 /// [`encode`], with `attributed` (the same mesh with its streams) when

@@ -32,9 +32,10 @@ const BLOCK: usize = 8192;
 pub const SMOOTH_NORMAL_DEGREES: f64 = 10.0;
 
 /// The RMS angle in degrees between `mesh`'s normal stream and its
-/// geometry's own vertex normals, when it has a normal stream and that
-/// angle is at most [`SMOOTH_NORMAL_DEGREES`]; `None` otherwise.
-pub(crate) fn smooth_normals(mesh: &AttributedMesh) -> Option<f64> {
+/// geometry's own vertex normals; `None` without a normal stream of
+/// three components (or a corner to compare). At most
+/// [`SMOOTH_NORMAL_DEGREES`], the normals follow the geometry.
+pub(crate) fn normals_off(mesh: &AttributedMesh) -> Option<f64> {
     let stream = mesh
         .streams
         .iter()
@@ -42,7 +43,12 @@ pub(crate) fn smooth_normals(mesh: &AttributedMesh) -> Option<f64> {
     if stream.dims != 3 {
         return None;
     }
-    let geometric = crate::mesh::vertex_normals_par(&mesh.mesh);
+    // Over the surface welded by position: a mesh split where its normals
+    // are (Python's per-vertex arrays, a glTF primitive) has, at a
+    // crease, a vertex on each side whose own normal follows its side,
+    // which is not what a decoder recomputes.
+    let (welded, at) = welded(&mesh.mesh);
+    let geometric: Vec<[f32; 3]> = at.iter().map(|&w| welded[w as usize]).collect();
     // Summed per block of triangles on all cores, the blocks' sums added
     // in order: the same figure at any thread count.
     let corners = mesh
@@ -78,8 +84,68 @@ pub(crate) fn smooth_normals(mesh: &AttributedMesh) -> Option<f64> {
     if n == 0 {
         return None;
     }
-    let rms = (sum / n as f64).sqrt();
-    (rms <= SMOOTH_NORMAL_DEGREES).then_some(rms)
+    Some((sum / n as f64).sqrt())
+}
+
+/// The vertex normals of `mesh` welded by position (positions equal to
+/// the bit, either zero), and each vertex's welded one.
+fn welded(mesh: &crate::TriMesh) -> (Vec<[f32; 3]>, Vec<u32>) {
+    let key = |p: &[f32; 3]| p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
+    let mut order: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+    order.sort_unstable_by_key(|&v| (key(&mesh.positions[v as usize]), v));
+    let mut at = vec![0u32; mesh.positions.len()];
+    let mut positions = Vec::new();
+    let mut last = None;
+    for &v in &order {
+        let k = key(&mesh.positions[v as usize]);
+        if last != Some(k) {
+            positions.push(mesh.positions[v as usize]);
+            last = Some(k);
+        }
+        at[v as usize] = positions.len() as u32 - 1;
+    }
+    let triangles = mesh
+        .triangles
+        .iter()
+        .map(|t| t.map(|v| at.get(v as usize).copied().unwrap_or(u32::MAX)))
+        .collect();
+    let normals = crate::mesh::vertex_normals_par(&crate::TriMesh::new(positions, triangles));
+    (normals, at)
+}
+
+/// What one degree of RMS normal error weighs beside L2, as a fraction
+/// of the input's diagonal: 1e-4, as a texel and an 8-bit colour step
+/// do (`simplify::attributed`): a shading normal a degree off is at the
+/// edge of what shows, as is a surface 1e-4 of the diagonal off.
+pub const NORMAL_DEGREE_WEIGHT: f64 = 1e-4;
+
+/// Normals that do not follow the geometry (creases, custom shading) but
+/// crowd the surface out (beyond the sources): a lossy file that keeps
+/// them is weighed against the file without them at the same size, the
+/// latter's error counted as its L2 plus the dropped normals' own error,
+/// `off_degrees` (their RMS angle from the input geometry's normals,
+/// [`normals_off`]: what a decoder recomputing them from the input's
+/// own surface would miss) at [`NORMAL_DEGREE_WEIGHT`]. Beetle's crease
+/// normals at 454 bytes took 252 of them, and the surface was 443e-4 of
+/// the diagonal off against 34e-4 without them.
+///
+/// The second file is searched at effort `fast` when `default` was asked
+/// for (`encoder::without_costly_normals`), so the comparison leans
+/// towards keeping them.
+///
+/// This tells whether that second file is worth making: only where the
+/// kept file's L2 (`l2_kept`, relative) is above the dropped normals'
+/// weighed error can the file without them win, since its own L2 adds
+/// to that.
+pub(crate) fn may_cost_more_than_they_give(l2_kept: f64, off_degrees: f64) -> bool {
+    l2_kept > NORMAL_DEGREE_WEIGHT * off_degrees
+}
+
+/// Whether the file without the normals (`l2_without`, relative) is
+/// closer to the input than the one that kept them, the normals' error
+/// weighed as [`may_cost_more_than_they_give`] says.
+pub(crate) fn cost_more_than_they_give(l2_kept: f64, l2_without: f64, off_degrees: f64) -> bool {
+    l2_without + NORMAL_DEGREE_WEIGHT * off_degrees < l2_kept
 }
 
 /// `mesh` without its normal stream.
@@ -122,11 +188,41 @@ mod tests {
                 corners,
             )],
         };
-        let rms = smooth_normals(&sphere).expect("smooth");
+        let rms = normals_off(&sphere).expect("normals");
         assert!(rms < 5.0, "{rms}");
         assert!(without_normals(&sphere).streams.is_empty());
         // A cube with one normal per side: every corner 54.7° off its
         // vertex's diagonal normal.
-        assert_eq!(smooth_normals(&seamed_cube()), None);
+        assert!(normals_off(&seamed_cube()).expect("normals") > SMOOTH_NORMAL_DEGREES);
+    }
+
+    /// The same cube with every triangle on vertices of its own (as
+    /// Python's per-vertex arrays and glTF split a mesh at its normals'
+    /// seams): judged as the welded surface, the same angle.
+    #[test]
+    fn a_mesh_split_at_its_normals_is_judged_welded() {
+        let cube = seamed_cube();
+        let normals = cube.stream(AttributeKind::Normal).unwrap();
+        let (mut positions, mut values, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+        for (f, t) in cube.mesh.triangles.iter().enumerate() {
+            let first = positions.len() as u32;
+            for (k, &v) in t.iter().enumerate() {
+                positions.push(cube.mesh.positions[v as usize]);
+                values.extend(normals.corner_value(crate::FaceId(f as u32), k));
+            }
+            triangles.push([first, first + 1, first + 2]);
+        }
+        let corners = triangles.clone();
+        let split = AttributedMesh {
+            mesh: crate::TriMesh::new(positions, triangles),
+            streams: vec![AttributeStream::new(
+                AttributeKind::Normal,
+                3,
+                values,
+                corners,
+            )],
+        };
+        let (a, b) = (normals_off(&split).unwrap(), normals_off(&cube).unwrap());
+        assert!((a - b).abs() < 1e-9 && a > 50.0, "{a} {b}");
     }
 }

@@ -306,6 +306,20 @@ pub enum AttributesDropped {
         /// The smallest file with the streams, in bytes.
         smallest: u64,
     },
+    /// The input's normals do not follow its geometry (creases, custom
+    /// shading; `rms_degrees` RMS from its geometry's own), but at the
+    /// size asked for they cost the surface more than they give: the
+    /// file without them, its L2 plus their error weighed at
+    /// `encoder::smooth::NORMAL_DEGREE_WEIGHT` (1e-4 of the diagonal a
+    /// degree), is closer to the input than the file that kept them,
+    /// whose L2 was `l2_kept` (`EncodeOptions::keep_smooth_normals`
+    /// keeps them).
+    CostlyNormals {
+        /// The RMS angle between the input's normals and its geometry's.
+        rms_degrees: f32,
+        /// The relative L2 of the file that kept them.
+        l2_kept: f32,
+    },
 }
 
 impl core::fmt::Display for AttributesDropped {
@@ -323,6 +337,11 @@ impl core::fmt::Display for AttributesDropped {
             AttributesDropped::NoRoom { smallest } => write!(
                 f,
                 "the size asked for is below the smallest file that keeps them ({smallest} bytes)"
+            ),
+            AttributesDropped::CostlyNormals { rms_degrees, l2_kept } => write!(
+                f,
+                "the normals ({rms_degrees:.1} degrees RMS off the geometry's) cost the surface more than they give at this size: with them its L2 was {:.2} x 1e-4 of the diagonal",
+                l2_kept * 1e4
             ),
             AttributesDropped::SmoothNormals { rms_degrees } => write!(
                 f,

@@ -199,3 +199,87 @@ fn a_cube_with_normal_creases_and_uv_seams_keeps_both() {
         vec![AttributeKind::Normal, AttributeKind::TexCoord(0)]
     );
 }
+
+/// A bumpy sphere whose normals carry something the surface does not:
+/// each vertex's tilted about 20° off its geometry's in a direction of
+/// its own (a hash of its number), so they are beyond
+/// `smooth::SMOOTH_NORMAL_DEGREES` and cost about as much as the
+/// positions do.
+fn tilted_normals() -> AttributedMesh {
+    let mut mesh = uv_sphere(64, 48);
+    for p in &mut mesh.positions {
+        let [x, y, z] = p.map(f64::from);
+        let r = 1.0 + 0.03 * (7.0 * x).sin() * (7.0 * y).sin() * (7.0 * z).cos();
+        *p = [x * r, y * r, z * r].map(|c| c as f32);
+    }
+    let geometric = crate::vertex_normals(&mesh);
+    let mut values = Vec::new();
+    for (v, n) in geometric.iter().enumerate() {
+        let n = glam::DVec3::from(n.map(f64::from));
+        let h = (v as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        let a = (h >> 11) as f64 / (1u64 << 53) as f64 * core::f64::consts::TAU;
+        let (u, w) = n.any_orthonormal_pair();
+        let tilted = (n + 0.22 * (u * a.cos() + w * a.sin())).normalize();
+        values.extend([tilted.x as f32, tilted.y as f32, tilted.z as f32]);
+    }
+    let corners = mesh.triangles.clone();
+    let normals = crate::AttributeStream::new(AttributeKind::Normal, 3, values, corners);
+    AttributedMesh {
+        mesh,
+        streams: vec![normals],
+    }
+}
+
+#[test]
+fn normals_that_crowd_the_surface_out_are_dropped_and_said_so() {
+    let mesh = tilted_normals();
+    let off = super::smooth::normals_off(&mesh).unwrap();
+    assert!(off > super::smooth::SMOOTH_NORMAL_DEGREES, "{off}");
+    let sized = |bytes: u64, keep: bool| EncodeOptions {
+        mode: EncodeMode::Auto {
+            target: SwingTarget::Bytes(bytes),
+            max_bytes: None,
+        },
+        keep_smooth_normals: keep,
+        ..Default::default()
+    };
+    let l2 = |e: &crate::Encoded| e.stats.check.unwrap().l2_relative.unwrap();
+    // At 1,200 bytes the normals would take most of the file: without
+    // them the surface is about five times closer (measured 3.9e-4
+    // against 21.8e-4 of the diagonal), more than their own 12° at 1e-4
+    // a degree.
+    let e = crate::encode_attributed(&mesh, &sized(1200, false)).unwrap();
+    let kept = crate::encode_attributed(&mesh, &sized(1200, true)).unwrap();
+    let a = &e.stats.attributes;
+    assert!(a.kept.is_empty());
+    assert_eq!(a.dropped, vec![AttributeKind::Normal]);
+    let Some(AttributesDropped::CostlyNormals {
+        rms_degrees,
+        l2_kept,
+    }) = a.dropped_because
+    else {
+        panic!("{:?}", a.dropped_because);
+    };
+    assert_eq!(f64::from(rms_degrees), off as f32 as f64);
+    assert_eq!(l2_kept, l2(&kept) as f32);
+    assert!(l2(&e) + super::smooth::NORMAL_DEGREE_WEIGHT * off < l2(&kept));
+    assert_eq!(kept.stats.attributes.kept, vec![AttributeKind::Normal]);
+    assert!(
+        e.bytes.len() <= 1200
+            && crate::decode_attributed(&e.bytes, &Default::default())
+                .unwrap()
+                .streams
+                .is_empty()
+    );
+    // At 8,000 bytes the surface with them is within their weighed error
+    // of the input: they stay, the same file as asked to keep them.
+    let e = crate::encode_attributed(&mesh, &sized(8000, false)).unwrap();
+    assert_eq!(e.stats.attributes.kept, vec![AttributeKind::Normal]);
+    assert!(e.stats.attributes.dropped_because.is_none());
+    assert_eq!(
+        e.bytes,
+        crate::encode_attributed(&mesh, &sized(8000, true))
+            .unwrap()
+            .bytes
+    );
+}
