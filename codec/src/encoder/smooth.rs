@@ -92,7 +92,9 @@ pub(crate) fn normals_off(mesh: &AttributedMesh) -> Option<f64> {
 fn welded(mesh: &crate::TriMesh) -> (Vec<[f32; 3]>, Vec<u32>) {
     let key = |p: &[f32; 3]| p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
     let mut order: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-    order.sort_unstable_by_key(|&v| (key(&mesh.positions[v as usize]), v));
+    // Keys are unique (the vertex breaks ties): the same order on any
+    // number of threads.
+    order.par_sort_unstable_by_key(|&v| (key(&mesh.positions[v as usize]), v));
     let mut at = vec![0u32; mesh.positions.len()];
     let mut positions = Vec::new();
     let mut last = None;
