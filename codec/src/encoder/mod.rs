@@ -145,7 +145,7 @@ pub(crate) fn encode_attributed(
         },
     };
     if let (Some(off), None) = (off, smooth) {
-        encoded = without_costly_normals(coded, encoded, off, &strict)?;
+        encoded = without_costly_normals(coded, encoded, off, &strict);
     }
     if let Some(rms_degrees) = smooth {
         let report = &mut encoded.stats.attributes;
@@ -167,7 +167,7 @@ fn without_costly_normals(
     kept: Encoded,
     off: f64,
     options: &EncodeOptions,
-) -> Result<Encoded, Error> {
+) -> Encoded {
     let sized = match options.mode {
         EncodeMode::Auto { target, .. }
         | EncodeMode::Simplified { target, .. }
@@ -180,10 +180,10 @@ fn without_costly_normals(
         .kept
         .contains(&crate::AttributeKind::Normal);
     let Some(l2_kept) = kept.stats.check.and_then(|c| c.l2_relative) else {
-        return Ok(kept);
+        return kept;
     };
     if !sized || !normals || !smooth::may_cost_more_than_they_give(l2_kept, off) {
-        return Ok(kept);
+        return kept;
     }
     // The second file within the level's time bar: at `default` it is
     // searched at `fast` (a second `default` encode doubled fandisk's
@@ -202,14 +202,15 @@ fn without_costly_normals(
         true => encode(&rest.mesh, options),
         false => encode_with(&rest.mesh, Some(&rest), options),
     };
-    let mut other = match other {
-        Ok(other) => other,
-        Err(Error::Size(_)) => return Ok(kept),
-        Err(e) => return Err(e),
+    // The second file only ever replaces the first: where it cannot be
+    // made (too small a size for its own smallest file, a limit), the
+    // first stands.
+    let Ok(mut other) = other else {
+        return kept;
     };
     let l2_without = other.stats.check.and_then(|c| c.l2_relative);
     if !l2_without.is_some_and(|l2| smooth::cost_more_than_they_give(l2_kept, l2, off)) {
-        return Ok(kept);
+        return kept;
     }
     let report = &mut other.stats.attributes;
     report.dropped.push(crate::AttributeKind::Normal);
@@ -217,7 +218,7 @@ fn without_costly_normals(
         rms_degrees: off as f32,
         l2_kept: l2_kept as f32,
     });
-    Ok(other)
+    other
 }
 
 /// [`encode`], with `attributed` (the same mesh with its streams) when
