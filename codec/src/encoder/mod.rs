@@ -171,7 +171,7 @@ fn without_costly_normals(
     let sized = match options.mode {
         EncodeMode::Auto { target, .. }
         | EncodeMode::Simplified { target, .. }
-        | EncodeMode::Displaced { target, .. } => !matches!(target, SwingTarget::MaxError(_)),
+        | EncodeMode::Displaced { target, .. } => is_size(target),
         _ => false,
     };
     let normals = kept
@@ -385,14 +385,10 @@ fn sized(
     ask: Ask,
     run: impl Fn(Ask) -> Result<(Encoded, Seeds), Error>,
 ) -> Result<(Encoded, Seeds), Error> {
-    let is_size = matches!(
-        ask.target,
-        SwingTarget::Bytes(_) | SwingTarget::BitsPerVertex(_)
-    );
     match run(ask) {
         Err(Error::Size(e))
             if options.or_smallest
-                && is_size
+                && is_size(ask.target)
                 && ask.max_bytes.is_none_or(|cap| e.smallest <= cap) =>
         {
             let again = Ask {
@@ -405,6 +401,15 @@ fn sized(
         }
         other => other,
     }
+}
+
+/// Whether `target` asks for a size (bytes or bits per vertex), not an
+/// edge length or an error bound.
+fn is_size(target: SwingTarget) -> bool {
+    matches!(
+        target,
+        SwingTarget::Bytes(_) | SwingTarget::BitsPerVertex(_)
+    )
 }
 
 /// The chooser's file as the encoder's result, and its seeds.

@@ -48,7 +48,7 @@ pub(crate) fn normals_off(mesh: &AttributedMesh) -> Option<f64> {
     // crease, a vertex on each side whose own normal follows its side,
     // which is not what a decoder recomputes.
     let (welded, at) = welded(&mesh.mesh);
-    let geometric: Vec<[f32; 3]> = at.iter().map(|&w| welded[w as usize]).collect();
+    let geometric = |v: u32| Some(welded[*at.get(v as usize)? as usize]);
     // Summed per block of triangles on all cores, the blocks' sums added
     // in order: the same figure at any thread count.
     let corners = mesh
@@ -61,7 +61,7 @@ pub(crate) fn normals_off(mesh: &AttributedMesh) -> Option<f64> {
             let (mut sum, mut n) = (0.0f64, 0u64);
             for (t, c) in ts.iter().zip(cs) {
                 for k in 0..3 {
-                    let g = DVec3::from(geometric.get(t[k] as usize)?.map(f64::from));
+                    let g = DVec3::from(geometric(t[k])?.map(f64::from));
                     let at = c[k] as usize * 3;
                     let v = stream.values.get(at..at + 3)?;
                     let v = DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
@@ -88,24 +88,14 @@ pub(crate) fn normals_off(mesh: &AttributedMesh) -> Option<f64> {
 }
 
 /// The vertex normals of `mesh` welded by position (positions equal to
-/// the bit, either zero), and each vertex's welded one.
+/// the bit, either zero: `-0.0` is read as `0.0`, the same point), and
+/// each vertex's welded one (`mesh::dedupe`, as `AttributedMesh::weld`).
 fn welded(mesh: &crate::TriMesh) -> (Vec<[f32; 3]>, Vec<u32>) {
-    let key = |p: &[f32; 3]| p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
-    let mut order: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-    // Keys are unique (the vertex breaks ties): the same order on any
-    // number of threads.
-    order.par_sort_unstable_by_key(|&v| (key(&mesh.positions[v as usize]), v));
-    let mut at = vec![0u32; mesh.positions.len()];
-    let mut positions = Vec::new();
-    let mut last = None;
-    for &v in &order {
-        let k = key(&mesh.positions[v as usize]);
-        if last != Some(k) {
-            positions.push(mesh.positions[v as usize]);
-            last = Some(k);
-        }
-        at[v as usize] = positions.len() as u32 - 1;
-    }
+    let flat: Vec<f32> = (mesh.positions.iter().flatten())
+        .map(|&c| if c == 0.0 { 0.0 } else { c })
+        .collect();
+    let (kept, at) = crate::mesh::dedupe(&flat, 3);
+    let positions = kept.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
     let triangles = mesh
         .triangles
         .iter()

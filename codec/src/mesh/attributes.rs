@@ -348,7 +348,7 @@ impl AttributedMesh {
 
 /// The distinct `dims`-float values of `values` (bit for bit), first
 /// ones first, and the map from each value to its kept copy.
-fn dedupe(values: &[f32], dims: usize) -> (Vec<f32>, Vec<u32>) {
+pub(crate) fn dedupe(values: &[f32], dims: usize) -> (Vec<f32>, Vec<u32>) {
     let n = values.len() / dims;
     let bits = |i: u32| -> [u32; 4] {
         let mut b = [0u32; 4];

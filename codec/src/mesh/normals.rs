@@ -60,9 +60,7 @@ pub(crate) fn vertex_normals_par(mesh: &TriMesh) -> Vec<[f32; 3]> {
     let mut acc = vec![DVec3::ZERO; mesh.positions.len()];
     for (t, w) in mesh.triangles.iter().zip(contributions) {
         if let Some(w) = w {
-            for (k, &v) in t.iter().enumerate() {
-                acc[v as usize] += w[k];
-            }
+            add(&mut acc, *t, &w);
         }
     }
     acc.into_iter().map(unit).collect()
@@ -102,9 +100,14 @@ pub fn vertex_normals_into(positions: &[f32], indices: &[u32], normals: &mut [f3
 
 fn accumulate(acc: &mut [DVec3], at: impl Fn(u32) -> Option<[f32; 3]>, t: [u32; 3]) {
     if let Some(w) = weighted(at, t) {
-        for (k, &v) in t.iter().enumerate() {
-            acc[v as usize] += w[k];
-        }
+        add(acc, t, &w);
+    }
+}
+
+/// Adds triangle `t`'s corner contributions `w` to its vertices.
+fn add(acc: &mut [DVec3], t: [u32; 3], w: &[DVec3; 3]) {
+    for (k, &v) in t.iter().enumerate() {
+        acc[v as usize] += w[k];
     }
 }
 
