@@ -23,6 +23,7 @@ pub(crate) mod test_shapes;
 #[cfg(feature = "encoder")]
 pub mod clean;
 
+#[cfg(feature = "encoder")]
 pub(crate) use attributes::dedupe;
 pub use attributes::{AttributeKind, AttributeStream, AttributedMesh};
 pub(crate) use corner::corners_by_vertex;
