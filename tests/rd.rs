@@ -462,7 +462,7 @@ fn committed_generated_table_holds() {
 }
 
 /// Both committed tables carry the effort column, and every (mesh, rate)
-/// with an `auto` row (effort `max`, the files of before the levels) has
+/// with an `auto` row (effort `max`, every method's whole search) has
 /// its `auto-default` and `auto-fast` rows too.
 #[test]
 fn committed_tables_have_every_effort() {

@@ -52,8 +52,9 @@ pub enum EncodeMode {
         max_bytes: Option<u64>,
     },
     /// The methods of [`EncodeOptions::effort`]'s level at the same size
-    /// (at [`Effort::Max`]: SwingWrapper, [`Simplified`](EncodeMode::Simplified)
-    /// and a method per component), each decoded and measured against
+    /// (at [`Effort::Max`]: SwingWrapper, [`Simplified`](EncodeMode::Simplified),
+    /// [`Displaced`](EncodeMode::Displaced) and a method per component),
+    /// each decoded and measured against
     /// the cleaned input with the encoder's own distance (L2,
     /// [`AUTO_SAMPLES`] area-uniform samples each way); the lower error
     /// wins, and a method that fails (or whose nearest file misses the

@@ -53,9 +53,9 @@ pub struct Args {
     /// How hard the encoder works (as Draco's -cl and zstd's levels):
     /// `fast` simplifies with a short search (about a lossless encode's
     /// time plus one simplification); `default` measures the simplified
-    /// file against SwingWrapper where retiling fits its work budget;
-    /// `max` runs every method's whole search (minutes on large inputs at
-    /// high rates).
+    /// file against SwingWrapper where retiling fits its work budget and
+    /// displaced subdivision at low rates; `max` runs every method's
+    /// whole search (minutes on large inputs at high rates).
     #[arg(long, value_enum, default_value_t = EffortArg::Default)]
     pub(crate) effort: EffortArg,
     /// Target file size in bytes (met within 3%; lossless: simplify to fit).

@@ -19,9 +19,9 @@ pub enum Config {
     /// that fits (`swm encode --mode lossless --size B`).
     Baseline,
     /// `swm encode --effort max`: every method with its whole search
-    /// (SwingWrapper, `baseline`, a method per component), whichever the
-    /// encoder measures closer (`--mode auto`; the files the automatic
-    /// mode wrote before effort levels existed).
+    /// (SwingWrapper, `baseline`, displaced subdivision, a method per
+    /// component), whichever the encoder measures closer (`--mode
+    /// auto`).
     Auto,
     /// `swm encode` with no flag (`--effort default`): `baseline`'s
     /// method, SwingWrapper where its retiling fits the level's work
