@@ -133,10 +133,10 @@ fn warnings(out: &Output) -> Vec<String> {
 /// the automatic mode and the lossless mode at a size keep the streams
 /// the reader attached (`streams` of them; none warns with the reader's
 /// reason, and then stdout is the bare mesh's); `--json` names them under
-/// `attribute_report`, and so does the displaced mode unless they include
-/// texture coordinates. The swing mode (and then the displaced one) drops
-/// them with one warning naming `names`, and its stdout (text and JSON)
-/// is the bare mesh's.
+/// `attribute_report`, and so do the displaced and swing modes unless
+/// they include texture coordinates: then those modes drop them with one
+/// warning naming `names`, and their stdout (text and JSON) is the bare
+/// mesh's.
 fn check(dir: &Path, file: &Path, names: &str, streams: usize) {
     let unattached = format!(
         "swm: warning: {}: the input's {names} are not kept (not every face corner names them, or a value is malformed)",
@@ -172,18 +172,25 @@ fn check(dir: &Path, file: &Path, names: &str, streams: usize) {
         &["--mode", "auto", "--bpv", "12"][..],
         &["--mode", "lossless", "--size", "1200"],
         &["--mode", "displaced", "--bpv", "12"],
-        &["--mode", "swing"],
+        &["--mode", "swing", "--bpv", "12"],
     ] {
         let plain = encode(&bare, mode);
         assert!(warnings(&plain).is_empty(), "{:?}", warnings(&plain));
         let out = encode(file, mode);
         let json_args: Vec<&str> = mode.iter().copied().chain(["--json"]).collect();
         let out_json = encode(file, &json_args);
-        // Displaced files carry all but texture coordinates.
+        // Displaced and SwingWrapper files carry all but texture
+        // coordinates.
         let uvs = names.contains("texture coordinates");
-        let kept = streams > 0 && mode[1] != "swing" && !(mode[1] == "displaced" && uvs);
+        let kept = streams > 0 && !(matches!(mode[1], "displaced" | "swing") && uvs);
         if kept {
-            assert!(warnings(&out).is_empty(), "{mode:?}: {:?}", warnings(&out));
+            // A retiled mesh's size moves in steps (its edge length), and
+            // on this small torus the streams are most of the file:
+            // SwingWrapper may land outside 3% of the request, and says so.
+            let landed =
+                |w: &String| mode[1] == "swing" && w.contains("rate control could not land");
+            let other: Vec<_> = warnings(&out).into_iter().filter(|w| !landed(w)).collect();
+            assert!(other.is_empty(), "{mode:?}: {other:?}");
             let bytes = std::fs::read(file.with_extension("swm")).unwrap();
             let decoded = swm::decode_attributed(&bytes, &Default::default()).unwrap();
             assert_eq!(decoded.streams.len(), streams, "{mode:?}");
@@ -199,10 +206,10 @@ fn check(dir: &Path, file: &Path, names: &str, streams: usize) {
         let expected = if streams == 0 {
             unattached.clone()
         } else {
-            let why = match mode[1] {
-                "swing" => "the swing method's file cannot carry them",
-                _ => "the displaced method's file cannot carry texture coordinates",
-            };
+            let why = format!(
+                "the {} method's file cannot carry texture coordinates",
+                mode[1]
+            );
             format!(
                 "swm: warning: {}: the input's {names} are not kept ({why}; --mode auto keeps them)",
                 file.display()
@@ -405,7 +412,7 @@ fn a_size_below_the_smallest_file_with_the_streams_keeps_the_surface_and_says_so
     assert!(!out.status.success());
     let said = String::from_utf8_lossy(&out.stderr);
     assert!(
-        said.contains("--strict: the input's texture coordinates are not kept (the swing method's file cannot carry them"),
+        said.contains("--strict: the input's texture coordinates are not kept (the swing method's file cannot carry texture coordinates"),
         "{said}"
     );
     assert!(!file.with_extension("swm").exists(), "nothing written");

@@ -1499,3 +1499,64 @@ fn displaced_attr_v1_2_reencodes_to_the_same_bytes() {
         "re-encoding the golden coloured ellipsoid no longer gives golden/displaced-attr-v1.2.swm"
     );
 }
+
+/// The coloured ellipsoid coded by SwingWrapper at 2,500 bytes, colours
+/// included (resampled at the retiled vertices; no post-processing hint).
+fn golden_swing_attr_options() -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: swm::SwingTarget::Bytes(2500),
+            angle_bits: None,
+            max_bytes: None,
+        },
+        ..EncodeOptions::default()
+    }
+}
+
+const SWING_ATTR_V1_2: &[u8] = include_bytes!("../format-spec/golden/swing-attr-v1.2.swm");
+
+/// The test vector of format-spec/08-attributes.md ("Golden file").
+const SWING_ATTR_V1_2_FNV1A64: u64 = 0xD00E_F709_8C07_0DAD;
+
+/// Writes the golden file (run once, by hand:
+/// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_swing_attr_v1_2_golden`).
+#[test]
+#[ignore]
+fn write_swing_attr_v1_2_golden() {
+    write_attributed_golden(
+        "swing-attr-v1.2.swm",
+        &golden_coloured_ellipsoid(),
+        &golden_swing_attr_options(),
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads `ATTR`
+/// over a mode-1 file as format-spec/08-attributes.md specifies.
+#[test]
+fn swing_attr_v1_2_decodes_to_its_test_vector() {
+    let info = swm::inspect(SWING_ATTR_V1_2, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Swing));
+    assert_eq!(info.attributes.len(), 1);
+    assert_eq!(info.post, None, "no post-processing hint beside ATTR");
+    let m = swm::decode_attributed(SWING_ATTR_V1_2, &DecodeOptions::default())
+        .expect("golden file swing-attr-v1.2.swm must decode");
+    assert_eq!(
+        attributed_hash(&m),
+        SWING_ATTR_V1_2_FNV1A64,
+        "decoded mesh differs from format-spec/08-attributes.md's test vector"
+    );
+    assert_eq!(m.streams[0].value_count(), m.mesh.positions.len());
+    let plain = swm::decode(SWING_ATTR_V1_2, &DecodeOptions::default()).unwrap();
+    assert_eq!(plain, m.mesh);
+}
+
+/// The encoder still writes the golden bytes from the coloured ellipsoid.
+#[test]
+fn swing_attr_v1_2_reencodes_to_the_same_bytes() {
+    let encoded =
+        swm::encode_attributed(&golden_coloured_ellipsoid(), &golden_swing_attr_options()).unwrap();
+    assert_eq!(
+        encoded.bytes, SWING_ATTR_V1_2,
+        "re-encoding the golden coloured ellipsoid no longer gives golden/swing-attr-v1.2.swm"
+    );
+}

@@ -68,7 +68,10 @@ static SWING: ModeDecoder = ModeDecoder {
     inspect: |file, limits, len| {
         let (conn, swing) = crate::swing::inspect(file, limits, len)?;
         let sections = file.sections().map(|s| (s.tag.0, s.bytes.len()));
-        let stats = LosslessStats::new(&file.header, &conn, 0, sections, len);
+        let mut stats = LosslessStats::new(&file.header, &conn, 0, sections, len);
+        if let Some(attr) = file.find(crate::container::Tag::ATTR) {
+            stats.attributes = crate::lossless::attributes::inspect(attr.bytes)?;
+        }
         Ok(Inspected {
             qp: 0,
             stats,
@@ -181,9 +184,16 @@ pub(crate) fn decode_attributed(
                 }
                 return mesh_only(&file, mesh, options).map(Into::into);
             }
-            // No encoder writes `ATTR` in a SwingWrapper file; a decoder
-            // reads its mesh only.
-            Mode::Swing => {}
+            // Over the plain decode (format-spec/08, "Over a decoded
+            // mesh"): the file's hint is not followed, as for mode 0.
+            Mode::Swing => {
+                let mesh = (for_mode(file.header.mode).decode)(&file, options)?;
+                return crate::lossless::attributes::over_mesh::decode(
+                    attr.bytes,
+                    mesh,
+                    &options.limits,
+                );
+            }
         }
     }
     decode_container(&file, options).map(Into::into)

@@ -465,20 +465,6 @@ fn encode<'py>(
         max_error,
         quantized,
     )?;
-    // The lossless, automatic and simplified modes code attributes (the
-    // automatic mode weighs only methods whose files carry them); a
-    // retiled or displaced file cannot, and the library would drop them:
-    // refused here rather than lost silently.
-    if attributes.is_some()
-        && matches!(
-            mode,
-            swm::EncodeMode::Swing { .. } | swm::EncodeMode::Displaced { .. }
-        )
-    {
-        return Err(PyValueError::new_err(
-            "attributes are coded by mode=\"auto\" or \"lossless\"; a swing or displaced file cannot carry them",
-        ));
-    }
     let mesh = arrays::mesh(&vertices, &faces)?;
     // `Some` even when empty: a dict asks for `encode_attributed`,
     // which with no streams writes `encode`'s bytes.
@@ -486,6 +472,21 @@ fn encode<'py>(
         Some(dict) => Some(attributes::from_dict(dict, &mesh)?),
         None => None,
     };
+    // The lossless, automatic and simplified modes code every attribute
+    // (the automatic mode weighs only methods whose files carry them); a
+    // retiled or displaced file carries all but texture coordinates, which
+    // the library would drop: refused here rather than lost silently.
+    let uvs = (streams.iter().flatten()).any(|s| matches!(s.kind, swm::AttributeKind::TexCoord(_)));
+    if uvs
+        && matches!(
+            mode,
+            swm::EncodeMode::Swing { .. } | swm::EncodeMode::Displaced { .. }
+        )
+    {
+        return Err(PyValueError::new_err(
+            "texture coordinates are coded by mode=\"auto\" or \"lossless\"; a swing or displaced file cannot carry them",
+        ));
+    }
     let options = swm::EncodeOptions {
         mode,
         effort,

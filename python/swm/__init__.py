@@ -293,8 +293,9 @@ def encode(
     ``attributes`` it is ``{"kept": [], "dropped": [],
     "dropped_because": None, "texcoord_error": None}``.
 
-    ``attributes`` (``mode="auto"`` or ``"lossless"``, with or without a
-    size; ``"swing"`` and ``"displaced"`` refuse them) is a dict
+    ``attributes`` (any mode, with or without a size; ``"swing"`` and
+    ``"displaced"`` refuse texture coordinates, which their files cannot
+    carry, and resample the others at their own vertices) is a dict
     of per-vertex float arrays, one row per vertex, as
     ``decode(..., attributes=True)`` returns them: ``"normals"`` (n, 3),
     ``"uv"`` (n, 2) and further sets ``"uv1"``, ...; ``"colors"`` (n, 3)

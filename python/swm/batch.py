@@ -340,16 +340,18 @@ def compress(job: Job) -> Dict[str, Any]:
                 dropped.append(f"{', '.join(lost)} not in the file")
         else:
             start = time.perf_counter()
-            # The swing method's file cannot carry attributes: it codes
-            # the surface alone, and the row says what it left out.
-            swing = job.options.get("mode") == "swing"
+            # The swing method's file cannot carry texture coordinates: it
+            # codes the surface alone then, and the row says what it left
+            # out (the other streams it resamples at its vertices).
+            swing = job.options.get("mode") == "swing" and any(k.startswith("uv") for k in streams)
             try:
                 data, report = swm.encode(vertices, faces, **job.options, report=True,
                                           attributes=None if swing else streams)
                 method = report["method"]
                 a = report["attributes"]
                 if swing and streams:
-                    dropped.append(f"{', '.join(streams)} not kept: the swing method's file cannot carry them")
+                    dropped.append(f"{', '.join(streams)} not kept: the swing method's file cannot carry "
+                                   "texture coordinates")
                 elif a["dropped"] and a["dropped_because"] is not None:
                     dropped.append(f"{', '.join(a['dropped'])} not kept: {a['dropped_because']['message']}")
             except swm.RetileError:

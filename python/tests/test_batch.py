@@ -536,11 +536,12 @@ def test_compress_keeps_a_meshs_attributes(tmp_path):
     row = batch.compress(batch.Job(str(obj), str(tmp_path / "l.swm"), {"mode": "lossless"}, 1000))
     assert row["dropped"] == "" and sorted(swm.decode((tmp_path / "l.swm").read_bytes(), attributes=True)[2]) == [
         "normals", "uv"]
-    # The swing method carries none; a rerun finds the file and says so.
+    # The swing method carries no texture coordinates; a rerun finds the
+    # file and says so.
     job = batch.Job(str(obj), str(tmp_path / "s.swm"), {"mode": "swing", "bpv": 8.0}, 1000)
     row = batch.compress(job)
     assert row["method"] == "swing"
-    assert row["dropped"] == "normals, uv not kept: the swing method's file cannot carry them"
+    assert row["dropped"] == "normals, uv not kept: the swing method's file cannot carry texture coordinates"
     row = batch.compress(job)
     assert row["status"] == "skipped" and row["dropped"] == "normals, uv not in the file"
     # A `vt` on some corners only: the reader's note.

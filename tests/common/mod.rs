@@ -246,6 +246,10 @@ pub fn samples() -> &'static [Sample] {
                 name: "displaced+ATTR",
                 bytes: include_bytes!("../../format-spec/golden/displaced-attr-v1.2.swm").to_vec(),
             },
+            Sample {
+                name: "swing+ATTR",
+                bytes: include_bytes!("../../format-spec/golden/swing-attr-v1.2.swm").to_vec(),
+            },
         ]
     })
 }

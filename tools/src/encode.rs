@@ -391,9 +391,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let bounded = args.max_error.is_some() || args.max_error_units.is_some();
     // The lossless, automatic and simplified modes keep the input's
     // attributes (`ATTR`, format 1.2; the automatic mode weighs only the
-    // methods that carry them), displaced files all but texture
-    // coordinates; SwingWrapper files cannot, and drop them with a
-    // warning, as displaced ones do an input with texture coordinates.
+    // methods that carry them), SwingWrapper and displaced files all but
+    // texture coordinates: with those, they drop them with a warning.
     let (m, read) = crate::pipe::read_attributed_mesh(&args.input, format)?;
     let why = "not every face corner names them, or a value is malformed";
     let unattached = names_of(&read.dropped);
@@ -401,9 +400,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let mesh = m.mesh.clone();
     let uvs = (m.streams.iter()).any(|s| matches!(s.kind, swm::AttributeKind::TexCoord(_)));
     let attributed = match args.mode {
-        ModeArg::Swing | ModeArg::Displaced if args.mode == ModeArg::Swing || uvs => {
+        ModeArg::Swing | ModeArg::Displaced if uvs => {
             let why = match args.mode {
-                ModeArg::Swing => "the swing method's file cannot carry them; --mode auto keeps them",
+                ModeArg::Swing => "the swing method's file cannot carry texture coordinates; --mode auto keeps them",
                 _ => "the displaced method's file cannot carry texture coordinates; --mode auto keeps them",
             };
             let streams = names_of(&kinds_of(&m));

@@ -47,8 +47,9 @@ pub(crate) fn encode(mesh: &TriMesh, options: &EncodeOptions) -> Result<Encoded,
 /// [`crate::encode_attributed`]). The lossless mode keeps them; the
 /// automatic and simplified modes keep them too, running only methods
 /// whose files carry them (`CodingMethod::carries_attributes`); a mode
-/// that names a method that cannot (SwingWrapper; displaced subdivision
-/// for texture coordinates) drops them and says so ([`AttributeReport`]).
+/// that names a method that cannot (SwingWrapper and displaced
+/// subdivision, for texture coordinates) drops them and says so
+/// ([`AttributeReport`]).
 /// No streams: [`encode`]'s bytes.
 pub(crate) fn encode_attributed(
     mesh: &crate::AttributedMesh,
@@ -65,15 +66,16 @@ pub(crate) fn encode_attributed(
             encoded.stats.attributes.kept = kinds;
             return Ok(encoded);
         }
-        EncodeMode::Swing { .. } => Some(stats::Method::Swing),
-        // Normals, colours and generic streams resampled at its vertices;
-        // texture coordinates it cannot keep (`resample`).
+        // Normals, colours and generic streams resampled at their
+        // vertices; texture coordinates they cannot keep (`resample`).
+        EncodeMode::Swing { .. } if !resample::carries(&mesh.streams) => Some(stats::Method::Swing),
         EncodeMode::Displaced { .. } if !resample::carries(&mesh.streams) => {
             Some(stats::Method::Displaced)
         }
-        EncodeMode::Auto { .. } | EncodeMode::Simplified { .. } | EncodeMode::Displaced { .. } => {
-            None
-        }
+        EncodeMode::Auto { .. }
+        | EncodeMode::Simplified { .. }
+        | EncodeMode::Swing { .. }
+        | EncodeMode::Displaced { .. } => None,
     };
     if let Some(method) = dropped_by {
         let mut encoded = encode(&mesh.mesh, options)?;

@@ -1,5 +1,5 @@
 //! Attributes for the files of a method that makes new vertices (issue
-//! 47, item 3; today displaced subdivision): each decoded vertex's value
+//! 47, item 3: displaced subdivision and SwingWrapper): each decoded vertex's value
 //! is read from the input where the vertex stands for (`provenance`: a
 //! face and barycentric coordinates on it), one value per vertex, and the
 //! streams are coded as `ATTR` over the decoded mesh
@@ -101,7 +101,10 @@ pub(crate) fn with_attributes(
     let file = parse_container(bytes, &Limits::default())?;
     let mut sections: Vec<(Tag, &[u8])> = file.sections().map(|s| (s.tag, s.bytes)).collect();
     sections.push((Tag::ATTR, &attr));
-    Ok(Some(write_container(&file.header, &sections)?))
+    // `ATTR` is a 1.2 section (a SwingWrapper file is 1.0 or 1.1 without).
+    let mut header = file.header;
+    header.minor = header.minor.max(2);
+    Ok(Some(write_container(&header, &sections)?))
 }
 
 /// Bits per vertex the job's streams cost coded as `ATTR` over the

@@ -173,8 +173,9 @@ pub enum CandidateFailure {
     },
     /// Not tried: the input has attribute streams (texture coordinates,
     /// normals, colours) and this method's file cannot carry them
-    /// (SwingWrapper, per-component and displaced files have no
-    /// per-corner attributes); a method that keeps them coded it.
+    /// (per-component files carry none; SwingWrapper and displaced files
+    /// no texture coordinates, one value per vertex); a method that keeps
+    /// them coded it.
     DropsAttributes,
     /// The method has nothing to add for this input: a method per
     /// component on a mesh of one component, or one whose components all

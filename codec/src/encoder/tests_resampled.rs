@@ -1,5 +1,5 @@
-//! Streams resampled at the vertices of a displaced-subdivision file
-//! (`resample`, `ATTR` over a decoded mesh): a sphere with a colour that
+//! Streams resampled at the vertices of a displaced-subdivision or
+//! SwingWrapper file (`resample`, `ATTR` over a decoded mesh): a sphere with a colour that
 //! is a linear function of the position and a generic scalar, so that
 //! each decoded vertex's value can be checked against where it stands.
 
@@ -24,6 +24,17 @@ fn coloured_sphere(nu: u32, nv: u32) -> AttributedMesh {
         AttributeStream::new(AttributeKind::Generic(3), 1, scalar, mesh.triangles.clone()),
     ];
     AttributedMesh::new(mesh, streams)
+}
+
+fn swing(bytes: u64) -> EncodeOptions {
+    EncodeOptions {
+        mode: EncodeMode::Swing {
+            target: SwingTarget::Bytes(bytes),
+            angle_bits: None,
+            max_bytes: None,
+        },
+        ..Default::default()
+    }
 }
 
 fn displaced(bytes: u64) -> EncodeOptions {
@@ -134,10 +145,10 @@ fn the_chooser_runs_displaced_subdivision_on_a_coloured_mesh() {
         displaced != Err(CandidateFailure::DropsAttributes),
         "{displaced:?}"
     );
-    assert_eq!(
-        tried(Method::Swing),
-        Some(Err(CandidateFailure::DropsAttributes))
-    );
+    // SwingWrapper carries them too (here perhaps over the level's work
+    // budget, but not left out for its file).
+    let swing = tried(Method::Swing).expect("swing is in default's list");
+    assert!(swing != Err(CandidateFailure::DropsAttributes), "{swing:?}");
     assert_eq!(
         e.stats.attributes.kept,
         vec![AttributeKind::Color(0), AttributeKind::Generic(3)]
@@ -165,6 +176,72 @@ fn hostile_attr_bytes_in_a_displaced_file_are_errors_never_panics() {
     crate::lossless::attributes::tests::hostile_attr_is_refused(
         &bytes,
         0x2545_F491_4F6C_DD1D,
+        2000,
+    );
+}
+
+#[test]
+fn swingwrapper_keeps_colours_and_generic_streams() {
+    let input = coloured_sphere(96, 48);
+    let request = 3_000;
+    let e = crate::encode_attributed(&input, &swing(request)).unwrap();
+    let super::stats::MethodStats::Swing(report) = &e.stats.method else {
+        panic!("{:?}", e.stats.method);
+    };
+    // Its report answers the request (geometry and streams together).
+    assert_eq!(report.rate.requested_bytes, Some(request));
+    let a = &e.stats.attributes;
+    assert_eq!(
+        a.kept,
+        vec![AttributeKind::Color(0), AttributeKind::Generic(3)]
+    );
+    let size = e.bytes.len() as f64;
+    assert!(
+        (size - request as f64).abs() <= 0.03 * request as f64,
+        "{size} bytes for {request}"
+    );
+    assert_eq!(report.rate.within_tolerance, true);
+    let info = crate::inspect(&e.bytes, &Default::default()).unwrap();
+    assert_eq!(info.version, (1, 2));
+    assert_eq!(info.stats.attributes.len(), 2);
+    let decoded = crate::decode_attributed(&e.bytes, &DecodeOptions::default()).unwrap();
+    decoded.validate().unwrap();
+    // Over the plain decode, which is also the default one: no hint is
+    // written for a file with streams.
+    let plain = crate::decode(&e.bytes, &DecodeOptions::plain()).unwrap();
+    assert_eq!(decoded.mesh, plain);
+    assert_eq!(
+        crate::decode(&e.bytes, &DecodeOptions::default()).unwrap(),
+        plain
+    );
+    assert_where_they_stand(&decoded);
+    let again = crate::encode_attributed(&input, &swing(request)).unwrap();
+    assert_eq!(e.bytes, again.bytes);
+}
+
+#[test]
+fn texture_coordinates_keep_swingwrapper_out() {
+    let e = crate::encode_attributed(&textured_sphere(40, 20), &swing(2_000)).unwrap();
+    let a = &e.stats.attributes;
+    assert!(a.kept.is_empty());
+    assert_eq!(
+        a.dropped_because,
+        Some(AttributesDropped::Method(Method::Swing))
+    );
+}
+
+#[test]
+fn hostile_attr_bytes_in_a_swingwrapper_file_are_errors_never_panics() {
+    let bytes = crate::encode_attributed(&coloured_sphere(24, 12), &swing(800))
+        .unwrap()
+        .bytes;
+    assert_eq!(
+        crate::inspect(&bytes, &Default::default()).unwrap().mode,
+        crate::container::Mode::Swing
+    );
+    crate::lossless::attributes::tests::hostile_attr_is_refused(
+        &bytes,
+        0x9E37_79B9_7F4A_7C15,
         2000,
     );
 }

@@ -5,6 +5,14 @@
 //! decoder will run ([`hinted`]). Its decoder is `crate::swing`; the
 //! retiler is `crate::swing::retile`.
 //!
+//! With attribute streams (normals, colours, generic values; issue 47,
+//! item 3) the file is written for a plain decode (no post-processing
+//! hint: a decoder that reads the streams does not post-process, and
+//! Sharpen&Bend would move the vertices they were resampled at), the
+//! streams are resampled at its vertices from where each tip was fitted
+//! and appended as `ATTR` (`encoder::resample`), geometry and streams
+//! sized together to the request.
+//!
 //! Invariants: the bytes depend only on the cleaned input, the request
 //! and the options (never on the limits, which only decide whether a
 //! file is written, nor on the thread count); a file is never above the
@@ -44,6 +52,9 @@ const PREDICTED_RUNS: u64 = 2;
 /// Bits per retiled triangle assumed when predicting its count from a
 /// size (files take 1.3-2.3; rate control's own first guess).
 const BITS_PER_TRIANGLE: u64 = 2;
+/// Bits of geometry per decoded vertex, for the first guess of a file
+/// with attributes: two triangles a vertex at [`BITS_PER_TRIANGLE`].
+const GEOMETRY_BITS: f64 = 2.0 * BITS_PER_TRIANGLE as f64;
 
 /// SwingWrapper, with the angle bits asked for (`None`: rate control
 /// chooses).
@@ -80,16 +91,85 @@ impl CodingMethod for Swing {
         Some(budget.saturating_mul(CUT) / 2)
     }
 
+    /// Normals, colours and generic streams, resampled at its vertices
+    /// (`resample`); not texture coordinates.
+    fn carries_attributes(&self, streams: &[crate::AttributeStream]) -> bool {
+        super::resample::carries(streams)
+    }
+
     fn encode(&self, job: &Job<'_, '_>, ask: Ask) -> Result<Option<Made>, Error> {
-        let file = encode(
+        if job.streams().is_empty() {
+            let file = self.file(job, job.options, ask)?;
+            return Ok(Some(file.made(job.options.origins, MethodStats::Swing)));
+        }
+        // With attributes: a plain file (no hint), its streams appended.
+        let plain = EncodeOptions {
+            swing: crate::options::SwingTuning {
+                post_hint: false,
+                ..job.options.swing
+            },
+            ..job.options.clone()
+        };
+        // The passes share the work limit (an effort level's budget):
+        // each gets what the ones before it left.
+        let used = core::cell::Cell::new(0u64);
+        let attributed = |ask: Ask| -> Result<Option<Made>, Error> {
+            let mut options = plain.clone();
+            options.limits.max_work = plain.limits.max_work.saturating_sub(used.get());
+            let file = self.file(job, &options, ask)?;
+            used.set(used.get().saturating_add(file.report.rate.work));
+            let Some(bytes) =
+                super::resample::with_attributes(job, &file.bytes, Some(&file.seeds))?
+            else {
+                return Ok(None);
+            };
+            let mut made = file.made(job.options.origins, MethodStats::Swing);
+            made.bytes = bytes;
+            Ok(Some(made))
+        };
+        // An edge length fixes the geometry; a size is met by geometry
+        // and streams together.
+        if let SwingTarget::EdgeLength(_) = ask.target {
+            return attributed(ask);
+        }
+        let budget =
+            super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "swing")?;
+        let made = super::resample::sized(job, budget, ask.max_bytes, GEOMETRY_BITS, |geometry| {
+            attributed(Ask {
+                target: SwingTarget::Bytes(geometry),
+                max_bytes: None,
+            })
+        })?;
+        // Its report answers the request, not the last pass's geometry.
+        Ok(made.map(|mut m| {
+            if let MethodStats::Swing(r) = &mut m.stats {
+                let total = m.bytes.len() as f64;
+                r.rate.requested_bytes = Some(budget);
+                r.rate.within_tolerance = (total - budget as f64).abs()
+                    <= crate::swing::retile::rate::TOLERANCE * budget as f64;
+                r.rate.work = used.get();
+            }
+            m
+        }))
+    }
+}
+
+impl Swing {
+    /// Its file of `job`'s input for `ask` under `options`.
+    fn file(
+        &self,
+        job: &Job<'_, '_>,
+        options: &EncodeOptions,
+        ask: Ask,
+    ) -> Result<SwingFile, Error> {
+        encode(
             job.cleaned,
             job.input_vertices,
-            job.options,
+            options,
             ask,
             self.angle_bits,
             job.cleaned_surface()?,
-        )?;
-        Ok(Some(file.made(job.options.origins, MethodStats::Swing)))
+        )
     }
 }
 

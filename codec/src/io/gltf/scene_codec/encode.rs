@@ -6,12 +6,13 @@
 //! attributes (NORMAL, TEXCOORD_n, COLOR_n; `encode_attributed`,
 //! quantized as `EncodeOptions::attributes` says): the automatic mode
 //! runs only methods whose files keep them (the simplified method with
-//! its seams, displaced subdivision for normals and colours). Normals
+//! its seams, displaced subdivision and SwingWrapper for normals and
+//! colours). Normals
 //! are coded even where they follow the geometry (the primitive had a
 //! NORMAL accessor, and keeps one), and a share too small for a file
 //! with the streams gets the smallest file that keeps them (a material
 //! needs its texture coordinates). A mode whose file cannot carry them
-//! (`--mode swing`; displaced with texture coordinates) codes such a
+//! (`--mode swing` or displaced, with texture coordinates) codes such a
 //! primitive losslessly instead, at `SceneOptions::attributes_qp`, and
 //! so does `SceneOptions::lossy_attributes` off (the command line's
 //! choice when no size, rate or error bound is given).
@@ -68,8 +69,8 @@ pub struct SceneOptions {
     /// attribute quantization, effort and limits for all.
     pub encode: EncodeOptions,
     /// Bits per coordinate of a primitive with attributes that
-    /// `encode.mode` names a method for that cannot carry them (SwingWrapper;
-    /// displaced subdivision with texture coordinates), coded losslessly
+    /// `encode.mode` names a method for that cannot carry them (SwingWrapper
+    /// or displaced subdivision, with texture coordinates), coded losslessly
     /// with them instead. Default 12.
     pub attributes_qp: u8,
     /// Code primitives with attributes by `encode.mode` at their share
@@ -358,8 +359,7 @@ fn code(
         let uvs = (m.streams.iter()).any(|s| matches!(s.kind, crate::AttributeKind::TexCoord(_)));
         !m.streams.is_empty()
             && match mode {
-                EncodeMode::Swing { .. } => true,
-                EncodeMode::Displaced { .. } => uvs,
+                EncodeMode::Swing { .. } | EncodeMode::Displaced { .. } => uvs,
                 _ => false,
             }
     };
