@@ -12,7 +12,8 @@
  *
  * or size buffers with swm_decoded_len and fill them with swm_decode_into.
  * swm_decode_attributed adds the texture coordinates, normals and colours
- * of a lossless file, one array per stream, per vertex (swm_attributed_mesh,
+ * of a file that has them (lossless, SwingWrapper or displaced), one array
+ * per stream, per vertex (swm_attributed_mesh,
  * freed by swm_attributed_mesh_free).
  * Link with -lswm_ffi (static: also -lpthread -ldl -lm on Linux). */
 
@@ -298,8 +299,9 @@ const char *swm_version(void);
 
 /**
  * Decodes with `*opts` (NULL: the defaults) into `*out`, attribute
- * streams included (those of a lossless file's `ATTR` section; none
- * otherwise). A file with streams is not post-processed (Sharpen&Bend
+ * streams included (those of the file's `ATTR` section, in a lossless,
+ * SwingWrapper or displaced file; none otherwise, nor for a displaced
+ * file decoded to a coarser level). A file with streams is not post-processed (Sharpen&Bend
  * would change the triangles the values belong to). Returns `SWM_OK`
  * or an error code (message: `swm_last_error`); on failure `*out` is
  * zeroed, so freeing it is always safe.

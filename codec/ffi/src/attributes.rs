@@ -79,8 +79,9 @@ fn kind_of(kind: swm::AttributeKind) -> Option<(u32, u32)> {
 }
 
 /// Decodes with `*opts` (NULL: the defaults) into `*out`, attribute
-/// streams included (those of a lossless file's `ATTR` section; none
-/// otherwise). A file with streams is not post-processed (Sharpen&Bend
+/// streams included (those of the file's `ATTR` section, in a lossless,
+/// SwingWrapper or displaced file; none otherwise, nor for a displaced
+/// file decoded to a coarser level). A file with streams is not post-processed (Sharpen&Bend
 /// would change the triangles the values belong to). Returns `SWM_OK`
 /// or an error code (message: `swm_last_error`); on failure `*out` is
 /// zeroed, so freeing it is always safe.

@@ -1,5 +1,5 @@
 //! `swm_decode_attributed` and `swm_attributed_mesh_free`: the streams of
-//! a lossless file with attributes, per vertex, bit for bit what the Rust
+//! a file with attributes (lossless, SwingWrapper, displaced), per vertex, bit for bit what the Rust
 //! API's `decode_attributed(..).split_vertices()` gives; hostile bytes
 //! give error codes and a zeroed output.
 
@@ -121,6 +121,35 @@ fn streams_come_per_vertex_as_the_rust_api_splits_them() {
         assert!(is_zeroed(&m));
         swm_attributed_mesh_free(&mut m);
         swm_attributed_mesh_free(ptr::null_mut());
+    }
+}
+
+/// The golden files with `ATTR` over a decoded mesh (SwingWrapper and
+/// displaced subdivision): their colours come out one per vertex, as the
+/// Rust API gives them.
+#[test]
+fn retiled_and_displaced_files_give_their_streams() {
+    for bytes in [
+        &include_bytes!("../../../format-spec/golden/swing-attr-v1.2.swm")[..],
+        &include_bytes!("../../../format-spec/golden/displaced-attr-v1.2.swm")[..],
+    ] {
+        let want = swm::decode_attributed(bytes, &Default::default())
+            .unwrap()
+            .split_vertices();
+        let mut m = zeroed();
+        // SAFETY: valid bytes and output; NULL options are the defaults.
+        unsafe {
+            let rc = swm_decode_attributed(bytes.as_ptr(), bytes.len(), ptr::null(), &mut m);
+            assert_eq!(rc, SWM_OK, "{}", last_error());
+            assert_eq!(m.attribute_count, 1);
+            let n = m.mesh.vertex_count;
+            assert_eq!(n, want.mesh.positions.len());
+            let s = &*m.attributes;
+            assert_eq!((s.kind, s.set, s.dims), (SWM_ATTRIBUTE_COLOR, 0, 3));
+            let values = std::slice::from_raw_parts(s.values, 3 * n);
+            assert_eq!(values, &want.streams[0].values[..]);
+            swm_attributed_mesh_free(&mut m);
+        }
     }
 }
 
