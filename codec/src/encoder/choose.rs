@@ -200,6 +200,12 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
     // choose its quantization) is not measured again. A lone candidate
     // needs no measure to win.
     let several = list.len() > 1;
+    // The streams' error is weighed only between files (a lone file is
+    // the answer whatever its error).
+    let files = states
+        .iter()
+        .filter(|s| matches!(s, State::Made(_)))
+        .count();
     let measured: Vec<Result<Option<Weighed>, Error>> = states
         .iter()
         .map(|s| match s {
@@ -209,9 +215,17 @@ pub(crate) fn choose(job: &Job<'_, '_>, ask: Ask, list: &[Entry]) -> Result<Chos
                     None if several => Some(job.measure(&m.bytes)?),
                     None => None,
                 };
+                // With streams, their error beside L2 (issue 47, item 3):
+                // texture coordinates and colours, at the weights the
+                // simplified method's own choices use.
+                let attributes = match files > 1 && !job.streams().is_empty() {
+                    true => job.simplifier().attribute_error_relative(&m.bytes)?,
+                    false => 0.0,
+                };
                 Ok(Some(Weighed {
                     bytes: m.bytes.len() as u64,
                     l2,
+                    attributes,
                     whole: m.whole,
                 }))
             }
@@ -330,6 +344,9 @@ struct Weighed {
     bytes: u64,
     /// `None` only for a lone candidate, which is never weighed.
     l2: Option<f64>,
+    /// Its streams' error, as a fraction of the diagonal, added to `l2`
+    /// where candidates are compared (0 without streams).
+    attributes: f64,
     /// It holds the whole mesh.
     whole: bool,
 }
@@ -344,7 +361,8 @@ fn prefer(a: &Weighed, b: &Weighed, budget: u64) -> bool {
     let short = |c: &Weighed| {
         (c.bytes as f64) < budget as f64 * (1.0 - crate::swing::retile::rate::TOLERANCE)
     };
-    let (la, lb) = (a.l2.unwrap_or(f64::INFINITY), b.l2.unwrap_or(f64::INFINITY));
+    let error = |c: &Weighed| c.l2.map_or(f64::INFINITY, |l2| l2 + c.attributes);
+    let (la, lb) = (error(a), error(b));
     match (a.whole || !short(a), b.whole || !short(b)) {
         (true, false) if la <= ON_SIZE_SLACK * lb => true,
         (false, true) if lb <= ON_SIZE_SLACK * la => false,
@@ -360,8 +378,26 @@ mod tests {
         Weighed {
             bytes,
             l2: Some(l2),
+            attributes: 0.0,
             whole: false,
         }
+    }
+
+    #[test]
+    fn the_streams_error_counts_beside_l2() {
+        // Closer in L2, but its colours are further off by more.
+        let a = w(180, 4.0e-4);
+        let b = Weighed {
+            attributes: 1.5e-4,
+            ..w(181, 3.0e-4)
+        };
+        assert!(prefer(&a, &b, 183));
+        assert!(!prefer(&b, &a, 183));
+        let b = Weighed {
+            attributes: 0.5e-4,
+            ..b
+        };
+        assert!(prefer(&b, &a, 183));
     }
 
     #[test]

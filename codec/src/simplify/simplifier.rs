@@ -188,10 +188,17 @@ impl<'a> Simplifier<'a> {
         let Some((texels, steps, diagonal)) = self.stream_errors(bytes)? else {
             return Ok(0.0);
         };
-        let texels = texels.map_or(0.0, |e| e.rms_texels);
-        let relative = attributed::TEXEL_WEIGHT * texels
-            + attributed::COLOUR_STEP_WEIGHT * steps.unwrap_or(0.0);
-        Ok(relative * diagonal)
+        Ok(weighed(texels, steps) * diagonal)
+    }
+
+    /// [`attribute_error`](Self::attribute_error) as a fraction of the
+    /// input's diagonal, as the automatic mode's chooser adds it to each
+    /// candidate's relative L2.
+    pub fn attribute_error_relative(&self, bytes: &[u8]) -> Result<f64, Error> {
+        let Some((texels, steps, _)) = self.stream_errors(bytes)? else {
+            return Ok(0.0);
+        };
+        Ok(weighed(texels, steps))
     }
 
     /// The texture coordinates' error of the file `bytes` against the
@@ -687,4 +694,12 @@ mod tests {
         assert!(fit.bytes.len() as u64 <= 3 * smallest);
         crate::decode(&fit.bytes, &Default::default()).unwrap();
     }
+}
+
+/// The streams' error terms weighed as a fraction of the diagonal:
+/// texture coordinates' RMS texels and colours' RMS 8-bit steps at their
+/// weights (`simplify::attributed`).
+fn weighed(texels: Option<crate::metrics::texcoord::TexcoordError>, steps: Option<f64>) -> f64 {
+    let texels = texels.map_or(0.0, |e| e.rms_texels);
+    attributed::TEXEL_WEIGHT * texels + attributed::COLOUR_STEP_WEIGHT * steps.unwrap_or(0.0)
 }
