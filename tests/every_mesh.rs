@@ -84,7 +84,7 @@ fn check_table(name: &str, meshes: usize) -> usize {
         };
         let method = auto["method"].as_str();
         assert!(
-            ["swing", "simplified", "whole"].contains(&method),
+            ["swing", "simplified", "displaced", "whole"].contains(&method),
             "{cell}: method {method:?}"
         );
         if bytes > budget {
