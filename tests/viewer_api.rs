@@ -35,7 +35,8 @@ fn decode_into_matches_decode_within_the_bound() {
             // Hole masks and post-processing decide their output from the
             // decoded data; everything else is in the header.
             let plain = !sharpen && bend == 0;
-            let header_exact = s.name != "swing+HOLE+LOOP";
+            // (And the loops' fans, which the decoder drops.)
+            let header_exact = !matches!(s.name, "swing+HOLE+LOOP" | "swing+ATTR");
             assert_eq!(bound.exact, plain && header_exact, "{what}");
 
             let mut p = vec![f32::NAN; bound.position_floats() as usize];
@@ -101,8 +102,49 @@ fn damaged_files_fail_through_every_entry_point() {
     assert_eq!(got.to_string(), want);
 }
 
+/// Per vertex, whether its angle-weighted face normals add up to a
+/// direction rounding cannot turn: at a fold (two faces back to back, as
+/// a retiled mesh can have where a loop's fan was dropped) they cancel to
+/// a millionth of their sum, and `f32` and `f64` sums point anywhere.
+fn well_conditioned(mesh: &swm::TriMesh) -> Vec<bool> {
+    let p = |v: u32| mesh.positions[v as usize].map(f64::from);
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let norm = |a: [f64; 3]| dot(a, a).sqrt();
+    let mut sum = vec![[0.0f64; 3]; mesh.positions.len()];
+    let mut total = vec![0.0f64; mesh.positions.len()];
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(p);
+        let (u, v) = (sub(b, a), sub(c, a));
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let area = norm(n);
+        if area == 0.0 {
+            continue;
+        }
+        for k in 0..3 {
+            let (o, e1, e2) = (t.map(p)[k], t.map(p)[(k + 1) % 3], t.map(p)[(k + 2) % 3]);
+            let (x, y) = (sub(e1, o), sub(e2, o));
+            let angle = (dot(x, y) / (norm(x) * norm(y))).clamp(-1.0, 1.0).acos();
+            let s = &mut sum[t[k] as usize];
+            for j in 0..3 {
+                s[j] += angle * n[j] / area;
+            }
+            total[t[k] as usize] += angle;
+        }
+    }
+    sum.iter()
+        .zip(&total)
+        .map(|(s, &w)| norm(*s) > 1e-4 * w)
+        .collect()
+}
+
 /// Normals over the flat buffers a viewer holds agree with the owned
-/// version and are unit length.
+/// version and are unit length (where the direction is defined beyond
+/// rounding: [`well_conditioned`]).
 #[test]
 fn normals_over_flat_buffers() {
     for s in common::samples() {
@@ -114,9 +156,13 @@ fn normals_over_flat_buffers() {
             mesh.triangles.as_flattened(),
             &mut flat,
         );
-        for (a, b) in flat.chunks_exact(3).zip(&owned) {
+        let conditioned = well_conditioned(&mesh);
+        for ((a, b), ok) in flat.chunks_exact(3).zip(&owned).zip(conditioned) {
             let len = (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt();
             assert!((len - 1.0).abs() < 1e-5, "{}: |n| = {len}", s.name);
+            if !ok {
+                continue;
+            }
             for k in 0..3 {
                 assert!((a[k] - b[k]).abs() < 1e-4, "{}: {a:?} vs {b:?}", s.name);
             }

@@ -20,7 +20,7 @@
 //!
 //! ```text
 //! step                     vertices              triangles
-//! container                V (+ V_rest)           T (+ T_rest)     exact unless HOLE
+//! container                V (+ V_rest)           T (+ T_rest)     exact unless HOLE or LOOP
 //! EdgeSharpener            + E + T ≤ + 4T         ≤ 6T             (one vertex per blue edge and
 //!                                                                   green face; a green face → 6)
 //! each Bender step         + E ≤ + 3T             4T
@@ -39,8 +39,9 @@ pub struct DecodedLen {
     /// Triangles, at most: `indices` needs three `u32` each.
     pub triangles: u64,
     /// The counts are exactly those of the decoded mesh: a lossless file,
-    /// or a SwingWrapper file without a hole mask, decoded without
-    /// Sharpen&Bend (which decide their growth from the geometry).
+    /// or a SwingWrapper file without a hole mask or loops (whose fans
+    /// the decoder drops), decoded without Sharpen&Bend (which decide
+    /// their growth from the geometry).
     pub exact: bool,
 }
 

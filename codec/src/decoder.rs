@@ -81,7 +81,11 @@ static SWING: ModeDecoder = ModeDecoder {
     },
     extra_counts: |file, limits| {
         let (v, t) = crate::swing::rest_counts(file, limits)?;
-        Ok((v, t, file.find(crate::container::Tag::HOLE).is_none()))
+        // The hole mask's triangles and the loops' fans are dropped as
+        // decoded: the header counts them.
+        let exact = file.find(crate::container::Tag::HOLE).is_none()
+            && file.find(crate::container::Tag::LOOP).is_none();
+        Ok((v, t, exact))
     },
 };
 
