@@ -179,7 +179,7 @@ fn encode_mode(
     angle_bits: Option<i64>,
     qp: Option<i64>,
     max_error: Option<f64>,
-    attribute_options: bool,
+    texcoord_bits: bool,
 ) -> PyResult<swm::EncodeMode> {
     if !matches!(mode, "auto" | "swing" | "lossless") {
         return Err(PyValueError::new_err(format!(
@@ -219,9 +219,9 @@ fn encode_mode(
         "swing" => {
             refuse(qp.is_some(), "takes no qp (it is for mode=\"lossless\")")?;
             refuse(
-                attribute_options,
-                "takes no qn, qt, qg or keep_normals: a swing file carries no attributes \
-                 (they are for mode=\"auto\" or \"lossless\")",
+                texcoord_bits,
+                "takes no qt: a swing file carries no texture coordinates \
+                 (qt is for mode=\"auto\" or \"lossless\")",
             )?;
             refuse(
                 max_error.is_some(),
@@ -452,7 +452,9 @@ fn encode<'py>(
     // Out-of-range bits first, as the command line's parser refuses them
     // before it looks at the mode.
     let attribute_bits = quantization(qn, qt, qg).py_err(py)?;
-    let quantized = qn.is_some() || qt.is_some() || qg.is_some() || keep_normals;
+    // Texture coordinates' bits: the one attribute option a swing file
+    // has no use for (it carries all streams but texture coordinates).
+    let texcoord_bits = qt.is_some();
     let mode = encode_mode(
         py,
         bpv,
@@ -463,7 +465,7 @@ fn encode<'py>(
         angle_bits,
         qp,
         max_error,
-        quantized,
+        texcoord_bits,
     )?;
     let mesh = arrays::mesh(&vertices, &faces)?;
     // `Some` even when empty: a dict asks for `encode_attributed`,

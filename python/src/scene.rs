@@ -98,7 +98,9 @@ pub fn encode_scene<'py>(
     let effort = effort_of(effort)?;
     let format = format_of(format)?;
     let attribute_bits = quantization(qn, qt, qg).py_err(py)?;
-    let quantized = qn.is_some() || qt.is_some() || qg.is_some() || keep_normals;
+    // Texture coordinates' bits: the one attribute option a swing file
+    // has no use for (it carries all streams but texture coordinates).
+    let texcoord_bits = qt.is_some();
     // `swm encode`'s rules for a scene: those of a mesh, and no max_size
     // (the size is the whole scene's swm budget).
     let mode = encode_mode(
@@ -111,7 +113,7 @@ pub fn encode_scene<'py>(
         angle_bits,
         qp,
         max_error,
-        quantized,
+        texcoord_bits,
     )?;
     let limits = Limits::to_swm(limits.as_deref());
     let options = swm::io::SceneOptions {

@@ -315,8 +315,8 @@ def encode(
     (default 10: a texel of a 1024² texture over a unit chart; 2 to 24),
     ``qg`` bits per colour or generic component (default 8, 2 to 24). A
     value outside its range raises :class:`ParameterError` naming it,
-    whatever streams the mesh has; ``mode="swing"`` takes none of them
-    nor ``keep_normals`` (``ValueError``).
+    whatever streams the mesh has; ``mode="swing"`` takes no ``qt``
+    (``ValueError``: its files carry no texture coordinates).
 
     Deterministic: the same arrays and options give the same bytes.
     """

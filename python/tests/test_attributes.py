@@ -329,10 +329,15 @@ def test_quantization_bits_out_of_range_are_refused(swm_bin, tmp_path: Path):
                               "lossless", f"--{name}={bad}"], capture_output=True)
         assert out.returncode == 2 and f"{low}..={high}" in out.stderr.decode(), out.stderr
     assert not (tmp_path / "x.swm").exists()
-    # The swing mode codes no attributes: its options are refused.
-    for extra in ({"qt": 12}, {"qn": 8}, {"qg": 8}, {"keep_normals": True}):
-        with pytest.raises(ValueError, match="swing"):
-            swm.encode(v, f, mode="swing", **extra)
+    # The swing mode codes no texture coordinates: their bits are
+    # refused; the others it takes.
+    with pytest.raises(ValueError, match="swing"):
+        swm.encode(v, f, mode="swing", qt=12)
+    colours = {"colors": np.repeat(v[:, 2:3], 3, axis=1).astype(np.float32)}
+    for extra in ({"qn": 8}, {"qg": 10}, {"keep_normals": True}):
+        swm.encode(v, f, mode="swing", bpv=24.0, attributes=colours, **extra)
+    fine = swm.encode(v, f, mode="swing", bpv=24.0, attributes=colours, qg=12, report=True)[1]
+    assert fine["attributes"]["kept"] == ["colors"], fine
     with pytest.raises(TypeError):
         swm.encode(v, f, mode="lossless", qt=10.5)
 
