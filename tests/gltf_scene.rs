@@ -627,6 +627,34 @@ fn the_khronos_validator_reports_no_errors_on_any_output() {
         outputs.push(out);
         outputs.push(plain);
     }
+    // The ball with normals and no texture coordinates, by SwingWrapper,
+    // whose files carry normals (format 1.2's ATTR over a retiled mesh).
+    let mut normals_only = doc.clone();
+    let ball = &mut normals_only["meshes"][0]["primitives"][0];
+    ball["attributes"]
+        .as_object_mut()
+        .unwrap()
+        .remove("TEXCOORD_0");
+    ball.as_object_mut().unwrap().remove("material");
+    let input = dir.join("normals.glb");
+    std::fs::write(&input, glb(&normals_only, &bin)).unwrap();
+    let (out, plain) = (dir.join("swing.glb"), dir.join("plain-swing.glb"));
+    let report = json(&swm(&[
+        "encode",
+        s(&input),
+        "-o",
+        s(&out),
+        "--mode",
+        "swing",
+        "--bpv",
+        "12",
+        "--json",
+    ]));
+    assert_eq!(report["primitives"][0]["method"], "swing", "{report}");
+    ok(&swm(&["decode", s(&out), "-o", s(&plain)]));
+    let (pdoc, _) = chunks(&std::fs::read(&plain).unwrap());
+    assert!(pdoc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"].is_u64());
+    outputs.extend([input, out, plain]);
     let paths: Vec<&Path> = outputs.iter().map(|p| p.as_path()).collect();
     let Some(errors) = validator_errors(&paths) else {
         return;
