@@ -181,9 +181,9 @@ fn encode_mode(
     max_error: Option<f64>,
     texcoord_bits: bool,
 ) -> PyResult<swm::EncodeMode> {
-    if !matches!(mode, "auto" | "swing" | "lossless") {
+    if !matches!(mode, "auto" | "swing" | "displaced" | "lossless") {
         return Err(PyValueError::new_err(format!(
-            "mode must be \"auto\", \"swing\" or \"lossless\", got {mode:?}"
+            "mode must be \"auto\", \"swing\", \"displaced\" or \"lossless\", got {mode:?}"
         )));
     }
     let refuse = |given: bool, message: &str| -> PyResult<()> {
@@ -214,6 +214,29 @@ fn encode_mode(
                 qp.is_some(),
                 "takes no qp: the encoder chooses it \
                  (set it with mode=\"lossless\" and no size or bpv)",
+            )?;
+        }
+        "displaced" => {
+            refuse(
+                qp.is_some(),
+                "takes no qp: the encoder chooses the base's (set it with mode=\"lossless\")",
+            )?;
+            refuse(
+                angle_bits.is_some(),
+                "takes no angle_bits (they are for mode=\"swing\")",
+            )?;
+            refuse(
+                edge_length.is_some(),
+                "takes no edge_length (it is for mode=\"swing\" or \"auto\"): give size or bpv",
+            )?;
+            refuse(
+                max_error.is_some(),
+                "takes no max_error (it is for mode=\"auto\" or \"lossless\")",
+            )?;
+            refuse(
+                texcoord_bits,
+                "takes no qt: a displaced file carries no texture coordinates \
+                 (qt is for mode=\"auto\" or \"lossless\")",
             )?;
         }
         "swing" => {
@@ -269,6 +292,7 @@ fn encode_mode(
             angle_bits: angle_bits.map(bits),
             max_bytes,
         },
+        "displaced" => swm::EncodeMode::Displaced { target, max_bytes },
         // Quadric simplification to the size, then lossless.
         _ if sized => swm::EncodeMode::Simplified { target, max_bytes },
         _ => swm::EncodeMode::Lossless {

@@ -237,7 +237,8 @@ def encode(
 
     * ``"auto"`` (the default): the methods of the effort level
       (SwingWrapper retiling where it fits the level's budget, quadric
-      simplification then lossless coding, and at ``"max"`` a method per
+      simplification then lossless coding, displaced subdivision at low
+      rates, and at ``"max"`` every one of them and a method per
       component) at the target size; each is decoded and measured against
       the input (L2) and the closest is written. A retiling that fails
       falls back to the simplified file.
@@ -248,6 +249,11 @@ def encode(
       with ``angle_bits`` bits per dihedral angle (by default chosen as
       ``swm encode`` does: 6, or 5 when rate control finds the angles
       spread widely). Takes no ``qp``.
+    * ``"displaced"``: displaced subdivision only (format 1.2): a
+      simplified base, levels of 1-to-4 subdivision and one scalar per
+      new vertex, at ``size`` or ``bpv`` within 3%; ``decode``'s
+      ``max_level`` decodes a coarser level. Takes no ``qp``,
+      ``angle_bits``, ``edge_length``, ``max_error`` or ``qt``.
     * ``"lossless"``: without ``size`` or ``bpv``, the input's own
       triangles with positions on ``qp`` bits (default 12; ``max_size``
       refused). With ``size`` or ``bpv``, the mesh is first simplified
@@ -261,8 +267,8 @@ def encode(
     holds ``requested`` and ``smallest``, as ``swm encode --or-smallest``); options the mode has no use for raise
     ``ValueError``. With ``report=True`` the result is ``(bytes, report)``,
     ``report`` a dict: ``method``, what made the file (``"swing"``,
-    ``"simplified"``, ``"mixed"``, a method per component, or
-    ``"lossless"``); ``choice``, in the automatic mode, the ``method``
+    ``"simplified"``, ``"displaced"``, ``"mixed"``, a method per
+    component, or ``"lossless"``); ``choice``, in the automatic mode, the ``method``
     object of ``swm encode --json`` (``chosen``, ``effort``, each
     candidate of the level under its method's name as
     ``{"bytes", "l2_rel"}`` or ``None``, ``<name>_failure``, why it

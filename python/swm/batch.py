@@ -1,7 +1,7 @@
 """Batch compression of a mesh library on Dask distributed.
 
     python -m swm.batch MANIFEST --out DIR [--bpv R | --size B | --edge-length L]
-                        [--mode auto|swing|lossless] [--qn N] [--qt N] [--qg N] [--gltf-fallback]
+                        [--mode auto|swing|displaced|lossless] [--qn N] [--qt N] [--qg N] [--gltf-fallback]
                         [--address tcp://HOST:8786]
 
 MANIFEST is a directory (every .obj, .ply, .off and .stl mesh and every
@@ -639,7 +639,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--out", type=Path, required=True, help="folder of the .swm files")
     p.add_argument(
         "--mode",
-        choices=("auto", "swing", "lossless"),
+        choices=("auto", "swing", "displaced", "lossless"),
         default="auto",
         help="auto (default): the better of swing and simplify-then-lossless at the size; "
         "swing: retiling; lossless: every triangle, or simplified to --size/--bpv",

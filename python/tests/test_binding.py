@@ -223,7 +223,7 @@ def test_non_orientable_mesh_raises_topology_error():
 
 def test_bad_options():
     v, f = np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], dtype=np.uint32)
-    with pytest.raises(ValueError, match=r'mode must be "auto", "swing" or "lossless", got "fast"'):
+    with pytest.raises(ValueError, match=r'mode must be "auto", "swing", "displaced" or "lossless", got "fast"'):
         swm.encode(v, f, mode="fast")
     with pytest.raises(ValueError, match="at most one of bpv, size, edge_length and max_error"):
         swm.encode(v, f, bpv=2, size=100)
@@ -323,6 +323,23 @@ def test_swing_mode_report(torus):
     assert (check["decoded_vertices"], check["decoded_triangles"]) == (len(dv), len(df))
     assert 0 < check["l2_relative"] <= check["hausdorff_relative"] < 0.05
     assert swm.info(data)["mode"] == "swing"
+
+
+def test_displaced_mode(torus):
+    """mode="displaced": a mode-2 file at the size, decoded whole or to its
+    base; the options it has no use for are refused."""
+    v, f = torus
+    budget = 12 * len(v) // 8
+    data, report = swm.encode(v, f, mode="displaced", bpv=12, report=True)
+    assert report["method"] == "displaced" and report["choice"] is None, report
+    assert 0.97 * budget <= len(data) <= budget, (len(data), budget)
+    assert swm.info(data)["mode"] == "displaced"
+    dv, df = swm.decode(data)
+    bv, bf = swm.decode(data, max_level=0)
+    assert len(bf) < len(df) and len(bv) < len(dv)
+    for bad in ({"qp": 10}, {"angle_bits": 6}, {"edge_length": 0.1}, {"max_error": 1e-3}, {"qt": 10}):
+        with pytest.raises(ValueError, match="displaced"):
+            swm.encode(v, f, mode="displaced", **bad)
 
 
 # Auto: SwingWrapper gives its nearest file when none is as small as the
