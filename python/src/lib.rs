@@ -216,40 +216,30 @@ fn encode_mode(
                  (set it with mode=\"lossless\" and no size or bpv)",
             )?;
         }
-        "displaced" => {
-            refuse(
-                qp.is_some(),
-                "takes no qp: the encoder chooses the base's (set it with mode=\"lossless\")",
-            )?;
-            refuse(
-                angle_bits.is_some(),
-                "takes no angle_bits (they are for mode=\"swing\")",
-            )?;
-            refuse(
-                edge_length.is_some(),
-                "takes no edge_length (it is for mode=\"swing\" or \"auto\"): give size or bpv",
-            )?;
-            refuse(
-                max_error.is_some(),
-                "takes no max_error (it is for mode=\"auto\" or \"lossless\")",
-            )?;
-            refuse(
-                texcoord_bits,
-                "takes no qt: a displaced file carries no texture coordinates \
-                 (qt is for mode=\"auto\" or \"lossless\")",
-            )?;
-        }
-        "swing" => {
+        // Files that carry all streams but texture coordinates.
+        "swing" | "displaced" => {
             refuse(qp.is_some(), "takes no qp (it is for mode=\"lossless\")")?;
             refuse(
                 texcoord_bits,
-                "takes no qt: a swing file carries no texture coordinates \
-                 (qt is for mode=\"auto\" or \"lossless\")",
+                &format!(
+                    "takes no qt: a {mode} file carries no texture coordinates \
+                     (qt is for mode=\"auto\" or \"lossless\")"
+                ),
             )?;
             refuse(
                 max_error.is_some(),
                 "takes no max_error (it is for mode=\"auto\" or \"lossless\")",
             )?;
+            if mode == "displaced" {
+                refuse(
+                    angle_bits.is_some(),
+                    "takes no angle_bits (they are for mode=\"swing\")",
+                )?;
+                refuse(
+                    edge_length.is_some(),
+                    "takes no edge_length (it is for mode=\"swing\" or \"auto\"): give size or bpv",
+                )?;
+            }
         }
         _ => {
             refuse(
