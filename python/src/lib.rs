@@ -466,8 +466,8 @@ fn encode<'py>(
     // Out-of-range bits first, as the command line's parser refuses them
     // before it looks at the mode.
     let attribute_bits = quantization(qn, qt, qg).py_err(py)?;
-    // Texture coordinates' bits: the one attribute option a swing file
-    // has no use for (it carries all streams but texture coordinates).
+    // Texture coordinates' bits: the one attribute option a swing or
+    // displaced file has no use for (it carries all streams but them).
     let texcoord_bits = qt.is_some();
     let mode = encode_mode(
         py,

@@ -98,8 +98,8 @@ pub fn encode_scene<'py>(
     let effort = effort_of(effort)?;
     let format = format_of(format)?;
     let attribute_bits = quantization(qn, qt, qg).py_err(py)?;
-    // Texture coordinates' bits: the one attribute option a swing file
-    // has no use for (it carries all streams but texture coordinates).
+    // Texture coordinates' bits: the one attribute option a swing or
+    // displaced file has no use for (it carries all streams but them).
     let texcoord_bits = qt.is_some();
     // `swm encode`'s rules for a scene: those of a mesh, and no max_size
     // (the size is the whole scene's swm budget).

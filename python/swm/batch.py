@@ -340,17 +340,19 @@ def compress(job: Job) -> Dict[str, Any]:
                 dropped.append(f"{', '.join(lost)} not in the file")
         else:
             start = time.perf_counter()
-            # The swing method's file cannot carry texture coordinates: it
-            # codes the surface alone then, and the row says what it left
-            # out (the other streams it resamples at its vertices).
-            swing = job.options.get("mode") == "swing" and any(k.startswith("uv") for k in streams)
+            # SwingWrapper and displaced files cannot carry texture
+            # coordinates (`swm.encode` refuses them there): the surface
+            # alone then, and the row says what it left out (the other
+            # streams they resample at their vertices).
+            mode = job.options.get("mode")
+            remeshed = mode in ("swing", "displaced") and any(k.startswith("uv") for k in streams)
             try:
                 data, report = swm.encode(vertices, faces, **job.options, report=True,
-                                          attributes=None if swing else streams)
+                                          attributes=None if remeshed else streams)
                 method = report["method"]
                 a = report["attributes"]
-                if swing and streams:
-                    dropped.append(f"{', '.join(streams)} not kept: the swing method's file cannot carry "
+                if remeshed:
+                    dropped.append(f"{', '.join(streams)} not kept: the {mode} method's file cannot carry "
                                    "texture coordinates")
                 elif a["dropped"] and a["dropped_because"] is not None:
                     dropped.append(f"{', '.join(a['dropped'])} not kept: {a['dropped_because']['message']}")
@@ -641,8 +643,9 @@ def _parser() -> argparse.ArgumentParser:
         "--mode",
         choices=("auto", "swing", "displaced", "lossless"),
         default="auto",
-        help="auto (default): the better of swing and simplify-then-lossless at the size; "
-        "swing: retiling; lossless: every triangle, or simplified to --size/--bpv",
+        help="auto (default): the best of the effort level's methods at the size; "
+        "swing: retiling; displaced: displaced subdivision at --size/--bpv; "
+        "lossless: every triangle, or simplified to --size/--bpv",
     )
     target = p.add_mutually_exclusive_group()
     target.add_argument(

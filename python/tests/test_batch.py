@@ -544,6 +544,10 @@ def test_compress_keeps_a_meshs_attributes(tmp_path):
     assert row["dropped"] == "normals, uv not kept: the swing method's file cannot carry texture coordinates"
     row = batch.compress(job)
     assert row["status"] == "skipped" and row["dropped"] == "normals, uv not in the file"
+    # Nor does the displaced method: its row says so too, not an error.
+    row = batch.compress(batch.Job(str(obj), str(tmp_path / "d.swm"), {"mode": "displaced", "bpv": 24.0}, 1000))
+    assert row["status"] == "encoded" and row["method"] == "displaced", row
+    assert row["dropped"] == "normals, uv not kept: the displaced method's file cannot carry texture coordinates"
     # A `vt` on some corners only: the reader's note.
     part = tmp_path / "part.obj"
     part.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n")
