@@ -114,7 +114,8 @@ fn well_conditioned(mesh: &swm::TriMesh) -> Vec<bool> {
     let mut sum = vec![[0.0f64; 3]; mesh.positions.len()];
     let mut total = vec![0.0f64; mesh.positions.len()];
     for t in &mesh.triangles {
-        let [a, b, c] = t.map(p);
+        let q = t.map(p);
+        let [a, b, c] = q;
         let (u, v) = (sub(b, a), sub(c, a));
         let n = [
             u[1] * v[2] - u[2] * v[1],
@@ -126,7 +127,7 @@ fn well_conditioned(mesh: &swm::TriMesh) -> Vec<bool> {
             continue;
         }
         for k in 0..3 {
-            let (o, e1, e2) = (t.map(p)[k], t.map(p)[(k + 1) % 3], t.map(p)[(k + 2) % 3]);
+            let (o, e1, e2) = (q[k], q[(k + 1) % 3], q[(k + 2) % 3]);
             let (x, y) = (sub(e1, o), sub(e2, o));
             let angle = (dot(x, y) / (norm(x) * norm(y))).clamp(-1.0, 1.0).acos();
             let s = &mut sum[t[k] as usize];
