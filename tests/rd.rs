@@ -125,7 +125,7 @@ fn tamper(csv: &Path, row: &str, column: &str, f: impl Fn(&str) -> String) -> St
 fn writes_csv_markdown_and_plots() {
     let (dir, csv, out) = small_table_run("rd-files");
     let rows = read_csv(&csv);
-    // 2 meshes x 2 rates x 9 configurations, sorted by mesh (as given),
+    // 2 meshes x 2 rates x 10 configurations, sorted by mesh (as given),
     // rate, configuration.
     let order: Vec<(String, String, String)> = rows
         .iter()
@@ -151,6 +151,7 @@ fn writes_csv_markdown_and_plots() {
                     "swing-plain",
                     "swing+sharpen",
                     "swing+sharpen+bend",
+                    "displaced",
                 ]
                 .iter()
                 .map(move |c| (m.to_string(), r.to_string(), c.to_string()))
@@ -327,7 +328,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
         .lines()
         .filter(|l| !l.contains("rows checked"))
         .collect();
-    assert_eq!(verdicts.len(), 36, "{text}");
+    assert_eq!(verdicts.len(), 40, "{text}");
     assert!(verdicts.iter().all(|l| l.starts_with("same ")), "{text}");
 
     // Halve the L2 of the torus's 8 bpv lossless row.
@@ -394,7 +395,7 @@ fn check_passes_on_a_fresh_table_and_fails_when_l2_is_halved() {
     let out = swm(&["rd", "--check", s(&csv), "--only", "cube", "--json"]);
     let v = json(&out);
     let rows = v.as_array().unwrap();
-    assert_eq!(rows.len(), 18);
+    assert_eq!(rows.len(), 20);
     assert!(rows
         .iter()
         .all(|r| r["mesh"] == "generated:cube" && r["verdict"] == "pass"));

@@ -42,8 +42,10 @@ fn plan(levels: usize, rule: Rule) -> Plan {
             facing: true,
             qp: Some(12),
             qp_slack: 1.0,
+            step_error: None,
         },
         framing: Framing::Compact,
+        step: None,
     }
 }
 

@@ -27,6 +27,18 @@
 //! ±2% L2 (the secant lands them at other sizes within the tolerance).
 //! No loop runs until convergence: at most `|LEVELS| × TRIALS` files.
 //!
+//! Steps from the error (beyond the sources, measured in BENCHMARKS.md,
+//! "Steps from the error"): once a file is measured, no file's finest
+//! step is finer than [`STEP_ERROR`] times the least error carried to the
+//! budget so far. The first file, made with the edge rule alone, is made
+//! again with that floor when its step was finer, and the floored file
+//! replaces it only when its carried error is lower (else the edge rule
+//! stays for the whole encode); a floored level count whose search ends
+//! with the whole input as its base and bytes to spare also searches
+//! from the edge rule's file, and the closer file wins. Over the shared
+//! corpus's twelve meshes at 0.5-8 b/v: 17 of 60 cells closer (by 7-40%:
+//! spot, homer, cheburashka, cow at 0.5-2 b/v), none further.
+//!
 //! Invariant: everything input-sized is made once per encode and shared
 //! (the collapse sequence, the reference tree); a file costs its base's
 //! replay, refit and coding, and one line query per new vertex.
@@ -76,6 +88,18 @@ const NEXT_LEVEL_GAIN: f64 = 0.30;
 /// first guess of a file with attributes (bunny at 2 b/v: 3.4, a base
 /// and two levels; more with fewer levels).
 const GEOMETRY_BITS: f64 = 4.0;
+/// The floor of the finest step over the error expected of the file (L2,
+/// carried to the budget). With a uniform quantizer the last bit of a
+/// scalar is worth its cost where the squared error it removes, about
+/// step²/12 over the vertex's share of the area, matches the slope of the
+/// whole file's error against its bits (L2 ∝ bytes^−[`RATE_EXPONENT`]):
+/// that puts the step at about two L2 on any mesh. The edge rule (`c`
+/// times the mean edge) gives less than that on small meshes at low
+/// rates, where the error is large against the edges. Measured best
+/// ratios in a sweep of `c`: 1.7-3.0 on spot, homer and cheburashka at
+/// 0.5-4 b/v; the edge rule's own on bunny and horse, 1.8-3.0
+/// (BENCHMARKS.md, "Steps from the error").
+const STEP_ERROR: f64 = 2.0;
 
 /// The displaced-subdivision method and its settings.
 #[derive(Clone, Copy, Debug)]
@@ -97,6 +121,7 @@ impl Displaced {
             facing: true,
             qp: None,
             qp_slack: 1.0,
+            step_error: Some(STEP_ERROR),
         },
     };
 }
@@ -163,14 +188,15 @@ impl Displaced {
         let target = Target {
             surface: job.reference()?,
         };
-        let file = |faces: u32, levels: usize, qp: Option<u8>| -> Result<Written, Error> {
+        let file = |faces: u32, levels: usize, qp: Option<u8>, step: Option<f64>| {
             let mut base = s.simplify(faces);
             s.refit(&mut base);
             let mut plan = self.plan(levels, job);
             plan.settings.qp = qp;
+            plan.step = step;
             let mut w = write(&base, &target, &plan)?;
             w.base_target = faces;
-            Ok(w)
+            Ok::<Written, Error>(w)
         };
         // The error of a file against the input, as the chooser measures
         // it (the reconstruction is the decoded file, bit for bit: no need
@@ -193,6 +219,17 @@ impl Displaced {
         let mut firsts: Vec<First> = Vec::new();
         // The least carried error so far.
         let mut best = f64::INFINITY;
+        // The finest step that error asks for (`STEP_ERROR`), in the
+        // mesh's units; none before the first measure.
+        let diagonal = target.surface.diagonal();
+        let asked = |carried: f64| {
+            self.settings
+                .step_error
+                .map(|k| k * carried * diagonal)
+                .filter(|s| s.is_finite() && *s > 0.0)
+        };
+        let mut step: Option<f64> = None;
+        let mut floor = true;
         for levels in LEVELS {
             // After two level counts, one more only where the last level
             // still paid well (`NEXT_LEVEL_GAIN`).
@@ -206,18 +243,52 @@ impl Displaced {
                 .last()
                 .map_or_else(|| first_guess(budget, levels), |f| next_guess(budget, &f.w))
                 .clamp(MIN_BASE_FACES, s.faces().max(MIN_BASE_FACES));
-            let w = file(faces, levels, self.settings.qp)?;
-            smallest = smallest.min(w.bytes.len() as u64);
-            let l2 = measure(&w)?;
-            let carried = l2 * (w.bytes.len() as f64 / budget as f64).powf(RATE_EXPONENT);
+            let mut w = file(faces, levels, self.settings.qp, step)?;
+            // Only the edge rule's files say how small a file can be: a
+            // floored step depends on the budget, so a request at a
+            // floored file's size would not make that file again.
+            if step.is_none() {
+                smallest = smallest.min(w.bytes.len() as u64);
+            }
+            let mut l2 = measure(&w)?;
+            let carry = |w: &Written, l2: f64| {
+                l2 * (w.bytes.len() as f64 / budget as f64).powf(RATE_EXPONENT)
+            };
+            let mut carried = carry(&w, l2);
+            let mut given = step;
+            // The edge rule's file, when the floored one replaced it.
+            let mut edge = None;
+            // The first file's step is the edge rule's: made again when
+            // the step its error asks for is coarser (small meshes at low
+            // rates: a quarter to half of it).
+            if let (None, Some(want), true) = (step, asked(carried), floor) {
+                if w.step < want {
+                    let floored = file(faces, levels, self.settings.qp, Some(want))?;
+                    let l2_floored = measure(&floored)?;
+                    if carry(&floored, l2_floored) < carried {
+                        let mut edge_file = std::mem::replace(&mut w, floored);
+                        // Only its size and quantization serve again.
+                        edge_file.mesh = crate::TriMesh::default();
+                        edge = Some((edge_file, l2));
+                        l2 = l2_floored;
+                        carried = carry(&w, l2);
+                        given = Some(want);
+                    } else {
+                        floor = false;
+                    }
+                }
+            }
             let before = best;
             best = best.min(carried);
+            step = asked(best).filter(|_| floor);
             firsts.push(First {
                 levels,
                 faces,
                 w,
                 l2,
                 carried,
+                step: given,
+                edge,
             });
             // Error against level count was unimodal in every cell
             // measured (bunny and horse, 0.5-8 b/v): once a level more
@@ -234,17 +305,48 @@ impl Displaced {
             if first.carried > best * (1.0 + GIVE_UP) {
                 continue;
             }
-            let levels = first.levels;
-            let l2_first = first.l2;
+            let (levels, l2_first, given) = (first.levels, first.l2, first.step);
+            let mut floored_smallest = u64::MAX;
+            // The edge rule's files grow otherwise with their faces than
+            // floored ones: a floored search's slope serves only its kind.
+            let edge_slope = slope;
             let searched = search(
                 budget,
                 (first.faces, first.w),
                 s.faces(),
                 slope,
-                &mut smallest,
-                &|faces, qp| file(faces, levels, qp),
+                match given {
+                    None => &mut smallest,
+                    Some(_) => &mut floored_smallest,
+                },
+                &|faces, qp| file(faces, levels, qp, given),
             )?;
-            slope = searched.slope.unwrap_or(slope);
+            if given.is_none() {
+                slope = searched.slope.unwrap_or(slope);
+            }
+            // A floored step whose file falls short with the whole input
+            // as its base: the error has no faces left to fall with, and
+            // the bytes left buy precision, so the edge rule's file is
+            // searched and weighed too (teapot at 8 b/v: L2 8.8 floored,
+            // 2.5 with the edge rule).
+            if let (true, Some((edge, l2_edge))) = (searched.capped, first.edge) {
+                let again = search(
+                    budget,
+                    (first.faces, edge),
+                    s.faces(),
+                    edge_slope,
+                    &mut smallest,
+                    &|faces, qp| file(faces, levels, qp, None),
+                )?;
+                if let Some(mut w) = again.fitting {
+                    let l2 = match again.first_fits {
+                        true => l2_edge,
+                        false => measure(&w)?,
+                    };
+                    w.mesh = crate::TriMesh::default();
+                    found.push((l2, w, levels));
+                }
+            }
             let Some(mut w) = searched.fitting else {
                 continue;
             };
@@ -334,6 +436,7 @@ impl Displaced {
             levels,
             settings: self.settings,
             framing: job.options.framing,
+            step: None,
         }
     }
 }
@@ -346,6 +449,11 @@ struct First {
     w: Written,
     l2: f64,
     carried: f64,
+    /// Its finest step when given (`None`: the edge rule's).
+    step: Option<f64>,
+    /// The edge rule's file of the same faces and its error, when the
+    /// floored step replaced it.
+    edge: Option<(Written, f64)>,
 }
 
 /// What [`search`] found for one level count.
@@ -356,6 +464,9 @@ struct Searched {
     slope: Option<f64>,
     /// Whether `fitting` is the first file (measured already).
     first_fits: bool,
+    /// Whether `fitting` has the whole input as its base and still falls
+    /// short of the budget by more than the tolerance.
+    capped: bool,
 }
 
 /// The largest file of one level count found within `budget` in at most
@@ -384,6 +495,7 @@ fn search(
         fitting: None,
         slope: None,
         first_fits: false,
+        capped: false,
     };
     // (ln faces, ln size) of the largest fitting and smallest
     // oversized files, and of the last file.
@@ -403,7 +515,8 @@ fn search(
         *smallest = (*smallest).min(size);
         let point = ((f as f64).ln(), (size as f64).ln());
         let fits = size <= budget;
-        let done = fits && (size as f64 >= budget as f64 * (1.0 - TOLERANCE) || f >= most);
+        let on_size = size as f64 >= budget as f64 * (1.0 - TOLERANCE);
+        let done = fits && (on_size || f >= most);
         if let Some(l) = last {
             let s = slope_of(l, point);
             if s.is_finite() && s > 0.0 {
@@ -421,6 +534,7 @@ fn search(
             {
                 found.fitting = Some(w);
                 found.first_fits = trial == 0;
+                found.capped = f >= most && !on_size;
             }
             if done {
                 break;

@@ -1,6 +1,7 @@
-//! The `baseline` and `auto` configurations: the encoder's
+//! The `baseline`, `displaced` and `auto` configurations: the encoder's
 //! simplify-then-lossless method (`swm::simplify`,
-//! `EncodeMode::Simplified`, always with its full search) and its
+//! `EncodeMode::Simplified`, always with its full search), its
+//! displaced-subdivision method (`EncodeMode::Displaced`) and its
 //! automatic mode (`EncodeMode::Auto`, at the effort level the
 //! configuration names: `auto` at `max`, `auto-default`, `auto-fast`),
 //! each asked for the budget and capped at it, timed whole (search and
@@ -24,6 +25,20 @@ pub fn run(
     samples: u64,
 ) -> Result<Option<Coded>, CliError> {
     let mode = swm::EncodeMode::Simplified {
+        target: swm::SwingTarget::Bytes(budget),
+        max_bytes: Some(budget),
+    };
+    coded(case, mode, swm::Effort::Max, samples)
+}
+
+/// The displaced-subdivision method alone at one budget; `None` if
+/// nothing fits it.
+pub fn run_displaced(
+    case: &crate::rd::case::Case,
+    budget: u64,
+    samples: u64,
+) -> Result<Option<Coded>, CliError> {
+    let mode = swm::EncodeMode::Displaced {
         target: swm::SwingTarget::Bytes(budget),
         max_bytes: Some(budget),
     };

@@ -20,6 +20,7 @@ impl Config {
         let coded = match self {
             Config::Lossless => lossless(case, budget, samples)?,
             Config::Baseline => baseline::run(case, budget, samples)?,
+            Config::Displaced => baseline::run_displaced(case, budget, samples)?,
             Config::Auto | Config::AutoDefault | Config::AutoFast => {
                 let effort = self
                     .effort()

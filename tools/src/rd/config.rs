@@ -54,11 +54,15 @@ pub enum Config {
     /// The `swing` file decoded with EdgeSharpener and one Bender step.
     #[value(name = "swing+sharpen+bend")]
     SwingSharpenBend,
+    /// Displaced subdivision alone (`swm encode --mode displaced`): a
+    /// quadric-simplified base, levels of 1-to-4 subdivision, one scalar
+    /// per new vertex; asked for the budget and capped at it.
+    Displaced,
 }
 
 impl Config {
     /// Every configuration, in table order.
-    pub const ALL: [Config; 11] = [
+    pub const ALL: [Config; 12] = [
         Config::Lossless,
         Config::Baseline,
         Config::Auto,
@@ -70,6 +74,7 @@ impl Config {
         Config::SwingAdaptive,
         Config::SwingSharpen,
         Config::SwingSharpenBend,
+        Config::Displaced,
     ];
 
     /// What `swm rd` runs without `--configs`: all but the ablation rows.
@@ -94,6 +99,7 @@ impl Config {
             Config::SwingAdaptive => "swing-adaptive",
             Config::SwingSharpen => "swing+sharpen",
             Config::SwingSharpenBend => "swing+sharpen+bend",
+            Config::Displaced => "displaced",
         }
     }
 

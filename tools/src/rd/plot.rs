@@ -34,6 +34,7 @@ fn color(config: Config) -> RGBColor {
         Config::SwingSharpenBend => RGBColor(145, 30, 180),
         Config::SwingOnSurface => RGBColor(66, 212, 244),
         Config::SwingAdaptive => RGBColor(128, 128, 0),
+        Config::Displaced => RGBColor(220, 190, 255),
     }
 }
 
