@@ -36,8 +36,9 @@
 //! stays for the whole encode); a floored level count whose search ends
 //! with the whole input as its base and bytes to spare also searches
 //! from the edge rule's file, and the closer file wins. Over the shared
-//! corpus's twelve meshes at 0.5-8 b/v: 17 of 60 cells closer (by 7-40%:
-//! spot, homer, cheburashka, cow at 0.5-2 b/v), none further.
+//! corpus's twelve meshes at 0.5-8 b/v: 17 of 60 cells closer by 1-40%
+//! (7-40% on spot, homer, cheburashka and cow at 0.5-2 b/v), none
+//! further.
 //!
 //! Invariant: everything input-sized is made once per encode and shared
 //! (the collapse sequence, the reference tree); a file costs its base's
