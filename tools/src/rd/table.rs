@@ -383,7 +383,9 @@ pub fn to_markdown(title: &str, rows: &[Row], short_name: impl Fn(&str) -> Strin
          rates in bits per vertex of the mesh as read. `—` = nothing fits the budget, \
          `failed` = the encoder gave up, `n/a` = the configuration does not take the mesh. \
          `auto`, `auto-default` and `auto-fast` are `swm encode` at `--effort max`, with no flag \
-         (`default`) and at `--effort fast` (the `effort` column). \
+         (`default`) and at `--effort fast` (the `effort` column); `baseline` is the simplified method \
+         alone (`--mode lossless` at the size) and `displaced` displaced subdivision alone \
+         (`--mode displaced`). \
          Written by `swm rd`; the CSV beside this file is the record `swm rd --check` compares against \
          (its `l2_rel` and `hausdorff_rel` in the same units, `rate_bpv` and `bpv` in bits per vertex, \
          `encode_s` and `decode_s` in seconds).\n",
