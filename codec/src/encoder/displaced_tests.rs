@@ -102,6 +102,22 @@ fn steps_are_never_finer_than_the_error_asks() {
     assert!(l2 < 0.9 * edge_l2, "{l2} against {edge_l2}");
 }
 
+/// A floored step whose search ends with the whole input as its base and
+/// bytes to spare has no faces left to spend them on: the edge rule's
+/// file is searched and weighed too (teapot at 8 b/v: the floored file
+/// alone had L2 8.8 with 12% of the budget unused, the edge rule's 2.5).
+#[test]
+fn a_floored_search_short_of_the_budget_weighs_the_edge_rule() {
+    let Some(mesh) = corpus("teapot.obj") else {
+        return;
+    };
+    let budget = super::request::bytes_for(8.0, mesh.distinct_positions());
+    let (bytes, l2, faces, levels) = run(&mesh, &Displaced::DEFAULT, 8.0);
+    println!("{bytes} B of {budget}, L2 {l2:.2}, {faces}x4^{levels}");
+    assert!(bytes as f64 >= 0.97 * budget as f64, "{bytes} of {budget}");
+    assert!(l2 < 4.0, "{l2}");
+}
+
 #[test]
 #[ignore]
 fn ablation() {
