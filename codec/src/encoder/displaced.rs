@@ -301,6 +301,19 @@ impl Displaced {
         // Then the search of each level count whose first file was not
         // clearly worse than the best (`GIVE_UP`), from that file.
         let mut found: Vec<(f64, Written, usize)> = Vec::new();
+        // A search's file and its error (the first file, when it stood, is
+        // measured already: `l2_first`), its mesh no longer needed.
+        let settled = |searched: Searched, l2_first: f64| -> Result<_, Error> {
+            let Some(mut w) = searched.fitting else {
+                return Ok(None);
+            };
+            let l2 = match searched.first_fits {
+                true => l2_first,
+                false => measure(&w)?,
+            };
+            w.mesh = crate::TriMesh::default();
+            Ok(Some((l2, w)))
+        };
         let mut slope = SLOPE;
         for first in firsts {
             if first.carried > best * (1.0 + GIVE_UP) {
@@ -339,25 +352,13 @@ impl Displaced {
                     &mut smallest,
                     &|faces, qp| file(faces, levels, qp, None),
                 )?;
-                if let Some(mut w) = again.fitting {
-                    let l2 = match again.first_fits {
-                        true => l2_edge,
-                        false => measure(&w)?,
-                    };
-                    w.mesh = crate::TriMesh::default();
+                if let Some((l2, w)) = settled(again, l2_edge)? {
                     found.push((l2, w, levels));
                 }
             }
-            let Some(mut w) = searched.fitting else {
-                continue;
-            };
-            // The first file, when it stood, is measured already.
-            let l2 = match searched.first_fits {
-                true => l2_first,
-                false => measure(&w)?,
-            };
-            w.mesh = crate::TriMesh::default();
-            found.push((l2, w, levels));
+            if let Some((l2, w)) = settled(searched, l2_first)? {
+                found.push((l2, w, levels));
+            }
         }
         // The closest; but a file within rate control's 3% of the budget
         // beats a shorter one unless 5% worse (the chooser's rule).
