@@ -1220,8 +1220,9 @@ fn golden_displaced_options() -> EncodeOptions {
 
 /// Wrote the 1.2 golden file (run once, by hand:
 /// `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored write_displaced_v1_2_golden`).
-/// The encoder has changed since (`DISPLACED_V1_2_REENCODED_FNV1A64`): run
-/// now, it would replace the golden file with other bytes.
+/// The encoder has changed since (it fits bends now, and writes
+/// `displaced-bend-v1.2.swm` from the same input): run now, it would
+/// replace the golden file with other bytes.
 #[test]
 #[ignore]
 fn write_displaced_v1_2_golden() {
@@ -1255,26 +1256,59 @@ fn displaced_v1_2_decodes_to_its_test_vector() {
     }
 }
 
-/// FNV-1a 64 of the bytes today's encoder writes for the golden cap at
-/// [`golden_displaced_options`]: 1,480 bytes, a base of 590 triangles at
-/// 9 bits, two levels. The golden file itself (1,468 bytes, a base of
-/// 564 triangles) came from the encoder before its rate control ran in
-/// two rounds (`encoder/displaced.rs`, 2026-12-06); it is kept as the
-/// decoder's test vector, and this pins the encoder.
-const DISPLACED_V1_2_REENCODED_FNV1A64: u64 = 0x72B7_1F6E_D7F3_0A39;
+const DISPLACED_BEND_V1_2: &[u8] = include_bytes!("../format-spec/golden/displaced-bend-v1.2.swm");
 
-/// The encoder still writes the same bytes from the golden cap, a file
-/// of the golden file's kind: mode 2 of format 1.2.
+/// The test vector of format-spec/07-displaced.md ("Golden files"): the
+/// decoded mesh of `displaced-bend-v1.2.swm`, whose levels carry bends.
+const DISPLACED_BEND_V1_2_FNV1A64: u64 = 0x3CEA_CB06_7DC2_7E1F;
+
+/// Wrote the second 1.2 golden file, the golden open ellipsoid at
+/// [`golden_displaced_options`] by the encoder that fits bends (run once,
+/// by hand: `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored
+/// write_displaced_bend_v1_2_golden`). The first one
+/// (`displaced-v1.2.swm`, from the encoder before bends) stays the test
+/// vector of files without them.
+#[test]
+#[ignore]
+fn write_displaced_bend_v1_2_golden() {
+    write_golden(
+        "displaced-bend-v1.2.swm",
+        &golden_open_ellipsoid(),
+        &golden_displaced_options(),
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads bends
+/// (`HEAD`'s flag bit and codes) as format-spec/07-displaced.md says.
+#[test]
+fn displaced_bend_v1_2_decodes_to_its_test_vector() {
+    let info = swm::inspect(DISPLACED_BEND_V1_2, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Displaced));
+    // The rule byte's bit 7: bends follow the steps (`HEAD` is the
+    // compact framing's first payload, after the 1-byte code and length
+    // entries).
+    let mesh = swm::decode(DISPLACED_BEND_V1_2, &DecodeOptions::default())
+        .expect("golden file displaced-bend-v1.2.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        DISPLACED_BEND_V1_2_FNV1A64,
+        "decoded mesh differs from format-spec/07-displaced.md's test vector"
+    );
+    let limits = swm::Limits::default();
+    let cut = swm::cut_levels(DISPLACED_BEND_V1_2, 1, &limits).unwrap();
+    let coarse = swm::decode(&cut, &DecodeOptions::default()).unwrap();
+    assert_eq!(coarse.triangles.len() * 4, mesh.triangles.len());
+}
+
+/// The encoder still writes the bend golden file's bytes from the golden
+/// cap: a file of mode 2 of format 1.2 with bends.
 #[test]
 fn displaced_v1_2_reencodes_to_the_same_bytes() {
     let encoded = swm::encode(&golden_open_ellipsoid(), &golden_displaced_options()).unwrap();
-    assert_eq!(
-        (encoded.bytes.len(), fnv1a(FNV_OFFSET, &encoded.bytes)),
-        (1480, DISPLACED_V1_2_REENCODED_FNV1A64),
-        "re-encoding the golden open ellipsoid no longer gives the pinned bytes"
+    assert!(
+        encoded.bytes == DISPLACED_BEND_V1_2,
+        "re-encoding the golden open ellipsoid no longer gives golden/displaced-bend-v1.2.swm"
     );
-    let info = swm::inspect(&encoded.bytes, &Default::default()).unwrap();
-    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Displaced));
 }
 
 // --- Format 1.2: vertex attributes in the lossless mode (ATTR) ---
@@ -1486,7 +1520,14 @@ fn displaced_attr_v1_2_decodes_to_its_test_vector() {
     assert!(coarse.mesh.triangles.len() * 4 == m.mesh.triangles.len());
 }
 
-/// The encoder still writes the golden bytes from the coloured ellipsoid.
+/// FNV-1a 64 of the bytes today's encoder writes for the coloured
+/// ellipsoid at [`golden_displaced_attr_options`]. The golden file itself
+/// came from the encoder before bends (2026-12-07) and stays the
+/// decoder's test vector; this pins the encoder.
+const DISPLACED_ATTR_V1_2_REENCODED_FNV1A64: u64 = 0xFC51_3213_F76F_B003;
+
+/// The encoder still writes the same bytes from the coloured ellipsoid:
+/// a mode-2 file with `ATTR`, as the golden file.
 #[test]
 fn displaced_attr_v1_2_reencodes_to_the_same_bytes() {
     let encoded = swm::encode_attributed(
@@ -1495,9 +1536,13 @@ fn displaced_attr_v1_2_reencodes_to_the_same_bytes() {
     )
     .unwrap();
     assert_eq!(
-        encoded.bytes, DISPLACED_ATTR_V1_2,
-        "re-encoding the golden coloured ellipsoid no longer gives golden/displaced-attr-v1.2.swm"
+        (encoded.bytes.len(), fnv1a(FNV_OFFSET, &encoded.bytes)),
+        (2474, DISPLACED_ATTR_V1_2_REENCODED_FNV1A64),
+        "re-encoding the golden coloured ellipsoid no longer gives the pinned bytes"
     );
+    let info = swm::inspect(&encoded.bytes, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Displaced));
+    assert_eq!(info.attributes.len(), 1);
 }
 
 /// The coloured ellipsoid coded by SwingWrapper at 2,500 bytes, colours

@@ -247,6 +247,10 @@ pub fn samples() -> &'static [Sample] {
                 bytes: include_bytes!("../../format-spec/golden/displaced-attr-v1.2.swm").to_vec(),
             },
             Sample {
+                name: "displaced with bends",
+                bytes: include_bytes!("../../format-spec/golden/displaced-bend-v1.2.swm").to_vec(),
+            },
+            Sample {
                 name: "swing+ATTR",
                 bytes: include_bytes!("../../format-spec/golden/swing-attr-v1.2.swm").to_vec(),
             },

@@ -11,8 +11,11 @@
 //! scalars level by level, coarse to fine, as here.
 //!
 //! Sections:
-//! * `HEAD`: `u8 rule` (0 Loop, 1 butterfly), `u8 K` (levels, 1..=8),
-//!   `K × f32 step` (each finite and positive);
+//! * `HEAD`: `u8 rule` (bits 0-6: 0 Loop, 1 butterfly; bit 7: bends
+//!   follow), `u8 K` (levels, 1..=8), `K × f32 step` (each finite and
+//!   positive), then with bit 7 `K × i8 bend` (sixteenths: each level's
+//!   predicted points moved along their normals against the stencil's
+//!   lift, `predict::bent`, fitted by the encoder's `bend`);
 //! * `BASE`: a complete mode-0 file (its own frame and CRC), the level-0
 //!   mesh;
 //! * `DISP`: up to `K` chunks, coarse to fine, each `varu length` and that
@@ -28,12 +31,14 @@
 //! splits the last level straight into them.
 //!
 //! One concern per file: `subdivide` (the split and the order of new
-//! vertices), `predict` (rules, normal, placement), `scalars` (the
+//! vertices), `predict` (rules, bends, normal, placement), `scalars` (the
 //! chunks' coding), `finer` (a level's edges, and its scalars' contexts,
 //! from the level above);
-//! encoder side: `fit` (the scalars against the input)
-//! and `write` (the file).
+//! encoder side: `fit` (the scalars against the input), `bend` (each
+//! level's bend) and `write` (the file).
 
+#[cfg(feature = "encoder")]
+pub(crate) mod bend;
 mod finer;
 #[cfg(feature = "encoder")]
 pub(crate) mod fit;
@@ -62,27 +67,42 @@ pub(crate) fn bad(why: &'static str) -> Error {
     Error::Format(FormatError::new("SWM", Malformed::BadSyntax(why)))
 }
 
+/// `HEAD`'s rule byte: bit 7 says that one bend code a level follows
+/// the steps (`predict::bent`); bits 0-6 are the rule.
+const BENDS_FOLLOW: u8 = 0x80;
+/// A bend code's unit: the bend is `code / 16` (−8 to 7.9375).
+pub(crate) const BEND_UNIT: f64 = 1.0 / 16.0;
+
 /// `HEAD`'s contents.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Head {
     pub rule: Rule,
     /// The quantization step of each level, coarse to fine.
     pub steps: Vec<f32>,
+    /// Each level's bend code (`code · BEND_UNIT`), or none (all 0, and
+    /// the rule byte's bit 7 clear: files before bends).
+    pub bends: Vec<i8>,
 }
 
 impl Head {
     #[cfg(feature = "encoder")]
     pub fn write(&self) -> Vec<u8> {
-        let mut out = vec![self.rule.code(), self.steps.len() as u8];
+        let bent = self.bends.iter().any(|&b| b != 0);
+        let flag = if bent { BENDS_FOLLOW } else { 0 };
+        let mut out = vec![self.rule.code() | flag, self.steps.len() as u8];
         for s in &self.steps {
             out.extend_from_slice(&s.to_le_bytes());
+        }
+        if bent {
+            out.extend(self.bends.iter().map(|&b| b as u8));
         }
         out
     }
 
     fn read(bytes: &[u8]) -> Result<Head, Error> {
         let mut r = Reader::new(bytes);
-        let rule = Rule::from_code(r.u8()?).ok_or(bad("unknown prediction rule"))?;
+        let byte = r.u8()?;
+        let rule = Rule::from_code(byte & !BENDS_FOLLOW).ok_or(bad("unknown prediction rule"))?;
         let k = r.u8()? as usize;
         if !(1..=MAX_LEVELS).contains(&k) {
             return Err(bad("level count outside 1..=8"));
@@ -95,8 +115,22 @@ impl Head {
             }
             steps.push(s);
         }
+        let mut bends = vec![0i8; k];
+        if byte & BENDS_FOLLOW != 0 {
+            for b in &mut bends {
+                *b = r.u8()? as i8;
+            }
+        }
         r.end()?;
-        Ok(Head { rule, steps })
+        Ok(Head { rule, steps, bends })
+    }
+
+    /// Level `l`'s stencil (`l` below the level count).
+    pub(crate) fn stencil(&self, l: usize) -> predict::Stencil {
+        predict::Stencil {
+            rule: self.rule,
+            bend: f64::from(self.bends.get(l).copied().unwrap_or(0)) * BEND_UNIT,
+        }
     }
 }
 
@@ -324,8 +358,8 @@ impl Refiner {
         let (edges, qs, step) = self.scalars(chunk)?;
         let mesh = &mut self.mesh;
         self.first = mesh.positions.len();
-        let (tris, rule) = (&mesh.triangles, self.head.rule);
-        predict::place_level(&edges, tris, &mut mesh.positions, rule, step, &qs)
+        let (tris, stencil) = (&mesh.triangles, self.head.stencil(self.level));
+        predict::place_level(&edges, tris, &mut mesh.positions, stencil, step, &qs)
             .ok_or(bad("a displaced vertex is not finite"))?;
         let fine = subdivide::split(&mesh.triangles, &edges, self.first as u32);
         let coarse = core::mem::replace(&mut mesh.triangles, fine);
@@ -355,7 +389,8 @@ impl Refiner {
             .ok_or_else(short)?
             .split_at_mut(3 * old.len());
         kept.copy_from_slice(old.as_flattened());
-        predict::place_into(&edges, tris, old, new, self.head.rule, step, &qs)
+        let stencil = self.head.stencil(self.level);
+        predict::place_into(&edges, tris, old, new, stencil, step, &qs)
             .ok_or(bad("a displaced vertex is not finite"))?;
         let out = indices.get_mut(..12 * tris.len()).ok_or_else(short)?;
         subdivide::split_into(tris, &edges, old.len() as u32, out);

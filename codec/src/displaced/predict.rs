@@ -79,7 +79,9 @@ fn at(p: &[[f32; 3]], v: u32) -> [f64; 3] {
     p[v as usize].map(f64::from)
 }
 
-/// The frame of edge `e`'s new vertex.
+/// The frame of edge `e`'s new vertex under `stencil`: its rule's
+/// point, moved by the level's bend when the edge is interior
+/// ([`bent`]), and its normal.
 /// `crosses` holds each triangle's [`cross`].
 ///
 /// The order of its parts is the fastest measured (4% for the whole
@@ -94,25 +96,97 @@ pub(crate) fn frame(
     tris: &[[u32; 3]],
     pos: &[[f32; 3]],
     crosses: &[[f64; 3]],
-    rule: Rule,
+    stencil: Stencil,
 ) -> Frame {
     let sum = normal_sum(edges.corners(e), crosses);
     let len2 = length2(sum);
-    Frame {
-        point: point(e, edges, tris, pos, rule),
+    let (point, mid) = point(e, edges, tris, pos, stencil.rule);
+    let f = Frame {
+        point,
         normal: unit(sum, len2, crate::math::sqrt(len2)),
+    };
+    match mid {
+        Some(mid) if stencil.bend != 0.0 => bent(&f, mid, stencil.bend),
+        _ => f,
+    }
+}
+
+/// A level's prediction: the file's rule and the level's bend (0 for
+/// none, see [`bent`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Stencil {
+    pub rule: Rule,
+    pub bend: f64,
+}
+
+impl Stencil {
+    /// The rule alone, no bend.
+    #[cfg(any(test, feature = "encoder"))]
+    pub(crate) fn plain(rule: Rule) -> Stencil {
+        Stencil { rule, bend: 0.0 }
+    }
+}
+
+/// The midpoint of an edge's ends.
+#[inline(always)]
+fn midpoint(pa: [f64; 3], pb: [f64; 3]) -> [f64; 3] {
+    core::array::from_fn(|k| 0.5 * (pa[k] + pb[k]))
+}
+
+/// The midpoint of edge `e`'s ends when the edge is interior (the edges
+/// a bend moves), else `None`.
+#[cfg(feature = "encoder")]
+pub(crate) fn interior_midpoint(
+    e: usize,
+    edges: &Edges,
+    tris: &[[u32; 3]],
+    pos: &[[f32; 3]],
+) -> Option<[f64; 3]> {
+    let first = edges.first_corner(e);
+    edges.mate(first)?;
+    let [a, b, _] = corner_vertices(first, tris);
+    Some(midpoint(at(pos, a), at(pos, b)))
+}
+
+/// How far along its normal the stencil moved a frame's point from its
+/// edge's midpoint `mid`: `((n0·d0 + n1·d1) + n2·d2)` with `d = point −
+/// mid`.
+#[inline(always)]
+pub(crate) fn lift(f: &Frame, mid: [f64; 3]) -> f64 {
+    let d: [f64; 3] = core::array::from_fn(|k| f.point[k] - mid[k]);
+    (f.normal[0] * d[0] + f.normal[1] * d[1]) + f.normal[2] * d[2]
+}
+
+/// A frame whose point is moved along its normal by `s = −bend · lift`:
+/// `point + normal · s`, coordinate by coordinate. A smoothing stencil's
+/// lift is a fixed share of the surface's curvature across the edge
+/// (Loop's shrinks a convex surface), so the scalars of a level lean
+/// against it; one factor a level, fitted by the encoder, takes that
+/// lean out of them (format-spec/07-displaced.md, "Bend").
+#[inline(always)]
+pub(crate) fn bent(f: &Frame, mid: [f64; 3], bend: f64) -> Frame {
+    let s = -bend * lift(f, mid);
+    Frame {
+        point: core::array::from_fn(|k| f.point[k] + f.normal[k] * s),
+        normal: f.normal,
     }
 }
 
 /// The predicted point of edge `e`'s new vertex (the rule's stencil, or
-/// a fallback).
+/// a fallback), and the midpoint of its ends when it is interior.
 #[inline(always)]
-fn point(e: usize, edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rule) -> [f64; 3] {
+fn point(
+    e: usize,
+    edges: &Edges,
+    tris: &[[u32; 3]],
+    pos: &[[f32; 3]],
+    rule: Rule,
+) -> ([f64; 3], Option<[f64; 3]>) {
     let first = edges.first_corner(e);
     let [a, b, c] = corner_vertices(first, tris);
     let (pa, pb) = (at(pos, a), at(pos, b));
     match edges.mate(first) {
-        None => core::array::from_fn(|k| 0.5 * (pa[k] + pb[k])),
+        None => (midpoint(pa, pb), None),
         Some(second) => {
             let d = corner_vertices(second, tris)[2];
             let (pc, pd) = (at(pos, c), at(pos, d));
@@ -120,7 +194,7 @@ fn point(e: usize, edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rul
                 Rule::Loop => None,
                 Rule::Butterfly => wings(edges, tris, first, second),
             };
-            match wings {
+            let p = match wings {
                 Some(w) => {
                     let w = w.map(|v| at(pos, v));
                     core::array::from_fn(|k| {
@@ -129,7 +203,8 @@ fn point(e: usize, edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rul
                     })
                 }
                 None => core::array::from_fn(|k| 0.375 * (pa[k] + pb[k]) + 0.125 * (pc[k] + pd[k])),
-            }
+            };
+            (p, Some(midpoint(pa, pb)))
         }
     }
 }
@@ -140,7 +215,7 @@ fn point(e: usize, edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rul
 pub(crate) fn frames(edges: &Edges, tris: &[[u32; 3]], pos: &[[f32; 3]], rule: Rule) -> Vec<Frame> {
     let crosses: Vec<[f64; 3]> = tris.iter().map(|t| cross(t, pos)).collect();
     (0..edges.len())
-        .map(|e| frame(e, edges, tris, pos, &crosses, rule))
+        .map(|e| frame(e, edges, tris, pos, &crosses, Stencil::plain(rule)))
         .collect()
 }
 
@@ -160,14 +235,14 @@ pub(crate) fn place_level(
     edges: &Edges,
     tris: &[[u32; 3]],
     pos: &mut Vec<[f32; 3]>,
-    rule: Rule,
+    stencil: Stencil,
     step: f32,
     qs: &[i32],
 ) -> Option<()> {
     let n = pos.len();
     pos.resize(n + qs.len(), [0.0; 3]);
     let (old, new) = pos.split_at_mut(n);
-    place_into(edges, tris, old, new.as_flattened_mut(), rule, step, qs)
+    place_into(edges, tris, old, new.as_flattened_mut(), stencil, step, qs)
 }
 
 /// [`place_level`] into `new` (`x y z` per new vertex, three floats per
@@ -178,7 +253,7 @@ pub(crate) fn place_into(
     tris: &[[u32; 3]],
     old: &[[f32; 3]],
     new: &mut [f32],
-    rule: Rule,
+    stencil: Stencil,
     step: f32,
     qs: &[i32],
 ) -> Option<()> {
@@ -186,7 +261,7 @@ pub(crate) fn place_into(
     debug_assert_eq!(new.len(), 3 * qs.len());
     let crosses: Vec<[f64; 3]> = tris.iter().map(|t| cross(t, old)).collect();
     for (e, (slot, &q)) in new.chunks_exact_mut(3).zip(qs).enumerate() {
-        let f = frame(e, edges, tris, old, &crosses, rule);
+        let f = frame(e, edges, tris, old, &crosses, stencil);
         slot.copy_from_slice(&place(&f, q, step)?);
     }
     Some(())

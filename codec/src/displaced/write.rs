@@ -14,6 +14,7 @@
 //! than its share of it (the coarser levels' shares follow by
 //! `step_decay`, as the edge rule's steps do).
 
+use super::bend;
 use super::fit::{self, Fallback, Target};
 use super::predict::{self, Frame, Rule};
 use super::subdivide::Edges;
@@ -60,6 +61,9 @@ pub(crate) struct Settings {
     /// The rule's quantization step of the base over the finest level's
     /// step, as a power of two.
     pub qp_slack: f64,
+    /// Fit each level's bend (`bend`); `false`: none, as files before
+    /// bends.
+    pub bend: bool,
     /// The finest step over the error expected of the file, once rate
     /// control has measured one (`encoder::displaced`); `None`: the edge
     /// rule always.
@@ -119,6 +123,7 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
     let mut mesh = crate::lossless::decode(&base_container, &limits)?;
     let base_faces = mesh.triangles.len();
     let mut steps = Vec::with_capacity(plan.levels);
+    let mut bends = Vec::with_capacity(plan.levels);
     let mut disp = Vec::new();
     let (mut level_bytes, mut misses) = (Vec::new(), Vec::new());
     // The level below's scalars and its first new vertex: the parents'
@@ -138,7 +143,8 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
             .with_min_len(1024)
             .map(|e| {
                 let (t, p) = (&mesh.triangles, &mesh.positions);
-                predict::frame(e, &edges, t, p, &crosses, plan.settings.rule)
+                let plain = predict::Stencil::plain(plan.settings.rule);
+                predict::frame(e, &edges, t, p, &crosses, plain)
             })
             .collect();
         let mean = mean_edge(&edges, &mesh);
@@ -167,6 +173,13 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
             plan.settings.fallback,
             plan.settings.facing,
         );
+        // The level's bend, fitted to its offsets, moves every frame's
+        // point and so every offset (`bend`).
+        let code = match plan.settings.bend {
+            true => bend::fit(&frames, &edges, &mesh, &t, step),
+            false => 0,
+        };
+        let (frames, t) = bend::apply(frames, &edges, &mesh, t, code);
         let qs: Vec<i32> = t.iter().map(|&t| fit::quantize(t, step)).collect();
         let contexts = super::scalars::contexts(&edges, &mesh.triangles, first, &below);
         let chunk = super::scalars::encode_level(&qs, &contexts);
@@ -175,6 +188,7 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         level_bytes.push(chunk.len());
         misses.push(missed);
         steps.push(step);
+        bends.push(code);
         first = mesh.positions.len();
         mesh.triangles = refine(
             &mut mesh.positions,
@@ -190,6 +204,7 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
     let head = Head {
         rule: plan.settings.rule,
         steps,
+        bends,
     }
     .write();
     let h = &base_container.header;

@@ -33,9 +33,12 @@
 //! budget so far. The first file, made with the edge rule alone, is made
 //! again with that floor when its step was finer, and the floored file
 //! replaces it only when its carried error is lower (else the edge rule
-//! stays for the whole encode); a floored level count whose search ends
-//! with the whole input as its base and bytes to spare also searches
-//! from the edge rule's file, and the closer file wins. Over the shared
+//! stays for the whole encode); the first file at the step not kept is
+//! searched too when its carried error is within [`GIVE_UP`] of the best
+//! (a first file far from the budget carries its error that roughly:
+//! beetle at 2 b/v, L2 275 against 133), and so is the edge rule's when
+//! a floored search ends with the whole input as its base and bytes to
+//! spare; the closer file wins. Over the shared
 //! corpus's twelve meshes at 0.5-8 b/v: 17 of 60 cells closer by 1-40%
 //! (7-40% on spot, homer, cheburashka and cow at 0.5-2 b/v), none
 //! further.
@@ -122,6 +125,7 @@ impl Displaced {
             facing: true,
             qp: None,
             qp_slack: 1.0,
+            bend: true,
             step_error: Some(STEP_ERROR),
         },
     };
@@ -258,7 +262,7 @@ impl Displaced {
             let mut carried = carry(&w, l2);
             let mut given = step;
             // The edge rule's file, when the floored one replaced it.
-            let mut edge = None;
+            let mut other = None;
             // The first file's step is the edge rule's: made again when
             // the step its error asks for is coarser (small meshes at low
             // rates: a quarter to half of it).
@@ -266,15 +270,29 @@ impl Displaced {
                 if w.step < want {
                     let floored = file(faces, levels, self.settings.qp, Some(want))?;
                     let l2_floored = measure(&floored)?;
-                    if carry(&floored, l2_floored) < carried {
+                    let carried_floored = carry(&floored, l2_floored);
+                    if carried_floored < carried {
                         let mut edge_file = std::mem::replace(&mut w, floored);
                         // Only its size and quantization serve again.
                         edge_file.mesh = crate::TriMesh::default();
-                        edge = Some((edge_file, l2));
+                        other = Some(Other {
+                            w: edge_file,
+                            l2,
+                            carried,
+                            step: None,
+                        });
                         l2 = l2_floored;
-                        carried = carry(&w, l2);
+                        carried = carried_floored;
                         given = Some(want);
                     } else {
+                        let mut floored = floored;
+                        floored.mesh = crate::TriMesh::default();
+                        other = Some(Other {
+                            w: floored,
+                            l2: l2_floored,
+                            carried: carried_floored,
+                            step: Some(want),
+                        });
                         floor = false;
                     }
                 }
@@ -289,7 +307,7 @@ impl Displaced {
                 l2,
                 carried,
                 step: given,
-                edge,
+                other,
             });
             // Error against level count was unimodal in every cell
             // measured (bunny and horse, 0.5-8 b/v): once a level more
@@ -338,22 +356,37 @@ impl Displaced {
             if given.is_none() {
                 slope = searched.slope.unwrap_or(slope);
             }
-            // A floored step whose file falls short with the whole input
-            // as its base: the error has no faces left to fall with, and
-            // the bytes left buy precision, so the edge rule's file is
-            // searched and weighed too (teapot at 8 b/v: L2 8.8 floored,
-            // 2.5 with the edge rule).
-            if let (true, Some((edge, l2_edge))) = (searched.capped, first.edge) {
-                let again = search(
-                    budget,
-                    (first.faces, edge),
-                    s.faces(),
-                    edge_slope,
-                    &mut smallest,
-                    &|faces, qp| file(faces, levels, qp, None),
-                )?;
-                if let Some((l2, w)) = settled(again, l2_edge)? {
-                    found.push((l2, w, levels));
+            // The other step's first file (the edge rule's or the
+            // floored one) is searched too where it could win: its
+            // carried error within `GIVE_UP` of the best (a carry over a
+            // first file twice the budget misjudges by that much: beetle
+            // at 2 b/v, 5% apart, the edge rule's search landed on 25
+            // faces at L2 275, the floored one on 50 at 124), or, for the
+            // edge rule's, where the floored search fell short with the
+            // whole input as its base: the error has no faces left to
+            // fall with, and the bytes left buy precision (teapot at
+            // 8 b/v: L2 8.8 floored, 2.5 with the edge rule).
+            if let Some(o) = first.other {
+                let close = o.carried <= best * (1.0 + GIVE_UP);
+                if close || (searched.capped && o.step.is_none()) {
+                    let mut other_smallest = u64::MAX;
+                    let again = search(
+                        budget,
+                        (first.faces, o.w),
+                        s.faces(),
+                        match o.step {
+                            None => edge_slope,
+                            Some(_) => SLOPE,
+                        },
+                        match o.step {
+                            None => &mut smallest,
+                            Some(_) => &mut other_smallest,
+                        },
+                        &|faces, qp| file(faces, levels, qp, o.step),
+                    )?;
+                    if let Some((l2, w)) = settled(again, o.l2)? {
+                        found.push((l2, w, levels));
+                    }
                 }
             }
             if let Some((l2, w)) = settled(searched, l2_first)? {
@@ -453,9 +486,18 @@ struct First {
     carried: f64,
     /// Its finest step when given (`None`: the edge rule's).
     step: Option<f64>,
-    /// The edge rule's file of the same faces and its error, when the
-    /// floored step replaced it.
-    edge: Option<(Written, f64)>,
+    /// The first file at the other step (the edge rule's when the
+    /// floored step replaced it, the floored one when it did not).
+    other: Option<Other>,
+}
+
+/// A level count's first file at the step it did not keep.
+struct Other {
+    w: Written,
+    l2: f64,
+    carried: f64,
+    /// Its finest step when given (`None`: the edge rule's).
+    step: Option<f64>,
 }
 
 /// What [`search`] found for one level count.

@@ -178,9 +178,20 @@ fn search(
             .iter()
             .filter_map(|p| p.file.as_ref().map(|f| ((p.bytes as f64).ln(), f.1.ln())))
             .collect();
-        let guess = guess(&fitted, aim, lo, hi.map(|h| h.1), ceiling);
-        if Some(guess) == lo || Some(guess) == hi.map(|h| h.1) {
-            return Ok(hi.map(|h| h.0));
+        let mut guess = guess(&fitted, aim, lo, hi.map(|h| h.1), ceiling);
+        // A line that rounds onto an end of a bracket still wider than
+        // `PRECISION` (two probes nearly level: the slope clamped at its
+        // flattest, bunny at E = 5e-4 stopped 7% wide) gives way to the
+        // bracket's log midpoint; only a bracket with no size left inside
+        // ends the search.
+        let ends = |g: u64| Some(g) == lo || Some(g) == hi.map(|h| h.1);
+        if ends(guess) {
+            if let (Some(l), Some((_, h))) = (lo, hi) {
+                guess = ((l as f64 * h as f64).sqrt().round() as u64).clamp(1, ceiling);
+            }
+            if ends(guess) {
+                return Ok(hi.map(|h| h.0));
+            }
         }
         next = Some(guess);
     }
