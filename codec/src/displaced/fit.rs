@@ -83,7 +83,7 @@ const SHEET: f64 = 0.1;
 /// lid and body made Hausdorff 170 (1e-4 of the diagonal) of it at 8 b/v,
 /// and L2 31 instead of 13 at 2 b/v (BENCHMARKS.md, "Another sheet").
 /// The miss's fallback serves such a vertex instead. One nearest-point
-/// query, only for far crossings (under 1% of a level's vertices).
+/// query, only for far crossings.
 fn on_another_sheet(f: &Frame, t: f64, target: &Target<'_>) -> bool {
     let mut scratch = NearestScratch::default();
     match target.surface.nearest_point(f.point, None, &mut scratch) {

@@ -176,8 +176,8 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         // The level's bend, fitted to its offsets, moves every frame's
         // point and so every offset (`bend`). Not on the finest level of
         // a file of several: it holds three quarters of the edges (of the
-        // decoder's placement work: bends cost it 5% when every level
-        // has one) and the least lean, the coarser levels' bends having
+        // decoder's placement work: bends cost it 4% a triangle when every
+        // level has one) and the least lean, the coarser levels' bends having
         // taken most of it from the surface it refines (offline, bunny at
         // 8 b/v: scalar bytes −4.3% with the first level's bend alone,
         // −5.0% with both).
