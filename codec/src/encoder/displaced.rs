@@ -25,7 +25,9 @@
 //! count that loses searched to the budget as fully as the winner; the
 //! two rounds spend 25-45% less CPU at 4-8 b/v, the chosen files within
 //! ±2% L2 (the secant lands them at other sizes within the tolerance).
-//! No loop runs until convergence: at most `|LEVELS| × TRIALS` files.
+//! No loop runs until convergence: at most `|LEVELS| × TRIALS` files in
+//! the searches (twice that with the other step's), then at most
+//! [`PRECISION_TRIALS`] when the closest file is short of the budget.
 //!
 //! Steps from the error (beyond the sources, measured in BENCHMARKS.md,
 //! "Steps from the error"): once a file is measured, no file's finest
