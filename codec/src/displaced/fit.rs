@@ -56,11 +56,15 @@ pub(crate) fn offsets(
                 .surface
                 .nearest_crossing(f.point, f.normal, reach, facing, stack)
             {
-                Some(t) if t.abs() > FAR * reach && on_another_sheet(f, t, target) => {
-                    (miss(f, target, fallback), true)
+                Some(t) if t.abs() > FAR * reach => {
+                    let near = nearest(f, target);
+                    match near.is_some_and(|q| on_another_sheet(f, t, q)) {
+                        true => (fallen_back(f, fallback, || near), true),
+                        false => (t, false),
+                    }
                 }
                 Some(t) => (t, false),
-                None => (miss(f, target, fallback), true),
+                None => (fallen_back(f, fallback, || nearest(f, target)), true),
             }
         })
         .collect();
@@ -76,37 +80,39 @@ const FAR: f64 = 0.125;
 const SHEET: f64 = 0.1;
 
 /// Whether the crossing at `t` belongs to another sheet than the one the
-/// predicted point lies on: the input passes within `SHEET · |t|` of the
-/// point, yet the line meets it only `t` away. Where the line slips past
-/// an open boundary (a rim, a spout's mouth) or a region whose faces
-/// point the other way, it meets a sheet of another part; the teapot's
-/// lid and body made Hausdorff 170 (1e-4 of the diagonal) of it at 8 b/v,
-/// and L2 31 instead of 13 at 2 b/v (BENCHMARKS.md, "Another sheet").
-/// The miss's fallback serves such a vertex instead. One nearest-point
-/// query, only for far crossings.
-fn on_another_sheet(f: &Frame, t: f64, target: &Target<'_>) -> bool {
-    let mut scratch = NearestScratch::default();
-    match target.surface.nearest_point(f.point, None, &mut scratch) {
-        Some((_, q, _)) => {
-            let d2: f64 = (0..3)
-                .map(|k| (q[k] - f.point[k]) * (q[k] - f.point[k]))
-                .sum();
-            d2 < (SHEET * t) * (SHEET * t)
-        }
-        None => false,
-    }
+/// predicted point lies on: the input's nearest point `q` is within
+/// `SHEET · |t|` of the point, yet the line meets the input only `t`
+/// away. Where the line slips past an open boundary (a rim, a spout's
+/// mouth) or a region whose faces point the other way, it meets a sheet
+/// of another part; the teapot's lid and body made Hausdorff 170 (1e-4
+/// of the diagonal) of it at 8 b/v, and L2 31 instead of 13 at 2 b/v
+/// (BENCHMARKS.md, "Another sheet"). The miss's fallback serves such a
+/// vertex instead, from the same nearest point: one query, only for far
+/// crossings.
+fn on_another_sheet(f: &Frame, t: f64, q: [f64; 3]) -> bool {
+    let d2: f64 = (0..3)
+        .map(|k| (q[k] - f.point[k]) * (q[k] - f.point[k]))
+        .sum();
+    d2 < (SHEET * t) * (SHEET * t)
 }
 
-fn miss(f: &Frame, target: &Target<'_>, fallback: Fallback) -> f64 {
+/// The input's point nearest the frame's (a fresh search state, so no
+/// earlier query steers its ties).
+fn nearest(f: &Frame, target: &Target<'_>) -> Option<[f64; 3]> {
+    let mut scratch = NearestScratch::default();
+    let (_, q, _) = target.surface.nearest_point(f.point, None, &mut scratch)?;
+    Some(q)
+}
+
+/// A missed vertex's offset by `fallback`; `near` gives the input's
+/// nearest point, asked only by the fallback that needs it.
+fn fallen_back(f: &Frame, fallback: Fallback, near: impl FnOnce() -> Option<[f64; 3]>) -> f64 {
     match fallback {
         Fallback::Zero => 0.0,
-        Fallback::Nearest => {
-            let mut scratch = NearestScratch::default();
-            match target.surface.nearest_point(f.point, None, &mut scratch) {
-                Some((_, q, _)) => (0..3).map(|k| (q[k] - f.point[k]) * f.normal[k]).sum(),
-                None => 0.0,
-            }
-        }
+        Fallback::Nearest => match near() {
+            Some(q) => (0..3).map(|k| (q[k] - f.point[k]) * f.normal[k]).sum(),
+            None => 0.0,
+        },
     }
 }
 

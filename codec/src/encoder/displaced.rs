@@ -198,8 +198,8 @@ impl Displaced {
             surface: job.reference()?,
         };
         // A file of `faces` base faces and `levels` levels; `scale` times
-        // the edge rule's step (1 but where a whole-input base has bytes
-        // to spare, below).
+        // the edge rule's step (1 but where the closest file is short of
+        // the budget, below).
         let scaled = |faces: u32, levels: usize, qp: Option<u8>, step: Option<f64>, scale: f64| {
             let mut base = s.simplify(faces);
             s.refit(&mut base);
@@ -381,18 +381,19 @@ impl Displaced {
                 let close = o.carried <= best * (1.0 + GIVE_UP);
                 if close || (searched.capped && o.step.is_none()) {
                     let mut other_smallest = u64::MAX;
+                    // An edge-rule file's search takes the edge rule's
+                    // slope and says how small a file can be; a floored
+                    // one neither (as the main search's).
+                    let (slope_of_other, smallest_of_other) = match o.step {
+                        None => (edge_slope, &mut smallest),
+                        Some(_) => (SLOPE, &mut other_smallest),
+                    };
                     let again = search(
                         budget,
                         (first.faces, o.w),
                         s.faces(),
-                        match o.step {
-                            None => edge_slope,
-                            Some(_) => SLOPE,
-                        },
-                        match o.step {
-                            None => &mut smallest,
-                            Some(_) => &mut other_smallest,
-                        },
+                        slope_of_other,
+                        smallest_of_other,
                         &|faces, qp| file(faces, levels, qp, o.step),
                     )?;
                     if let Some((l2, w)) = settled(again, o.l2)? {
