@@ -168,7 +168,13 @@ fn auto_falls_back_when_retiling_is_stopped() {
         ..Default::default()
     };
     let e = swm::encode(&mesh, &options).unwrap();
-    assert_eq!(check_choice(&e), Method::Simplified);
+    // Whichever of the other methods measured closer (displaced
+    // subdivision on this torus since its base went bare, 2026-12-07).
+    let chosen = check_choice(&e);
+    assert!(
+        matches!(chosen, Method::Simplified | Method::Displaced),
+        "{chosen:?}"
+    );
     let swing = e.stats.candidate(Method::Swing).unwrap();
     assert!(
         matches!(swing.outcome, Err(CandidateFailure::Limit(_))),

@@ -1267,7 +1267,9 @@ const DISPLACED_BEND_V1_2_FNV1A64: u64 = 0x4919_A718_3C86_C276;
 /// by hand: `SWM_WRITE_GOLDEN=1 cargo test --test golden -- --ignored
 /// write_displaced_bend_v1_2_golden`). The first one
 /// (`displaced-v1.2.swm`, from the encoder before bends) stays the test
-/// vector of files without them.
+/// vector of files without them. The encoder has changed since (it
+/// writes a bare base, `displaced-bare-v1.2.swm`): run now, it would
+/// replace the golden file with other bytes.
 #[test]
 #[ignore]
 fn write_displaced_bend_v1_2_golden() {
@@ -1300,14 +1302,61 @@ fn displaced_bend_v1_2_decodes_to_its_test_vector() {
     assert_eq!(coarse.triangles.len() * 4, mesh.triangles.len());
 }
 
-/// The encoder still writes the bend golden file's bytes from the golden
-/// cap: a file of mode 2 of format 1.2 with bends.
+const DISPLACED_BARE_V1_2: &[u8] = include_bytes!("../format-spec/golden/displaced-bare-v1.2.swm");
+
+/// The test vector of format-spec/07-displaced.md ("Golden files"): the
+/// decoded mesh of `displaced-bare-v1.2.swm`, whose `BASE` is bare.
+const DISPLACED_BARE_V1_2_FNV1A64: u64 = 0x054B_C755_0F5E_DA73;
+
+/// Wrote the third 1.2 golden file, the golden open ellipsoid at
+/// [`golden_displaced_options`] by the encoder that writes bare bases
+/// (run once, by hand: `SWM_WRITE_GOLDEN=1 cargo test --test golden --
+/// --ignored write_displaced_bare_v1_2_golden`). The bend golden file
+/// (a whole mode-0 file in `BASE`) stays the test vector of bends
+/// without a bare base.
+#[test]
+#[ignore]
+fn write_displaced_bare_v1_2_golden() {
+    write_golden(
+        "displaced-bare-v1.2.swm",
+        &golden_open_ellipsoid(),
+        &golden_displaced_options(),
+    );
+}
+
+/// Must hold forever: a failure means the decoder no longer reads a bare
+/// `BASE` (`HEAD`'s bit 6) as format-spec/07-displaced.md says.
+#[test]
+fn displaced_bare_v1_2_decodes_to_its_test_vector() {
+    let info = swm::inspect(DISPLACED_BARE_V1_2, &Default::default()).unwrap();
+    assert_eq!((info.version, info.mode), ((1, 2), swm::Mode::Displaced));
+    let mesh = swm::decode(DISPLACED_BARE_V1_2, &DecodeOptions::default())
+        .expect("golden file displaced-bare-v1.2.swm must decode");
+    assert_eq!(
+        mesh_hash(&mesh),
+        DISPLACED_BARE_V1_2_FNV1A64,
+        "decoded mesh differs from format-spec/07-displaced.md's test vector"
+    );
+    let limits = swm::Limits::default();
+    for levels in [1, 0] {
+        let cut = swm::cut_levels(DISPLACED_BARE_V1_2, levels, &limits).unwrap();
+        let coarse = swm::decode(&cut, &DecodeOptions::default()).unwrap();
+        assert_eq!(
+            coarse.triangles.len() << (2 * (2 - levels)),
+            mesh.triangles.len()
+        );
+    }
+}
+
+/// The encoder still writes the bare golden file's bytes from the golden
+/// open ellipsoid: a file of mode 2 of format 1.2 with bends and a bare
+/// base.
 #[test]
 fn displaced_v1_2_reencodes_to_the_same_bytes() {
     let encoded = swm::encode(&golden_open_ellipsoid(), &golden_displaced_options()).unwrap();
     assert!(
-        encoded.bytes == DISPLACED_BEND_V1_2,
-        "re-encoding the golden open ellipsoid no longer gives golden/displaced-bend-v1.2.swm"
+        encoded.bytes == DISPLACED_BARE_V1_2,
+        "re-encoding the golden open ellipsoid no longer gives golden/displaced-bare-v1.2.swm"
     );
 }
 
@@ -1523,8 +1572,9 @@ fn displaced_attr_v1_2_decodes_to_its_test_vector() {
 /// FNV-1a 64 of the bytes today's encoder writes for the coloured
 /// ellipsoid at [`golden_displaced_attr_options`]. The golden file itself
 /// came from the encoder before bends (2026-12-07) and stays the
-/// decoder's test vector; this pins the encoder.
-const DISPLACED_ATTR_V1_2_REENCODED_FNV1A64: u64 = 0xF8F9_2303_452A_1B95;
+/// decoder's test vector; this pins the encoder (since bare bases:
+/// 2,442 bytes).
+const DISPLACED_ATTR_V1_2_REENCODED_FNV1A64: u64 = 0xA1C6_5041_112A_7699;
 
 /// The encoder still writes the same bytes from the coloured ellipsoid:
 /// a mode-2 file with `ATTR`, as the golden file.
@@ -1537,7 +1587,7 @@ fn displaced_attr_v1_2_reencodes_to_the_same_bytes() {
     .unwrap();
     assert_eq!(
         (encoded.bytes.len(), fnv1a(FNV_OFFSET, &encoded.bytes)),
-        (2436, DISPLACED_ATTR_V1_2_REENCODED_FNV1A64),
+        (2442, DISPLACED_ATTR_V1_2_REENCODED_FNV1A64),
         "re-encoding the golden coloured ellipsoid no longer gives the pinned bytes"
     );
     let info = swm::inspect(&encoded.bytes, &Default::default()).unwrap();

@@ -251,6 +251,10 @@ pub fn samples() -> &'static [Sample] {
                 bytes: include_bytes!("../../format-spec/golden/displaced-bend-v1.2.swm").to_vec(),
             },
             Sample {
+                name: "displaced with a bare base",
+                bytes: include_bytes!("../../format-spec/golden/displaced-bare-v1.2.swm").to_vec(),
+            },
+            Sample {
                 name: "swing+ATTR",
                 bytes: include_bytes!("../../format-spec/golden/swing-attr-v1.2.swm").to_vec(),
             },

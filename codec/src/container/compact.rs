@@ -160,6 +160,53 @@ pub(crate) fn read_head(bytes: &[u8], limits: &Limits) -> Result<Scan<CompactHea
     }))
 }
 
+/// Reads and checks the head of a bare mode-0 body (format 1.2: mode 2's
+/// `BASE` when its `HEAD` says so, format-spec/07-displaced.md): `varu V`,
+/// `varu T`, `varu n`, then the entries as in a compact file. The version
+/// and the component count are the enclosing file's, the mode is 0 and
+/// the framing compact; the counts are checked against `limits` and each
+/// other as a compact file's. The body is whole: a body that ends inside
+/// its head is truncated.
+pub(crate) fn read_bare_head(
+    bytes: &[u8],
+    enclosing: &Header,
+    limits: &Limits,
+) -> Result<CompactHead, Error> {
+    let mut pos = 0;
+    let mut counts = [0u32; 2];
+    let mut at = [0usize; 3];
+    for (k, c) in counts.iter_mut().enumerate() {
+        at[k] = pos;
+        let Some(v) = varu(bytes, &mut pos, u32::MAX.into())? else {
+            return Err(malformed(Malformed::Truncated, bytes.len()));
+        };
+        *c = v as u32;
+        match k {
+            0 => limits.check_vertices(v)?,
+            _ => limits.check_faces(v)?,
+        }
+    }
+    at[2] = pos;
+    let header = Header {
+        major: enclosing.major,
+        minor: enclosing.minor,
+        flags: super::header::FLAG_COMPACT,
+        mode: super::header::Mode::Lossless,
+        vertex_count: counts[0],
+        triangle_count: counts[1],
+        component_count: enclosing.component_count,
+    };
+    super::header::check_counts(&header, at)?;
+    let Some(count) = varu(bytes, &mut pos, u16::MAX.into())? else {
+        return Err(malformed(Malformed::Truncated, bytes.len()));
+    };
+    Ok(CompactHead {
+        header,
+        count: count as usize,
+        table: pos,
+    })
+}
+
 fn v64(v: u32) -> u64 {
     u64::from(v)
 }

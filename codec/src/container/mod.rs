@@ -43,6 +43,8 @@ mod write;
 
 #[cfg(test)]
 mod tests;
+#[cfg(all(test, feature = "encoder"))]
+mod tests_bare;
 #[cfg(test)]
 mod tests_compact;
 
@@ -126,9 +128,11 @@ pub use header::{
 };
 pub use meta::{meta_entries, write_meta, MetaEntries, MetaEntry};
 pub(crate) use read::{
-    check_magic, declared_len, declared_sections, in_section, table_end, TableCheck,
+    check_magic, declared_len, declared_sections, in_section, parse_bare, table_end, TableCheck,
 };
 pub use read::{parse_container, Container, Section, Sections};
 pub use tag::Tag;
 pub(crate) use tag::KNOWN_CRITICAL;
+#[cfg(feature = "encoder")]
+pub(crate) use write::write_bare;
 pub use write::{container_len, write_container, write_container_into};

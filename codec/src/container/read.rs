@@ -239,6 +239,36 @@ pub fn parse_container<'a>(bytes: &'a [u8], limits: &Limits) -> Result<Container
             table: at::TABLE,
         }
     };
+    framed(bytes, crc_at, frame)
+}
+
+/// The sections of a bare mode-0 body (format 1.2, mode 2's `BASE` when
+/// its `HEAD` says so): its head ([`compact::read_bare_head`]: vertex and
+/// triangle counts, section count; the version and component count are
+/// `enclosing`'s), then its table and payloads checked as a compact
+/// file's, the payloads filling the body exactly. Errors are located
+/// within `body` (the caller moves them to the section's offset). The
+/// enclosing file's CRC covers the body: it has none of its own.
+/// [`write_bare`](super::write_bare) is the mirror.
+pub(crate) fn parse_bare<'a>(
+    body: &'a [u8],
+    enclosing: &Header,
+    limits: &Limits,
+) -> Result<Container<'a>, Error> {
+    let h = compact::read_bare_head(body, enclosing, limits)?;
+    let frame = Frame {
+        header: h.header,
+        count: h.count,
+        table: h.table,
+    };
+    framed(body, body.len(), frame)
+}
+
+/// The container whose checked header `frame` gives, its table and
+/// payloads in `bytes` before `crc_at` (the CRC's offset, or the end of
+/// a bare body): every entry checked, and the payloads filling the space
+/// up to `end` exactly.
+fn framed(bytes: &[u8], crc_at: usize, frame: Frame) -> Result<Container<'_>, Error> {
     // The table's end: known from the count in the fixed framing; in the
     // compact one, found by reading the entries once (checking each alone:
     // codes, tags, criticality, duplicates) before their lengths are

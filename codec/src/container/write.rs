@@ -82,6 +82,30 @@ pub fn write_container_into(
     Ok(out.len() - start)
 }
 
+/// The bare body of a mode-0 file of `header` made of `sections` (format
+/// 1.2, mode 2's `BASE` when its `HEAD` says so): `varu V`, `varu T`,
+/// `varu n`, the compact framing's entries, the payloads. No preamble,
+/// mode, component count or CRC: the enclosing file has them (its
+/// component count must be `header`'s). The mirror of
+/// [`parse_bare`](super::parse_bare). Errors and panics as
+/// [`write_container`].
+#[cfg(feature = "encoder")]
+pub(crate) fn write_bare(header: &Header, sections: &[(Tag, &[u8])]) -> Result<Vec<u8>, Error> {
+    check_sections(sections)?;
+    let mut out = Vec::new();
+    for v in [header.vertex_count, header.triangle_count] {
+        crate::varint::put(&mut out, v.into());
+    }
+    crate::varint::put(&mut out, sections.len() as u64);
+    for (tag, bytes) in sections {
+        compact::write_entry(*tag, bytes.len(), &mut out);
+    }
+    for (_, bytes) in sections {
+        out.extend_from_slice(bytes);
+    }
+    Ok(out)
+}
+
 fn check_sections(sections: &[(Tag, &[u8])]) -> Result<(), Error> {
     if sections.len() > usize::from(u16::MAX) {
         return Err(out_of_range("section count", sections.len(), u16::MAX.into()).into());

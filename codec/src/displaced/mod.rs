@@ -68,8 +68,19 @@ pub(crate) fn bad(why: &'static str) -> Error {
 }
 
 /// `HEAD`'s rule byte: bit 7 says that one bend code a level follows
-/// the steps (`predict::bent`); bits 0-6 are the rule.
+/// the steps (`predict::bent`); bit 6 that `BASE` is bare (its mode-0
+/// sections without a frame of their own); bits 0-5 are the rule.
 const BENDS_FOLLOW: u8 = 0x80;
+/// `HEAD`'s rule byte: `BASE` holds a bare mode-0 body
+/// (`container::parse_bare`), not a whole file. Beyond the first 1.2
+/// files (format-spec/07-displaced.md, "BASE"): the nested file's
+/// preamble, mode, component count and CRC repeat the enclosing file's or
+/// are covered by it, 14-16 bytes a file, 3-8% of the method's files at
+/// 0.5 b/v on meshes of 3,000-7,000 vertices (BENCHMARKS.md, "Session
+/// 2026-12-07 (seventh)").
+const BARE_BASE: u8 = 0x40;
+/// The rule's bits of the rule byte.
+const RULE_BITS: u8 = 0x3F;
 /// A bend code's unit: the bend is `code / 16` (−8 to 7.9375).
 pub(crate) const BEND_UNIT: f64 = 1.0 / 16.0;
 
@@ -82,6 +93,9 @@ pub(crate) struct Head {
     /// Each level's bend code (`code · BEND_UNIT`), or none (all 0, and
     /// the rule byte's bit 7 clear: files before bends).
     pub bends: Vec<i8>,
+    /// `BASE` is a bare mode-0 body (bit 6; clear: a whole mode-0 file,
+    /// as in files before bare bases).
+    pub bare: bool,
 }
 
 impl Head {
@@ -89,6 +103,7 @@ impl Head {
     pub fn write(&self) -> Vec<u8> {
         let bent = self.bends.iter().any(|&b| b != 0);
         let flag = if bent { BENDS_FOLLOW } else { 0 };
+        let flag = flag | if self.bare { BARE_BASE } else { 0 };
         let mut out = vec![self.rule.code() | flag, self.steps.len() as u8];
         for s in &self.steps {
             out.extend_from_slice(&s.to_le_bytes());
@@ -102,7 +117,7 @@ impl Head {
     fn read(bytes: &[u8]) -> Result<Head, Error> {
         let mut r = Reader::new(bytes);
         let byte = r.u8()?;
-        let rule = Rule::from_code(byte & !BENDS_FOLLOW).ok_or(bad("unknown prediction rule"))?;
+        let rule = Rule::from_code(byte & RULE_BITS).ok_or(bad("unknown prediction rule"))?;
         let k = r.u8()? as usize;
         if !(1..=MAX_LEVELS).contains(&k) {
             return Err(bad("level count outside 1..=8"));
@@ -122,7 +137,13 @@ impl Head {
             }
         }
         r.end()?;
-        Ok(Head { rule, steps, bends })
+        let bare = byte & BARE_BASE != 0;
+        Ok(Head {
+            rule,
+            steps,
+            bends,
+            bare,
+        })
     }
 
     /// Level `l`'s stencil (`l` below the level count).
@@ -152,7 +173,11 @@ fn head_and_base<'a>(
     limits: &Limits,
 ) -> Result<(Head, Container<'a>), Error> {
     let head = Head::read(head)?;
-    let base = parse_container(base, limits).map_err(in_section(base_at))?;
+    let base = match head.bare {
+        true => crate::container::parse_bare(base, header, limits),
+        false => parse_container(base, limits),
+    }
+    .map_err(in_section(base_at))?;
     if base.header.mode != Mode::Lossless {
         return Err(bad("BASE does not hold a lossless (mode 0) file"));
     }

@@ -43,6 +43,7 @@ fn plan(levels: usize, rule: Rule) -> Plan {
             qp: Some(12),
             qp_slack: 1.0,
             bend: true,
+            bare_base: true,
             step_error: None,
         },
         framing: Framing::Compact,

@@ -64,6 +64,9 @@ pub(crate) struct Settings {
     /// Fit each level's bend (`bend`); `false`: none, as files before
     /// bends.
     pub bend: bool,
+    /// Write `BASE` bare (`BARE_BASE` of `HEAD`); `false`: a whole mode-0
+    /// file, as files before bare bases.
+    pub bare_base: bool,
     /// The finest step over the error expected of the file, once rate
     /// control has measured one (`encoder::displaced`); `None`: the edge
     /// rule always.
@@ -116,11 +119,26 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         .settings
         .qp
         .unwrap_or_else(|| base_qp(&cleaned.mesh, plan));
-    let (base_file, _, _) =
-        crate::lossless::encode(&cleaned.table, &cleaned.mesh, qp, plan.framing)?;
+    // A bare base is the compact file's sections without its frame
+    // (`BARE_BASE`): the same mode-0 sections, decoded the same.
+    let framing = match plan.settings.bare_base {
+        true => Framing::Compact,
+        false => plan.framing,
+    };
+    let (base_file, _, _) = crate::lossless::encode(&cleaned.table, &cleaned.mesh, qp, framing)?;
     let limits = Limits::default();
     let base_container = parse_container(&base_file, &limits)?;
     let mut mesh = crate::lossless::decode(&base_container, &limits)?;
+    let base_section = match plan.settings.bare_base {
+        true => {
+            let sections: Vec<(Tag, &[u8])> = base_container
+                .sections()
+                .map(|s| (s.tag, s.bytes))
+                .collect();
+            crate::container::write_bare(&base_container.header, &sections)?
+        }
+        false => base_file.clone(),
+    };
     let base_faces = mesh.triangles.len();
     let mut steps = Vec::with_capacity(plan.levels);
     let mut bends = Vec::with_capacity(plan.levels);
@@ -218,6 +236,7 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
         rule: plan.settings.rule,
         steps,
         bends,
+        bare: plan.settings.bare_base,
     }
     .write();
     let h = &base_container.header;
@@ -231,14 +250,14 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
     header.minor = 2;
     let sections: [(Tag, &[u8]); 3] = [
         (Tag::HEAD, &head),
-        (Tag::BASE, &base_file),
+        (Tag::BASE, &base_section),
         (Tag::DISP, &disp),
     ];
     let bytes = write_container(&header, &sections)?;
     Ok(Written {
         bytes,
         mesh,
-        base_bytes: base_file.len(),
+        base_bytes: base_section.len(),
         level_bytes,
         base_faces,
         qp,

@@ -12,12 +12,12 @@
 //!    than the best so far ([`GIVE_UP`]) ends the round (error against
 //!    `k` was unimodal in every cell measured), and so does a third `k`
 //!    after two whose last level gained less than [`NEXT_LEVEL_GAIN`].
-//! 2. The search of each `k` whose first file was not clearly worse than
-//!    the best, from that file: at most [`TRIALS`] files, each `B` moved
-//!    by a secant on log size against log faces ([`search`]). The file of
-//!    each `k` nearest the budget without passing it is measured (the
-//!    first one's measure serves when it stands) and the closest to the
-//!    input wins.
+//! 2. The search of the best `k`, and of each other `k` whose first file
+//!    was within [`SEARCH_BOTH`] of it, from that file: at most
+//!    [`TRIALS`] files, each `B` moved by a secant on log size against
+//!    log faces ([`search`]). The file of each `k` nearest the budget
+//!    without passing it is measured (the first one's measure serves
+//!    when it stands) and the closest to the input wins.
 //!
 //! Beyond the sources, measured (BENCHMARKS.md, "Session 2026-12-06
 //! (eighth)"): searching every `k` and probing the next one's first file
@@ -84,6 +84,17 @@ const RATE_EXPONENT: f64 = 0.85;
 /// A level count whose first file's error, carried to the budget, is
 /// more than this fraction above the best level count's is not searched.
 const GIVE_UP: f64 = 0.10;
+/// Level counts searched besides the best one: those whose first file's
+/// carried error is within this fraction of the best's (a tighter margin
+/// than [`GIVE_UP`], which judges files as far as twice the budget).
+/// Measured over the shared corpus at 0.5-8 b/v (BENCHMARKS.md,
+/// "Session 2026-12-07 (seventh)"): in the 12 cells where two level
+/// counts were searched, the one behind in the first round by more than
+/// 3% (3.4-10%) stayed behind after both searches (by 0.9-53%); the one
+/// reversal was within it (homer at 8 b/v: 2.7% behind, then 4.2%
+/// ahead). Each search not made saves a file and a measure: a quarter of
+/// the method's work on bunny and horse at 2-4 b/v.
+const SEARCH_BOTH: f64 = 0.03;
 /// A level count is tried after two others only when the last level
 /// more cut the error by at least this fraction. One level more quarters
 /// the base for the same bytes, so the gains shrink fast: measured on
@@ -130,6 +141,7 @@ impl Displaced {
             qp: None,
             qp_slack: 1.0,
             bend: true,
+            bare_base: true,
             step_error: Some(STEP_ERROR),
         },
     };
@@ -327,8 +339,8 @@ impl Displaced {
                 break;
             }
         }
-        // Then the search of each level count whose first file was not
-        // clearly worse than the best (`GIVE_UP`), from that file.
+        // Then the search of the best level count and of any whose first
+        // file was within `SEARCH_BOTH` of it, from that file.
         let mut found: Vec<(f64, Written, usize)> = Vec::new();
         // A search's file and its error (the first file, when it stood, is
         // measured already: `l2_first`), its mesh no longer needed.
@@ -345,7 +357,7 @@ impl Displaced {
         };
         let mut slope = SLOPE;
         for first in firsts {
-            if first.carried > best * (1.0 + GIVE_UP) {
+            if first.carried > best * (1.0 + SEARCH_BOTH) {
                 continue;
             }
             let (levels, l2_first, given) = (first.levels, first.l2, first.step);
