@@ -1572,9 +1572,10 @@ fn displaced_attr_v1_2_decodes_to_its_test_vector() {
 /// FNV-1a 64 of the bytes today's encoder writes for the coloured
 /// ellipsoid at [`golden_displaced_attr_options`]. The golden file itself
 /// came from the encoder before bends (2026-12-07) and stays the
-/// decoder's test vector; this pins the encoder (since bare bases:
-/// 2,442 bytes).
-const DISPLACED_ATTR_V1_2_REENCODED_FNV1A64: u64 = 0xA1C6_5041_112A_7699;
+/// decoder's test vector; this pins the encoder (since bare bases and
+/// passes searched from the last pass's file: 2,524 bytes, within 3% of
+/// the 2,500 asked).
+const DISPLACED_ATTR_V1_2_REENCODED_FNV1A64: u64 = 0x4E24_5D4F_A184_259D;
 
 /// The encoder still writes the same bytes from the coloured ellipsoid:
 /// a mode-2 file with `ATTR`, as the golden file.
@@ -1587,7 +1588,7 @@ fn displaced_attr_v1_2_reencodes_to_the_same_bytes() {
     .unwrap();
     assert_eq!(
         (encoded.bytes.len(), fnv1a(FNV_OFFSET, &encoded.bytes)),
-        (2442, DISPLACED_ATTR_V1_2_REENCODED_FNV1A64),
+        (2524, DISPLACED_ATTR_V1_2_REENCODED_FNV1A64),
         "re-encoding the golden coloured ellipsoid no longer gives the pinned bytes"
     );
     let info = swm::inspect(&encoded.bytes, &Default::default()).unwrap();

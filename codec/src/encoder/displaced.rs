@@ -45,6 +45,15 @@
 //! (7-40% on spot, homer, cheburashka and cow at 0.5-2 b/v), none
 //! further.
 //!
+//! With attributes, `resample::sized` asks for files at up to five
+//! geometry budgets, each a few tenths from the last; every budget after
+//! the first skips the first round and searches from the last budget's
+//! chosen file ([`Start`]: its level count stands, a floored step is
+//! asked again of its error carried to the budget, its faces are scaled
+//! along its search's exponent). Beyond the sources, measured
+//! (BENCHMARKS.md, "Session 2026-12-07 (seventh)"): a coloured bunny at
+//! 1-2 b/v, `default`, about 40% less wall time.
+//!
 //! Invariant: everything input-sized is made once per encode and shared
 //! (the collapse sequence, the reference tree); a file costs its base's
 //! replay, refit and coding, and one line query per new vertex.
@@ -176,21 +185,32 @@ impl CodingMethod for Displaced {
         let budget =
             super::request::budget(ask.target, job.input_vertices, ask.max_bytes, "displaced")?;
         if job.streams().is_empty() {
-            return self.within(job, budget).map(Some);
+            return self.within(job, budget, None).map(|(made, _)| Some(made));
         }
-        // With attributes: geometry and streams sized together.
+        // With attributes: geometry and streams sized together, each
+        // geometry budget after the first searched from the last file
+        // (`Start`).
+        let start = std::cell::RefCell::new(None);
         super::resample::sized(job, budget, ask.max_bytes, GEOMETRY_BITS, |geometry| {
-            self.attributed(job, geometry)
+            self.attributed(job, geometry, &start)
         })
     }
 }
 
 impl Displaced {
-    /// [`within`](Self::within) at `geometry` bytes, its file carrying
-    /// the job's streams (`resample`); `None` when its mesh makes no
-    /// corner table.
-    fn attributed(&self, job: &Job<'_, '_>, geometry: u64) -> Result<Option<Made>, Error> {
-        let mut made = self.within(job, geometry)?;
+    /// [`within`](Self::within) at `geometry` bytes, from the last
+    /// pass's file when there was one (`start`, which this pass's file
+    /// replaces), its file carrying the job's streams (`resample`); `None`
+    /// when its mesh makes no corner table.
+    fn attributed(
+        &self,
+        job: &Job<'_, '_>,
+        geometry: u64,
+        start: &std::cell::RefCell<Option<Start>>,
+    ) -> Result<Option<Made>, Error> {
+        let last = start.borrow_mut().take();
+        let (mut made, next) = self.within(job, geometry, last.as_ref())?;
+        *start.borrow_mut() = Some(next);
         let seeds = made.seeds.take().unwrap_or_default();
         let Some(bytes) = super::resample::with_attributes(job, &made.bytes, Some(&seeds))? else {
             return Ok(None);
@@ -200,8 +220,17 @@ impl Displaced {
         Ok(Some(made))
     }
 
-    /// Its file of geometry alone at about `budget` bytes.
-    fn within(&self, job: &Job<'_, '_>, budget: u64) -> Result<Made, Error> {
+    /// Its file of geometry alone at about `budget` bytes, and what a
+    /// search at a budget near it can start from. With a `start` (the
+    /// file a budget near this one chose) the first round is not made: its
+    /// level count stands, and one search runs from its faces scaled to
+    /// the budget.
+    fn within(
+        &self,
+        job: &Job<'_, '_>,
+        budget: u64,
+        start: Option<&Start>,
+    ) -> Result<(Made, Start), Error> {
         let s = job.simplifier();
         // The reference tree answers the measures' nearest points and the
         // fitting's line crossings alike (no tree of its own for the
@@ -258,7 +287,34 @@ impl Displaced {
         };
         let mut step: Option<f64> = None;
         let mut floor = true;
-        for levels in LEVELS {
+        if let Some(sd) = start {
+            // Faces for the budget along the last search's exponent; its
+            // error is measured only if the file stands (`settled`).
+            let scale = (budget as f64 / sd.bytes.max(1) as f64).powf(1.0 / sd.slope);
+            let faces = (sd.faces as f64 * scale)
+                .round()
+                .clamp(MIN_BASE_FACES as f64, s.faces().max(MIN_BASE_FACES) as f64)
+                as u32;
+            // A floored step is asked again of the error the last file's
+            // carries to this budget, as the first round would.
+            let given = sd
+                .step
+                .and_then(|_| asked(sd.l2 * (sd.bytes as f64 / budget as f64).powf(RATE_EXPONENT)));
+            let w = file(faces, sd.levels, self.settings.qp, given)?;
+            if given.is_none() {
+                smallest = smallest.min(w.bytes.len() as u64);
+            }
+            firsts.push(First {
+                levels: sd.levels,
+                faces,
+                w,
+                l2: f64::NAN,
+                carried: f64::NAN,
+                step: given,
+                other: None,
+            });
+        }
+        for levels in LEVELS.into_iter().filter(|_| start.is_none()) {
             // After two level counts, one more only where the last level
             // still paid well (`NEXT_LEVEL_GAIN`).
             if let [.., ref before, ref last] = firsts[..] {
@@ -341,21 +397,23 @@ impl Displaced {
         }
         // Then the search of the best level count and of any whose first
         // file was within `SEARCH_BOTH` of it, from that file.
-        let mut found: Vec<(f64, Written, usize)> = Vec::new();
+        // (error, file, levels, its step when given, the exponent of size
+        // against faces its search found or started with).
+        let mut found: Vec<(f64, Written, usize, Option<f64>, f64)> = Vec::new();
         // A search's file and its error (the first file, when it stood, is
         // measured already: `l2_first`), its mesh no longer needed.
         let settled = |searched: Searched, l2_first: f64| -> Result<_, Error> {
             let Some(mut w) = searched.fitting else {
                 return Ok(None);
             };
-            let l2 = match searched.first_fits {
+            let l2 = match searched.first_fits && l2_first.is_finite() {
                 true => l2_first,
                 false => measure(&w)?,
             };
             w.mesh = crate::TriMesh::default();
-            Ok(Some((l2, w)))
+            Ok(Some((l2, w, searched.slope)))
         };
-        let mut slope = SLOPE;
+        let mut slope = start.map_or(SLOPE, |sd| sd.slope);
         for first in firsts {
             if first.carried > best * (1.0 + SEARCH_BOTH) {
                 continue;
@@ -408,13 +466,13 @@ impl Displaced {
                         smallest_of_other,
                         &|faces, qp| file(faces, levels, qp, o.step),
                     )?;
-                    if let Some((l2, w)) = settled(again, o.l2)? {
-                        found.push((l2, w, levels));
+                    if let Some((l2, w, sl)) = settled(again, o.l2)? {
+                        found.push((l2, w, levels, o.step, sl.unwrap_or(slope_of_other)));
                     }
                 }
             }
-            if let Some((l2, w)) = settled(searched, l2_first)? {
-                found.push((l2, w, levels));
+            if let Some((l2, w, sl)) = settled(searched, l2_first)? {
+                found.push((l2, w, levels, given, sl.unwrap_or(edge_slope)));
             }
         }
         // The closest file short of the budget (its search found no more
@@ -448,7 +506,7 @@ impl Displaced {
                     let l2 = measure(&w)?;
                     let mut w = w;
                     w.mesh = crate::TriMesh::default();
-                    found.push((l2, w, levels));
+                    found.push((l2, w, levels, None, SLOPE));
                     if done {
                         break;
                     }
@@ -474,7 +532,7 @@ impl Displaced {
             }
             (_, b) => b,
         };
-        let Some((l2, w, levels)) = pick.map(|i| found.swap_remove(i)) else {
+        let Some((l2, w, levels, given, slope)) = pick.map(|i| found.swap_remove(i)) else {
             return Err(SizeError {
                 requested: budget,
                 smallest,
@@ -497,7 +555,15 @@ impl Displaced {
             true => Some(self.base_seeds(job, w.base_target, w.qp, levels)?),
             false => None,
         };
-        Ok(Made {
+        let next = Start {
+            levels,
+            faces: w.base_target,
+            l2,
+            step: given,
+            bytes: w.bytes.len() as u64,
+            slope,
+        };
+        let made = Made {
             bytes: w.bytes,
             stats: MethodStats::Displaced(stats),
             l2_relative: Some(l2),
@@ -505,7 +571,8 @@ impl Displaced {
             // is nothing more to code.
             whole: w.base_faces >= s.faces() as usize,
             seeds,
-        })
+        };
+        Ok((made, next))
     }
 
     /// The seed of each base vertex of the file whose base was simplified
@@ -556,6 +623,22 @@ struct First {
     /// The first file at the other step (the edge rule's when the
     /// floored step replaced it, the floored one when it did not).
     other: Option<Other>,
+}
+
+/// Where a search at a budget near a file's can start (the passes of a
+/// file with attributes, `resample::sized`, whose geometry budgets move
+/// by a few tenths): that file's level count, base faces, error and step,
+/// its size, and the exponent of size against faces its search found. Beyond the sources, measured (BENCHMARKS.md, "Session
+/// 2026-12-07 (seventh)").
+struct Start {
+    levels: usize,
+    faces: u32,
+    /// Its error.
+    l2: f64,
+    /// Its finest step when given (`None`: the edge rule's).
+    step: Option<f64>,
+    bytes: u64,
+    slope: f64,
 }
 
 /// A level count's first file at the step it did not keep.

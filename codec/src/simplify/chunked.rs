@@ -54,8 +54,10 @@ pub(super) fn simplified_indices(mesh: &TriMesh, target: u32) -> Option<Vec<u32>
     let bytes = meshopt::typed_to_bytes(&mesh.positions);
     let vertices = meshopt::VertexDataAdapter::new(bytes, 12, 0).ok()?;
     let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
+    // (meshoptimizer asserts that a target is no more than its input.)
     let plain = |indices: &[u32], options: meshopt::SimplifyOptions| {
-        meshopt::simplify(indices, &vertices, 3 * target as usize, 1.0, options, None)
+        let aim = (3 * target as usize).min(indices.len());
+        meshopt::simplify(indices, &vertices, aim, 1.0, options, None)
     };
     let faces = mesh.triangles.len();
     if faces < CHUNKED_FACES || (target as usize) >= faces {
