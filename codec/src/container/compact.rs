@@ -128,16 +128,9 @@ pub(crate) fn read_head(bytes: &[u8], limits: &Limits) -> Result<Scan<CompactHea
     let mut counts = [0u32; 3];
     for (k, c) in counts.iter_mut().enumerate() {
         at[k] = pos;
-        match varu(bytes, &mut pos, u32::MAX.into())? {
-            Some(v) => *c = v as u32,
+        match count(bytes, &mut pos, k, limits)? {
+            Some(v) => *c = v,
             None => return Ok(Scan::Need(bytes.len() + 1)),
-        }
-        // The limits as soon as each count is known, as the fixed framing
-        // does once its header is in.
-        match k {
-            0 => limits.check_vertices(v64(*c))?,
-            1 => limits.check_faces(v64(*c))?,
-            _ => {}
         }
     }
     let header = Header {
@@ -177,14 +170,8 @@ pub(crate) fn read_bare_head(
     let mut at = [0usize; 3];
     for (k, c) in counts.iter_mut().enumerate() {
         at[k] = pos;
-        let Some(v) = varu(bytes, &mut pos, u32::MAX.into())? else {
-            return Err(malformed(Malformed::Truncated, bytes.len()));
-        };
-        *c = v as u32;
-        match k {
-            0 => limits.check_vertices(v)?,
-            _ => limits.check_faces(v)?,
-        }
+        *c = count(bytes, &mut pos, k, limits)?
+            .ok_or_else(|| malformed(Malformed::Truncated, bytes.len()))?;
     }
     at[2] = pos;
     let header = Header {
@@ -207,8 +194,20 @@ pub(crate) fn read_bare_head(
     })
 }
 
-fn v64(v: u32) -> u64 {
-    u64::from(v)
+/// Reads header count `k` (0: vertices, 1: triangles, 2: components) at
+/// `*pos`, a shortest-form varu of at most 2^32 − 1, and checks it
+/// against `limits` as soon as it is known, as the fixed framing does
+/// once its header is in. `Ok(None)`: the prefix ends inside it.
+fn count(bytes: &[u8], pos: &mut usize, k: usize, limits: &Limits) -> Result<Option<u32>, Error> {
+    let Some(v) = varu(bytes, pos, u32::MAX.into())? else {
+        return Ok(None);
+    };
+    match k {
+        0 => limits.check_vertices(v)?,
+        1 => limits.check_faces(v)?,
+        _ => {}
+    }
+    Ok(Some(v as u32))
 }
 
 /// One section table entry of a compact file.

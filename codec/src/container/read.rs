@@ -267,7 +267,7 @@ pub(crate) fn parse_bare<'a>(
 /// The container whose checked header `frame` gives, its table and
 /// payloads in `bytes` before `crc_at` (the CRC's offset, or the end of
 /// a bare body): every entry checked, and the payloads filling the space
-/// up to `end` exactly.
+/// up to `crc_at` exactly.
 fn framed(bytes: &[u8], crc_at: usize, frame: Frame) -> Result<Container<'_>, Error> {
     // The table's end: known from the count in the fixed framing; in the
     // compact one, found by reading the entries once (checking each alone:

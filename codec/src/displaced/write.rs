@@ -129,16 +129,20 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
     let limits = Limits::default();
     let base_container = parse_container(&base_file, &limits)?;
     let mut mesh = crate::lossless::decode(&base_container, &limits)?;
-    let base_section = match plan.settings.bare_base {
+    let bare = match plan.settings.bare_base {
         true => {
             let sections: Vec<(Tag, &[u8])> = base_container
                 .sections()
                 .map(|s| (s.tag, s.bytes))
                 .collect();
-            crate::container::write_bare(&base_container.header, &sections)?
+            Some(crate::container::write_bare(
+                &base_container.header,
+                &sections,
+            )?)
         }
-        false => base_file.clone(),
+        false => None,
     };
+    let base_section: &[u8] = bare.as_deref().unwrap_or(&base_file);
     let base_faces = mesh.triangles.len();
     let mut steps = Vec::with_capacity(plan.levels);
     let mut bends = Vec::with_capacity(plan.levels);
@@ -250,7 +254,7 @@ pub(crate) fn write(base: &TriMesh, target: &Target<'_>, plan: &Plan) -> Result<
     header.minor = 2;
     let sections: [(Tag, &[u8]); 3] = [
         (Tag::HEAD, &head),
-        (Tag::BASE, &base_section),
+        (Tag::BASE, base_section),
         (Tag::DISP, &disp),
     ];
     let bytes = write_container(&header, &sections)?;

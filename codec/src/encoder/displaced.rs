@@ -397,9 +397,7 @@ impl Displaced {
         }
         // Then the search of the best level count and of any whose first
         // file was within `SEARCH_BOTH` of it, from that file.
-        // (error, file, levels, its step when given, the exponent of size
-        // against faces its search found or started with).
-        let mut found: Vec<(f64, Written, usize, Option<f64>, f64)> = Vec::new();
+        let mut found: Vec<Found> = Vec::new();
         // A search's file and its error (the first file, when it stood, is
         // measured already: `l2_first`), its mesh no longer needed.
         let settled = |searched: Searched, l2_first: f64| -> Result<_, Error> {
@@ -467,12 +465,24 @@ impl Displaced {
                         &|faces, qp| file(faces, levels, qp, o.step),
                     )?;
                     if let Some((l2, w, sl)) = settled(again, o.l2)? {
-                        found.push((l2, w, levels, o.step, sl.unwrap_or(slope_of_other)));
+                        found.push(Found {
+                            l2,
+                            w,
+                            levels,
+                            step: o.step,
+                            slope: sl.unwrap_or(slope_of_other),
+                        });
                     }
                 }
             }
             if let Some((l2, w, sl)) = settled(searched, l2_first)? {
-                found.push((l2, w, levels, given, sl.unwrap_or(edge_slope)));
+                found.push(Found {
+                    l2,
+                    w,
+                    levels,
+                    step: given,
+                    slope: sl.unwrap_or(edge_slope),
+                });
             }
         }
         // The closest file short of the budget (its search found no more
@@ -484,11 +494,11 @@ impl Displaced {
         // of 2,304, 3,036 of its 3,072 faces, once bends made its scalars
         // cheaper).
         let on_size = |w: &Written| w.bytes.len() as f64 >= budget as f64 * (1.0 - TOLERANCE);
-        let closest_of_all = (0..found.len()).min_by(|&a, &b| found[a].0.total_cmp(&found[b].0));
-        let short = closest_of_all.filter(|&i| !on_size(&found[i].1));
+        let closest_of_all = (0..found.len()).min_by(|&a, &b| found[a].l2.total_cmp(&found[b].l2));
+        let short = closest_of_all.filter(|&i| !on_size(&found[i].w));
         if let Some(i) = short {
-            let (faces, levels, qp) = (found[i].1.base_target, found[i].2, found[i].1.qp);
-            let w0 = &found[i].1;
+            let (faces, levels, qp) = (found[i].w.base_target, found[i].levels, found[i].w.qp);
+            let w0 = &found[i].w;
             let scalars = 1.5 * w0.base_faces as f64 * ((4f64).powi(levels as i32) - 1.0) / 3.0;
             let aim = budget as f64 * (1.0 - TOLERANCE / 3.0);
             let mut points = vec![(0.0f64, (w0.bytes.len() as f64).ln())];
@@ -506,7 +516,13 @@ impl Displaced {
                     let l2 = measure(&w)?;
                     let mut w = w;
                     w.mesh = crate::TriMesh::default();
-                    found.push((l2, w, levels, None, SLOPE));
+                    found.push(Found {
+                        l2,
+                        w,
+                        levels,
+                        step: None,
+                        slope: SLOPE,
+                    });
                     if done {
                         break;
                     }
@@ -523,16 +539,23 @@ impl Displaced {
         // beats a shorter one unless 5% worse (the chooser's rule).
         let closest = |on: bool| {
             (0..found.len())
-                .filter(|&i| !on || on_size(&found[i].1))
-                .min_by(|&a, &b| found[a].0.total_cmp(&found[b].0))
+                .filter(|&i| !on || on_size(&found[i].w))
+                .min_by(|&a, &b| found[a].l2.total_cmp(&found[b].l2))
         };
         let pick = match (closest(true), closest(false)) {
-            (Some(a), Some(b)) if found[a].0 <= crate::simplify::ON_SIZE_SLACK * found[b].0 => {
+            (Some(a), Some(b)) if found[a].l2 <= crate::simplify::ON_SIZE_SLACK * found[b].l2 => {
                 Some(a)
             }
             (_, b) => b,
         };
-        let Some((l2, w, levels, given, slope)) = pick.map(|i| found.swap_remove(i)) else {
+        let Some(Found {
+            l2,
+            w,
+            levels,
+            step: given,
+            slope,
+        }) = pick.map(|i| found.swap_remove(i))
+        else {
             return Err(SizeError {
                 requested: budget,
                 smallest,
@@ -623,6 +646,18 @@ struct First {
     /// The first file at the other step (the edge rule's when the
     /// floored step replaced it, the floored one when it did not).
     other: Option<Other>,
+}
+
+/// A file a search found, measured, its mesh dropped.
+struct Found {
+    l2: f64,
+    w: Written,
+    levels: usize,
+    /// Its finest step when given (`None`: the edge rule's).
+    step: Option<f64>,
+    /// The exponent of size against faces its search found (or started
+    /// with).
+    slope: f64,
 }
 
 /// Where a search at a budget near a file's can start (the passes of a
