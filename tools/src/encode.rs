@@ -969,7 +969,7 @@ pub enum EffortArg {
     /// measured, each size search started where the last one predicts),
     /// SwingWrapper where its retiling fits the level's work budget, and
     /// displaced subdivision for files of at most one byte per seven
-    /// input triangles.
+    /// input triangles or 3 KB, whichever is larger.
     Default,
     /// Every method's whole search.
     Max,

@@ -6,7 +6,7 @@
 //! | level     | methods (first wins a tie)                         | work                       |
 //! |-----------|----------------------------------------------------|----------------------------|
 //! | `fast`    | simplified, quick search                           | one collapse sequence, two size searches |
-//! | `default` | SwingWrapper (within [`swing_budget`]), simplified's lean climb, displaced subdivision (within [`displaced_budget`]) | + a retiling of small outputs, displaced files of low rates |
+//! | `default` | SwingWrapper (within [`swing_budget`]), simplified's lean climb, displaced subdivision (within [`displaced_budget`]) | + a retiling of small outputs, displaced files of low rates or small sizes |
 //! | `max`     | mixed, SwingWrapper, simplified, displaced subdivision: every search | unbounded by the level |
 //!
 //! Invariants: `max` runs every method `default` runs, each with at least
@@ -63,10 +63,20 @@ const SWING_STEPS_PER_FACE: u64 = 20;
 /// time bar does not leave. On CAD parts and small meshes it never won.
 const DISPLACED_FACES_PER_BYTE: u64 = 7;
 
+/// Bytes of file up to which the `default` level runs the displaced
+/// method whatever the input's size: on a small mesh the level's time
+/// bar is its half-second floor, not a multiple of the input. Measured
+/// on the nine small meshes of the shared corpus at 4 and 8 b/v
+/// (BENCHMARKS.md, "Session 2026-12-07 (seventh)", "a byte floor"):
+/// every cell within its bar, 0.02-0.14 s more, and homer and the teapot
+/// at 4 b/v 11-12% closer. At 4 KB the attributed meshes (beetle,
+/// suzanne, alligator) went to 0.8-1.1 s.
+const DISPLACED_BYTES_FLOOR: u64 = 3072;
+
 /// The `default` level's budget for the displaced method, in bytes of
 /// file, on an input of `faces` triangles.
 pub(crate) fn displaced_budget(faces: usize) -> u64 {
-    faces as u64 / DISPLACED_FACES_PER_BYTE
+    (faces as u64 / DISPLACED_FACES_PER_BYTE).max(DISPLACED_BYTES_FLOOR)
 }
 
 /// The `default` level's budget for SwingWrapper on an input of `faces`

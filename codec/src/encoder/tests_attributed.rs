@@ -244,12 +244,14 @@ fn normals_that_crowd_the_surface_out_are_dropped_and_said_so() {
         ..Default::default()
     };
     let l2 = |e: &crate::Encoded| e.stats.check.unwrap().l2_relative.unwrap();
-    // At 1,200 bytes the normals would take most of the file: without
-    // them the surface is about five times closer (measured 3.9e-4
-    // against 21.8e-4 of the diagonal), more than their own 12° at 1e-4
-    // a degree.
-    let e = crate::encode_attributed(&mesh, &sized(1200, false)).unwrap();
-    let kept = crate::encode_attributed(&mesh, &sized(1200, true)).unwrap();
+    // At 1,000 bytes the normals would take most of the file: without
+    // them the surface is about three times closer (measured 7.3e-4,
+    // searched at `fast`, against 22.3e-4 of the diagonal), more than
+    // their own 12° at 1e-4 a degree. (At 1,200 bytes, since displaced
+    // subdivision runs there, the kept file is close enough that the
+    // weighed choice keeps them: 17.7e-4 against 6.0e-4 + 12.4e-4.)
+    let e = crate::encode_attributed(&mesh, &sized(1000, false)).unwrap();
+    let kept = crate::encode_attributed(&mesh, &sized(1000, true)).unwrap();
     let a = &e.stats.attributes;
     assert!(a.kept.is_empty());
     assert_eq!(a.dropped, vec![AttributeKind::Normal]);
