@@ -171,3 +171,42 @@ fn the_cli_lists_levels_and_decodes_a_prefix() {
         assert_eq!(mesh.triangles.len(), triangles, "--max-level {level}");
     }
 }
+
+/// `swm info` of a displaced file says how it predicts and what its base
+/// is, each level's step and bend, and prints no CLERS line (its
+/// connectivity is its base's and the splits').
+#[test]
+fn the_cli_shows_a_displaced_files_prediction_steps_bends_and_base() {
+    let golden = |name: &str| {
+        format!(
+            "{}/../format-spec/golden/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        )
+    };
+    let bare = golden("displaced-bare-v1.2.swm");
+    let v = common::json(&common::swm(&["info", &bare, "--json"]));
+    assert_eq!(v["prediction"], "loop");
+    assert_eq!(v["bare_base"], true);
+    // format-spec/07-displaced.md, "Golden file": a bare BASE of 933 bytes.
+    assert_eq!(v["base_bytes"], 933);
+    let steps = v["steps"].as_array().unwrap();
+    let bends = v["bends"].as_array().unwrap();
+    assert_eq!((steps.len(), bends.len()), (2, 2));
+    assert!(steps.iter().all(|s| s.as_f64().unwrap() > 0.0));
+    // The finest of several levels is left unbent.
+    assert_eq!(bends[1].as_f64(), Some(0.0));
+    let text = common::ok(&common::swm(&["info", &bare]));
+    assert!(text.contains("base                  bare"), "{text}");
+    assert!(text.contains("prediction            loop"), "{text}");
+    assert!(!text.contains("CLERS"), "{text}");
+    // The first 1.2 file: a whole mode-0 file in BASE, no bends.
+    let first = golden("displaced-v1.2.swm");
+    let v = common::json(&common::swm(&["info", &first, "--json"]));
+    assert_eq!(v["bare_base"], false);
+    assert_eq!(v["base_bytes"], 923);
+    assert!(v["bends"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|b| b.as_f64() == Some(0.0)));
+}

@@ -25,6 +25,8 @@ pub(crate) struct Inspected {
     pub swing: Option<SwingStats>,
     /// Bytes of each subdivision level's chunk, for mode 2.
     pub levels: Vec<usize>,
+    /// `HEAD` and `BASE`'s figures, for mode 2.
+    pub displaced: Option<DisplacedInfo>,
 }
 
 /// One mode's decoder.
@@ -57,6 +59,7 @@ static LOSSLESS: ModeDecoder = ModeDecoder {
             stats,
             swing: None,
             levels: Vec::new(),
+            displaced: None,
         })
     },
     extra_counts: |_, _| Ok((0, 0, true)),
@@ -77,6 +80,7 @@ static SWING: ModeDecoder = ModeDecoder {
             stats,
             swing: Some(swing),
             levels: Vec::new(),
+            displaced: None,
         })
     },
     extra_counts: |file, limits| {
@@ -96,7 +100,7 @@ static DISPLACED: ModeDecoder = ModeDecoder {
         crate::displaced::decode_levels(file, &options.limits, levels)
     },
     inspect: |file, limits, len| {
-        let (levels, qp) = crate::displaced::levels_and_qp(file, limits)?;
+        let (levels, qp, displaced) = crate::displaced::levels_and_qp(file, limits)?;
         let h = &file.header;
         let mut stats = LosslessStats {
             vertices: h.vertex_count.into(),
@@ -114,6 +118,7 @@ static DISPLACED: ModeDecoder = ModeDecoder {
             stats,
             swing: None,
             levels,
+            displaced: Some(displaced),
         })
     },
     extra_counts: |_, _| Ok((0, 0, true)),
@@ -263,6 +268,27 @@ pub struct FileInfo {
     /// them, [`cut_levels`](crate::cut_levels), decodes to level `l`).
     /// Empty for other modes.
     pub levels: Vec<usize>,
+    /// A displaced-subdivision file's prediction, steps, bends and base;
+    /// `None` for other modes.
+    pub displaced: Option<DisplacedInfo>,
+}
+
+/// What a displaced-subdivision (mode 2) file's `HEAD` and `BASE` say
+/// (format-spec/07-displaced.md): read without decoding a level.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct DisplacedInfo {
+    /// The prediction rule: `"loop"` or `"butterfly"`.
+    pub rule: &'static str,
+    /// Each level's quantization step, coarse to fine, in the mesh's
+    /// units (the levels the encoder made: a cut file keeps them all).
+    pub steps: Vec<f32>,
+    /// Each level's bend `β` (0 where the level has none).
+    pub bends: Vec<f32>,
+    /// `BASE` holds a bare mode-0 body, not a whole mode-0 file.
+    pub bare_base: bool,
+    /// Bytes of `BASE`.
+    pub base_bytes: usize,
 }
 
 /// [`crate::inspect`].
@@ -282,5 +308,6 @@ pub(crate) fn inspect(bytes: &[u8], limits: &Limits) -> Result<FileInfo, Error> 
         post: crate::post::hint::read(&file),
         attributes,
         levels: seen.levels,
+        displaced: seen.displaced,
     })
 }

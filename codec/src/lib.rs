@@ -61,7 +61,9 @@ pub mod io;
 
 #[cfg(feature = "encoder")]
 pub use api::HintReport;
-pub use api::{decode, decode_attributed, inspect, FileInfo, LosslessStats, SwingStats};
+pub use api::{
+    decode, decode_attributed, inspect, DisplacedInfo, FileInfo, LosslessStats, SwingStats,
+};
 #[cfg(feature = "encoder")]
 pub use api::{
     encode, encode_attributed, Attempt, AttributeQuantization, AttributeReport, AttributesDropped,

@@ -92,14 +92,30 @@ pub fn run(args: &Args) -> Result<(), CliError> {
 
 /// A displaced file's levels, coarse to fine: each one's chunk bytes and
 /// triangle count (the file's count over 4 per finer level), so that a
-/// reader sees where `--max-level` or a cut would stop.
-fn print_levels(levels: &[usize], triangles: u64) {
+/// reader sees where `--max-level` or a cut would stop, with its step
+/// and bend; and its prediction rule and base.
+fn print_levels(levels: &[usize], triangles: u64, d: Option<&swm::DisplacedInfo>) {
+    if let Some(d) = d {
+        let base = match d.bare_base {
+            true => "bare (its sections alone)",
+            false => "a whole mode-0 file",
+        };
+        say!("  prediction            {}", d.rule);
+        say!("  base                  {base}, {} bytes", d.base_bytes);
+    }
     say!("  levels                {}", levels.len());
     for (l, bytes) in levels.iter().enumerate() {
         let finer = 2 * (levels.len() - 1 - l) as u32;
         let t = triangles.checked_shr(finer).unwrap_or(0);
+        let how = d
+            .map(|d| {
+                let step = d.steps.get(l).copied().unwrap_or(0.0);
+                let bend = d.bends.get(l).copied().unwrap_or(0.0);
+                format!(", step {step:.4e}, bend {bend}")
+            })
+            .unwrap_or_default();
         say!(
-            "    level {}             {bytes} bytes, {t} triangles",
+            "    level {}             {bytes} bytes, {t} triangles{how}",
             l + 1
         );
     }
@@ -118,6 +134,13 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
     if info.mode == swm::Mode::Displaced {
         v["mode"] = "displaced".into();
         v["level_bytes"] = info.levels.clone().into();
+        if let Some(d) = &info.displaced {
+            v["prediction"] = d.rule.into();
+            v["steps"] = d.steps.clone().into();
+            v["bends"] = d.bends.clone().into();
+            v["bare_base"] = d.bare_base.into();
+            v["base_bytes"] = d.base_bytes.into();
+        }
     }
     v["version"] = version(&info).into();
     v["framing"] = framing(&info).into();
@@ -134,7 +157,7 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
             "  mode                  displaced subdivision, base at {} bits per coordinate",
             info.qp
         );
-        print_levels(&info.levels, s.triangles);
+        print_levels(&info.levels, s.triangles, info.displaced.as_ref());
     } else {
         say!(
             "  mode                  lossless, {} bits per coordinate",
@@ -220,6 +243,11 @@ fn print_sections_and_clers(sections: &[([u8; 4], usize)], triangles: u64, clers
             String::from_utf8_lossy(tag),
             per_triangle(8.0 * *n as f64, triangles)
         );
+    }
+    // A displaced file's connectivity is its base's and the splits':
+    // there is no CLERS string to show.
+    if clers.iter().all(|&n| n == 0) {
+        return;
     }
     let total: u64 = clers.iter().sum::<u64>().max(1);
     let hist: Vec<String> = ["C", "L", "E", "R", "S"]

@@ -66,7 +66,7 @@ enum Command {
     Decode(decode::Args),
     /// Describe a mesh (topology, defects, size) or a .swm file (version,
     /// mode, counts, bytes and bits per triangle of each section, CLERS
-    /// histogram).
+    /// histogram; a displaced file's levels, steps and bends).
     Info(info::Args),
     /// Measure the distance between two meshes (Metro-style L2, mean and
     /// Hausdorff, both one-sided values).

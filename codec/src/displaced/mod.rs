@@ -463,13 +463,28 @@ impl Refiner {
     }
 }
 
-/// The bytes of each level's chunk and the base's quantization bits
-/// (for `inspect`).
+/// The bytes of each level's chunk, the base's quantization bits and
+/// what `HEAD` and `BASE` say (for `inspect`).
 pub(crate) fn levels_and_qp(
     file: &Container<'_>,
     limits: &Limits,
-) -> Result<(Vec<usize>, u8), Error> {
+) -> Result<(Vec<usize>, u8, crate::decoder::DisplacedInfo), Error> {
     let p = parse(file, limits)?;
+    let info = crate::decoder::DisplacedInfo {
+        rule: match p.head.rule {
+            Rule::Loop => "loop",
+            Rule::Butterfly => "butterfly",
+        },
+        steps: p.head.steps.clone(),
+        bends: p
+            .head
+            .bends
+            .iter()
+            .map(|&b| (f64::from(b) * BEND_UNIT) as f32)
+            .collect(),
+        bare_base: p.head.bare,
+        base_bytes: file.find(Tag::BASE).map_or(0, |s| s.bytes.len()),
+    };
     let qp = p
         .base
         .section(Tag::HEAD)
@@ -483,7 +498,7 @@ pub(crate) fn levels_and_qp(
     if found != declared {
         return Err(crate::lossless::mismatch("vertices", declared, found));
     }
-    Ok((p.chunks.iter().map(|c| c.len()).collect(), qp))
+    Ok((p.chunks.iter().map(|c| c.len()).collect(), qp, info))
 }
 
 /// The vertices of `base` after `levels` levels: each level adds one per
