@@ -336,6 +336,8 @@ fn displaced_mode_round_trips_on_size() {
         "{} bytes",
         bytes.len()
     );
+    // The report counts the file's bytes as every mode's does.
+    assert_eq!(report["bytes"].as_u64(), Some(bytes.len() as u64));
     ok(&swm(&args));
     assert_eq!(bytes, std::fs::read(&file).unwrap(), "not deterministic");
 

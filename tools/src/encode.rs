@@ -510,6 +510,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 let (v, t) = check.map_or((0, 0), |c| (c.decoded_vertices, c.decoded_triangles));
                 let json = serde_json::json!({
                     "mode": "displaced",
+                    "bytes": encoded.bytes.len(),
                     "base_faces": d.base_faces,
                     "levels": d.levels,
                     "qp": d.qp,
