@@ -80,6 +80,13 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
             if info.mode == swm::Mode::Displaced {
                 d.set_item("mode", "displaced")?;
                 d.set_item("level_bytes", &info.levels)?;
+                if let Some(x) = &info.displaced {
+                    d.set_item("prediction", x.rule)?;
+                    d.set_item("steps", &x.steps)?;
+                    d.set_item("bends", &x.bends)?;
+                    d.set_item("bare_base", x.bare_base)?;
+                    d.set_item("base_bytes", x.base_bytes)?;
+                }
             }
         }
         Some(s) => {

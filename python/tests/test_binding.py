@@ -106,6 +106,9 @@ def test_displaced_decodes_as_the_cli_level_by_level(swm_bin, tmp_path, max_leve
         cli = json.loads(run_cli(swm_bin, "info", packed, "--json").stdout)
         assert info["mode"] == cli["mode"] == "displaced"
         assert info["level_bytes"] == cli["level_bytes"] and len(info["level_bytes"]) == 2
+        for key in ["prediction", "steps", "bends", "bare_base", "base_bytes"]:
+            assert info[key] == cli[key], key
+        assert info["prediction"] == "loop" and info["bare_base"] is False
 
 
 def test_decode_normals(torus):
