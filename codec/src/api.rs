@@ -6,7 +6,7 @@
 use crate::options::DecodeOptions;
 use crate::{Error, Limits, TriMesh};
 
-pub use crate::decoder::{DisplacedInfo, FileInfo};
+pub use crate::decoder::{DisplacedInfo, FileInfo, Prediction};
 pub use crate::lossless::LosslessStats;
 pub use crate::swing::SwingStats;
 

@@ -273,13 +273,34 @@ pub struct FileInfo {
     pub displaced: Option<DisplacedInfo>,
 }
 
+/// A displaced-subdivision file's prediction rule (`HEAD`'s rule byte,
+/// format-spec/07-displaced.md, "Prediction").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Prediction {
+    /// Loop's edge rule (byte 0).
+    Loop,
+    /// The 8-point butterfly (byte 1).
+    Butterfly,
+}
+
+impl Prediction {
+    /// Its name in `swm info`'s report: `"loop"` or `"butterfly"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Prediction::Loop => "loop",
+            Prediction::Butterfly => "butterfly",
+        }
+    }
+}
+
 /// What a displaced-subdivision (mode 2) file's `HEAD` and `BASE` say
 /// (format-spec/07-displaced.md): read without decoding a level.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct DisplacedInfo {
-    /// The prediction rule: `"loop"` or `"butterfly"`.
-    pub rule: &'static str,
+    /// The prediction rule.
+    pub rule: Prediction,
     /// Each level's quantization step, coarse to fine, in the mesh's
     /// units (the levels the encoder made: a cut file keeps them all).
     pub steps: Vec<f32>,

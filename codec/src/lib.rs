@@ -62,7 +62,8 @@ pub mod io;
 #[cfg(feature = "encoder")]
 pub use api::HintReport;
 pub use api::{
-    decode, decode_attributed, inspect, DisplacedInfo, FileInfo, LosslessStats, SwingStats,
+    decode, decode_attributed, inspect, DisplacedInfo, FileInfo, LosslessStats, Prediction,
+    SwingStats,
 };
 #[cfg(feature = "encoder")]
 pub use api::{

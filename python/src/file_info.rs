@@ -81,7 +81,7 @@ pub fn to_dict<'py>(py: Python<'py>, info: &swm::FileInfo) -> PyResult<Bound<'py
                 d.set_item("mode", "displaced")?;
                 d.set_item("level_bytes", &info.levels)?;
                 if let Some(x) = &info.displaced {
-                    d.set_item("prediction", x.rule)?;
+                    d.set_item("prediction", x.rule.name())?;
                     d.set_item("steps", &x.steps)?;
                     d.set_item("bends", &x.bends)?;
                     d.set_item("bare_base", x.bare_base)?;

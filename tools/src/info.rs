@@ -100,7 +100,7 @@ fn print_levels(levels: &[usize], triangles: u64, d: Option<&swm::DisplacedInfo>
             true => "bare (its sections alone)",
             false => "a whole mode-0 file",
         };
-        say!("  prediction            {}", d.rule);
+        say!("  prediction            {}", d.rule.name());
         say!("  base                  {base}, {} bytes", d.base_bytes);
     }
     say!("  levels                {}", levels.len());
@@ -135,7 +135,7 @@ fn run_swm(args: &Args) -> Result<(), CliError> {
         v["mode"] = "displaced".into();
         v["level_bytes"] = info.levels.clone().into();
         if let Some(d) = &info.displaced {
-            v["prediction"] = d.rule.into();
+            v["prediction"] = d.rule.name().into();
             v["steps"] = d.steps.clone().into();
             v["bends"] = d.bends.clone().into();
             v["bare_base"] = d.bare_base.into();

@@ -472,8 +472,8 @@ pub(crate) fn levels_and_qp(
     let p = parse(file, limits)?;
     let info = crate::decoder::DisplacedInfo {
         rule: match p.head.rule {
-            Rule::Loop => "loop",
-            Rule::Butterfly => "butterfly",
+            Rule::Loop => crate::decoder::Prediction::Loop,
+            Rule::Butterfly => crate::decoder::Prediction::Butterfly,
         },
         steps: p.head.steps.clone(),
         bends: p
