@@ -21,7 +21,8 @@
 //! one and a half times it (`Swing::work_limit`), counted in
 //! deterministic steps, so the bytes never depend on the machine; the
 //! displaced method runs only for files of at most one byte per seven
-//! input triangles). The budgets and the predicted work are
+//! input triangles, or 3 KB on small inputs, whose bar is a constant
+//! floor). The budgets and the predicted work are
 //! measured figures (BENCHMARKS.md, "Effort levels").
 
 use super::displaced::Displaced;
@@ -60,7 +61,8 @@ const SWING_STEPS_PER_FACE: u64 = 20;
 /// 0.1-0.2 s of one core to the level's encode and wins on scans by
 /// 12-15% of L2; at 2 b/v, since its rate control runs in two rounds,
 /// 0.2-0.3 s for 14-18%; at 4-8 b/v still 0.4-0.7 s, which the level's
-/// time bar does not leave. On CAD parts and small meshes it never won.
+/// time bar does not leave. Small meshes have [`DISPLACED_BYTES_FLOOR`]
+/// besides; on CAD parts it never won.
 const DISPLACED_FACES_PER_BYTE: u64 = 7;
 
 /// Bytes of file up to which the `default` level runs the displaced
