@@ -6,7 +6,8 @@
 use crate::options::DecodeOptions;
 use crate::{Error, Limits, TriMesh};
 
-pub use crate::decoder::{DisplacedInfo, FileInfo, Prediction};
+pub use crate::decoder::FileInfo;
+pub use crate::displaced::{DisplacedInfo, Prediction};
 pub use crate::lossless::LosslessStats;
 pub use crate::swing::SwingStats;
 

@@ -33,7 +33,7 @@
 //! One concern per file: `subdivide` (the split and the order of new
 //! vertices), `predict` (rules, bends, normal, placement), `scalars` (the
 //! chunks' coding), `finer` (a level's edges, and its scalars' contexts,
-//! from the level above);
+//! from the level above), `info` (what `swm info` shows of a file);
 //! encoder side: `fit` (the scalars against the input), `bend` (each
 //! level's bend) and `write` (the file).
 
@@ -42,6 +42,7 @@ pub(crate) mod bend;
 mod finer;
 #[cfg(feature = "encoder")]
 pub(crate) mod fit;
+mod info;
 pub(crate) mod predict;
 pub(crate) mod scalars;
 pub(crate) mod subdivide;
@@ -56,6 +57,7 @@ use crate::container::{
 use crate::prelude::*;
 use crate::varint::Reader;
 use crate::{Error, FormatError, Limits, Malformed, TriMesh};
+pub use info::{DisplacedInfo, Prediction};
 use predict::Rule;
 use subdivide::Edges;
 
@@ -468,12 +470,12 @@ impl Refiner {
 pub(crate) fn levels_and_qp(
     file: &Container<'_>,
     limits: &Limits,
-) -> Result<(Vec<usize>, u8, crate::decoder::DisplacedInfo), Error> {
+) -> Result<(Vec<usize>, u8, DisplacedInfo), Error> {
     let p = parse(file, limits)?;
-    let info = crate::decoder::DisplacedInfo {
+    let info = DisplacedInfo {
         rule: match p.head.rule {
-            Rule::Loop => crate::decoder::Prediction::Loop,
-            Rule::Butterfly => crate::decoder::Prediction::Butterfly,
+            Rule::Loop => Prediction::Loop,
+            Rule::Butterfly => Prediction::Butterfly,
         },
         steps: p.head.steps.clone(),
         bends: p
