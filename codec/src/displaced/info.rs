@@ -3,26 +3,7 @@
 
 use crate::prelude::*;
 
-/// A displaced-subdivision file's prediction rule (`HEAD`'s rule byte,
-/// format-spec/07-displaced.md, "Prediction").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Prediction {
-    /// Loop's edge rule (byte 0).
-    Loop,
-    /// The 8-point butterfly (byte 1).
-    Butterfly,
-}
-
-impl Prediction {
-    /// Its name in `swm info`'s report: `"loop"` or `"butterfly"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Prediction::Loop => "loop",
-            Prediction::Butterfly => "butterfly",
-        }
-    }
-}
+pub use super::predict::Rule as Prediction;
 
 /// What a displaced-subdivision (mode 2) file's `HEAD` and `BASE` say
 /// (format-spec/07-displaced.md): read without decoding a level.

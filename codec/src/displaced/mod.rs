@@ -473,10 +473,7 @@ pub(crate) fn levels_and_qp(
 ) -> Result<(Vec<usize>, u8, DisplacedInfo), Error> {
     let p = parse(file, limits)?;
     let info = DisplacedInfo {
-        rule: match p.head.rule {
-            Rule::Loop => Prediction::Loop,
-            Rule::Butterfly => Prediction::Butterfly,
-        },
+        rule: p.head.rule,
         steps: p.head.steps.clone(),
         bends: p
             .head

@@ -38,9 +38,12 @@
 use super::subdivide::{corner_vertices, Edges};
 use crate::prelude::*;
 
-/// The prediction rule of a file (`HEAD`'s `rule` byte).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Rule {
+/// The prediction rule of a file (`HEAD`'s `rule` byte). Public as
+/// `swm::Prediction`, in what `swm::inspect` says of a file
+/// (`DisplacedInfo`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Rule {
     /// Loop's edge rule (byte 0).
     Loop,
     /// The 8-point butterfly (byte 1).
@@ -48,9 +51,17 @@ pub(crate) enum Rule {
 }
 
 impl Rule {
+    /// Its name in `swm info`'s report: `"loop"` or `"butterfly"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::Loop => "loop",
+            Rule::Butterfly => "butterfly",
+        }
+    }
+
     /// Its byte.
     #[cfg(feature = "encoder")]
-    pub fn code(self) -> u8 {
+    pub(crate) fn code(self) -> u8 {
         match self {
             Rule::Loop => 0,
             Rule::Butterfly => 1,
@@ -58,7 +69,7 @@ impl Rule {
     }
 
     /// The rule a byte names.
-    pub fn from_code(b: u8) -> Option<Rule> {
+    pub(crate) fn from_code(b: u8) -> Option<Rule> {
         match b {
             0 => Some(Rule::Loop),
             1 => Some(Rule::Butterfly),

@@ -90,6 +90,12 @@ const SLOPE: f64 = 0.85;
 /// bytes^−exponent): the error of a first file off the budget is carried
 /// to the budget with it. Measured on bunny over 0.5-8 b/v: 0.83-0.87.
 const RATE_EXPONENT: f64 = 0.85;
+
+/// The error `l2` of a file of `bytes` carried to `budget` bytes
+/// ([`RATE_EXPONENT`]).
+fn carried_to(l2: f64, bytes: u64, budget: u64) -> f64 {
+    l2 * (bytes as f64 / budget as f64).powf(RATE_EXPONENT)
+}
 /// A level count whose first file's error, carried to the budget, is
 /// more than this fraction above the best level count's is not searched.
 const GIVE_UP: f64 = 0.10;
@@ -299,7 +305,7 @@ impl Displaced {
             // carries to this budget, as the first round would.
             let given = sd
                 .step
-                .and_then(|_| asked(sd.l2 * (sd.bytes as f64 / budget as f64).powf(RATE_EXPONENT)));
+                .and_then(|_| asked(carried_to(sd.l2, sd.bytes, budget)));
             let w = file(faces, sd.levels, self.settings.qp, given)?;
             if given.is_none() {
                 smallest = smallest.min(w.bytes.len() as u64);
@@ -335,9 +341,7 @@ impl Displaced {
                 smallest = smallest.min(w.bytes.len() as u64);
             }
             let mut l2 = measure(&w)?;
-            let carry = |w: &Written, l2: f64| {
-                l2 * (w.bytes.len() as f64 / budget as f64).powf(RATE_EXPONENT)
-            };
+            let carry = |w: &Written, l2: f64| carried_to(l2, w.bytes.len() as u64, budget);
             let mut carried = carry(&w, l2);
             let mut given = step;
             // The edge rule's file, when the floored one replaced it.
@@ -663,8 +667,9 @@ struct Found {
 /// Where a search at a budget near a file's can start (the passes of a
 /// file with attributes, `resample::sized`, whose geometry budgets move
 /// by a few tenths): that file's level count, base faces, error and step,
-/// its size, and the exponent of size against faces its search found. Beyond the sources, measured (BENCHMARKS.md, "Session
-/// 2026-12-07 (seventh)").
+/// its size, and the exponent of size against faces its search found.
+/// Beyond the sources, measured (BENCHMARKS.md, "Session 2026-12-07
+/// (seventh)").
 struct Start {
     levels: usize,
     faces: u32,
